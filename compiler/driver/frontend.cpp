@@ -1,0 +1,43 @@
+#include "driver/frontend.h"
+
+#include "sema/analyzer.h"
+#include "syntax/module_loader.h"
+
+namespace spire {
+
+struct FrontEnd::Loader {
+  ModuleLoader loader;
+  Loader(SourceManager& sources, DiagnosticList& diags, LoadOptions options)
+      : loader(sources, diags, std::move(options)) {}
+};
+
+FrontEnd::FrontEnd(FrontEndOptions options) : options_(std::move(options)), diags_(options_.errorLimit) {
+  LoadOptions load;
+  load.includeDirs = options_.includeDirs;
+  load.readFile = options_.readFile;
+  loader_ = std::make_unique<Loader>(sources_, diags_, std::move(load));
+}
+
+FrontEnd::~FrontEnd() = default;
+
+bool FrontEnd::addFile(const std::string& path) { return loader_->loader.loadFile(path, program_); }
+
+void FrontEnd::addSource(std::string displayPath, std::string text) {
+  loader_->loader.loadSource(std::move(displayPath), std::move(text), program_);
+}
+
+const sem::Model& FrontEnd::analyze() {
+  // Semantic errors in code the parser had to skip or guess at are mostly
+  // echoes of the syntax error, so a program that does not parse stops here:
+  // every syntax error is reported, and nothing that only follows from one.
+  if (diags_.hasErrors()) {
+    model_ = std::make_unique<sem::Model>();
+    model_->reserveExprs(program_.exprCount);
+    return *model_;
+  }
+  const sem::StrategyCatalog& strategies = options_.strategies ? *options_.strategies : sem::StrategyCatalog::builtin();
+  model_ = sem::analyze(program_, diags_, strategies);
+  return *model_;
+}
+
+}  // namespace spire

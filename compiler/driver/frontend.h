@@ -1,0 +1,60 @@
+// The front end as a library: load sources, parse and analyse them. The CLI,
+// the tests, the fuzzer and the benchmarks all go through this one entry.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sema/semantic_model.h"
+#include "sema/strategy_catalog.h"
+#include "support/diagnostic.h"
+#include "support/source_manager.h"
+#include "syntax/ast.h"
+
+namespace spire {
+
+struct FrontEndOptions {
+  std::vector<std::string> includeDirs;
+  uint32_t errorLimit = 20;
+  // See LoadOptions::readFile; the default reads the file system.
+  std::function<std::optional<std::string>(const std::string& path)> readFile;
+  // Strategies pipelines may name; null means the built-in catalogue.
+  const sem::StrategyCatalog* strategies = nullptr;
+};
+
+class FrontEnd {
+ public:
+  explicit FrontEnd(FrontEndOptions options = {});
+  ~FrontEnd();
+  FrontEnd(const FrontEnd&) = delete;
+  FrontEnd& operator=(const FrontEnd&) = delete;
+
+  // Loads a file named by the user (and its includes). False if unreadable.
+  bool addFile(const std::string& path);
+  // Loads in-memory source; includes resolve relative to displayPath.
+  void addSource(std::string displayPath, std::string text);
+
+  // Runs semantic analysis over everything loaded. After errors in loading
+  // or parsing the model is empty; after semantic errors it holds what was
+  // understood, with failed entities marked. Check diagnostics().hasErrors().
+  const sem::Model& analyze();
+
+  const SourceManager& sources() const { return sources_; }
+  const DiagnosticList& diagnostics() const { return diags_; }
+  DiagnosticList& diagnostics() { return diags_; }
+  const ast::Program& program() const { return program_; }
+
+ private:
+  FrontEndOptions options_;
+  SourceManager sources_;
+  DiagnosticList diags_;
+  ast::Program program_;
+  struct Loader;
+  std::unique_ptr<Loader> loader_;
+  std::unique_ptr<sem::Model> model_;
+};
+
+}  // namespace spire

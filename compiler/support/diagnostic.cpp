@@ -1,0 +1,68 @@
+#include "support/diagnostic.h"
+
+#include <array>
+
+namespace spire {
+namespace {
+
+constexpr std::array kCodeInfo = {
+#define SPIRE_DIAG(code, severity, summary) DiagCodeInfo{#code, Severity::severity, summary},
+#include "support/diagnostic_codes.def"
+#undef SPIRE_DIAG
+};
+
+}  // namespace
+
+const DiagCodeInfo& diagCodeInfo(DiagCode code) { return kCodeInfo[static_cast<size_t>(code)]; }
+
+std::string_view severityName(Severity severity) {
+  switch (severity) {
+    case Severity::Note: return "note";
+    case Severity::Warning: return "warning";
+    case Severity::Error: return "error";
+  }
+  return "error";
+}
+
+const std::vector<DiagCode>& allDiagCodes() {
+  static const std::vector<DiagCode> codes = [] {
+    std::vector<DiagCode> result;
+    for (size_t i = 0; i < kCodeInfo.size(); ++i) result.push_back(static_cast<DiagCode>(i));
+    return result;
+  }();
+  return codes;
+}
+
+Diagnostic& DiagnosticList::report(DiagCode code, SourceRange range, std::string message) {
+  const Severity severity = diagCodeInfo(code).severity;
+  if (limitReached_) {
+    scratch_ = {};
+    return scratch_;
+  }
+  if (severity == Severity::Error && errorCount_ >= errorLimit_) {
+    limitReached_ = true;
+    diagnostics_.push_back({Severity::Error, DiagCode::E2005, {},
+                            "too many errors emitted (limit " + std::to_string(errorLimit_) + "), stopping now",
+                            {}});
+    ++errorCount_;
+    scratch_ = {};
+    return scratch_;
+  }
+  if (severity == Severity::Error) ++errorCount_;
+  if (severity == Severity::Warning) ++warningCount_;
+  diagnostics_.push_back({severity, code, range, std::move(message), {}});
+  return diagnostics_.back();
+}
+
+std::vector<Diagnostic> DiagnosticList::takeSince(size_t mark) {
+  std::vector<Diagnostic> taken(diagnostics_.begin() + static_cast<std::ptrdiff_t>(mark), diagnostics_.end());
+  diagnostics_.resize(mark);
+  for (const Diagnostic& d : taken) {
+    if (d.code == DiagCode::E2005) limitReached_ = false;
+    if (d.severity == Severity::Error) --errorCount_;
+    if (d.severity == Severity::Warning) --warningCount_;
+  }
+  return taken;
+}
+
+}  // namespace spire

@@ -1,0 +1,70 @@
+// How operators of the AST are written in source, for printers and for
+// diagnostics that quote an operator.
+#pragma once
+
+#include <string_view>
+
+#include "syntax/ast.h"
+
+namespace spire::ast {
+
+constexpr bool isPostfix(UnaryOp op) { return op == UnaryOp::PostIncrement || op == UnaryOp::PostDecrement; }
+
+constexpr std::string_view spelling(UnaryOp op) {
+  switch (op) {
+    case UnaryOp::Plus: return "+";
+    case UnaryOp::Negate: return "-";
+    case UnaryOp::LogicalNot: return "!";
+    case UnaryOp::BitNot: return "~";
+    case UnaryOp::PreIncrement:
+    case UnaryOp::PostIncrement: return "++";
+    case UnaryOp::PreDecrement:
+    case UnaryOp::PostDecrement: return "--";
+  }
+  return "?";
+}
+
+constexpr std::string_view spelling(BinaryOp op) {
+  switch (op) {
+    case BinaryOp::Mul: return "*";
+    case BinaryOp::Div: return "/";
+    case BinaryOp::Mod: return "%";
+    case BinaryOp::Add: return "+";
+    case BinaryOp::Sub: return "-";
+    case BinaryOp::Shl: return "<<";
+    case BinaryOp::Shr: return ">>";
+    case BinaryOp::Less: return "<";
+    case BinaryOp::Greater: return ">";
+    case BinaryOp::LessEqual: return "<=";
+    case BinaryOp::GreaterEqual: return ">=";
+    case BinaryOp::Equal: return "==";
+    case BinaryOp::NotEqual: return "!=";
+    case BinaryOp::BitAnd: return "&";
+    case BinaryOp::BitXor: return "^";
+    case BinaryOp::BitOr: return "|";
+    case BinaryOp::LogicalAnd: return "&&";
+    case BinaryOp::LogicalXor: return "^^";
+    case BinaryOp::LogicalOr: return "||";
+    case BinaryOp::Comma: return ",";
+  }
+  return "?";
+}
+
+constexpr std::string_view spelling(AssignOp op) {
+  switch (op) {
+    case AssignOp::Assign: return "=";
+    case AssignOp::Mul: return "*=";
+    case AssignOp::Div: return "/=";
+    case AssignOp::Mod: return "%=";
+    case AssignOp::Add: return "+=";
+    case AssignOp::Sub: return "-=";
+    case AssignOp::Shl: return "<<=";
+    case AssignOp::Shr: return ">>=";
+    case AssignOp::BitAnd: return "&=";
+    case AssignOp::BitXor: return "^=";
+    case AssignOp::BitOr: return "|=";
+  }
+  return "?";
+}
+
+}  // namespace spire::ast

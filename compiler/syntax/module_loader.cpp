@@ -1,0 +1,137 @@
+#include "syntax/module_loader.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <unordered_set>
+
+#include "syntax/utf8.h"
+
+namespace spire {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::optional<std::string> readFromDisk(const std::string& path) {
+  std::error_code error;
+  if (fs::is_directory(path, error)) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) return std::nullopt;
+  return text;
+}
+
+// Identifies a file however it was reached (`a/../b.spire`, `./b.spire`):
+// absolute and lexically normalized, without touching the file system, so
+// that in-memory sources behave like files.
+std::string fileKey(const std::string& path) {
+  std::error_code error;
+  fs::path absolute = fs::absolute(path, error);
+  if (error) absolute = path;
+  return absolute.lexically_normal().generic_string();
+}
+
+// `include` relative to `directory`, kept relative when the directory is, so
+// that diagnostics show short paths.
+std::string joinPath(const fs::path& directory, const std::string& include) {
+  return (directory / include).lexically_normal().generic_string();
+}
+
+}  // namespace
+
+struct ModuleLoader::Impl {
+  struct OpenFile {
+    std::string key;
+    std::string displayPath;
+  };
+
+  SourceManager& sources;
+  DiagnosticList& diags;
+  LoadOptions options;
+  std::unordered_set<std::string> loaded;  // keys of files loaded or being loaded
+  std::vector<OpenFile> openFiles;         // the chain of includes being loaded
+
+  // Parses a file, loads what it includes, then appends it to the program.
+  void load(std::string displayPath, std::string key, std::string text, ast::Program& program) {
+    loaded.insert(key);
+    const FileId file = sources.addFile(displayPath, std::move(text));
+    if (!isText(file)) return;
+    auto module = parseModule(sources, file, program, diags, options.parseLimits);
+    openFiles.push_back({std::move(key), displayPath});
+    for (const auto& decl : module->decls) {
+      if (diags.limitReached()) break;
+      if (const auto* include = ast::dyn_cast<ast::UsingDecl>(decl.get())) loadInclude(*include, displayPath, program);
+    }
+    openFiles.pop_back();
+    program.modules.push_back(std::move(module));
+  }
+
+  // Binary files would only produce a flood of stray-character errors.
+  bool isText(FileId file) {
+    const std::string& text = sources.file(file).text;
+    const size_t nul = text.find('\0');
+    const size_t invalid = utf8::firstInvalidByte(text);
+    const size_t bad = std::min(nul, invalid);
+    if (bad == std::string::npos) return true;
+    const auto offset = static_cast<uint32_t>(bad);
+    diags.report(DiagCode::E1103, {file, offset, offset + 1},
+                 bad == nul ? fmt::format("'{}' is not a source file: it contains a NUL byte", sources.file(file).path)
+                            : fmt::format("'{}' is not valid UTF-8 text", sources.file(file).path));
+    return false;
+  }
+
+  // The including file's directory first, then the include directories.
+  void loadInclude(const ast::UsingDecl& include, const std::string& includerPath, ast::Program& program) {
+    std::vector<std::string> candidates = {joinPath(fs::path(includerPath).parent_path(), include.path)};
+    for (const auto& dir : options.includeDirs) candidates.push_back(joinPath(dir, include.path));
+
+    for (const auto& candidate : candidates) {
+      std::string key = fileKey(candidate);
+      const auto open = std::find_if(openFiles.begin(), openFiles.end(), [&](const OpenFile& f) { return f.key == key; });
+      if (open != openFiles.end()) return reportCycle(include, open);
+      if (loaded.contains(key)) return;
+      if (auto text = options.readFile(candidate)) return load(candidate, std::move(key), std::move(*text), program);
+    }
+    std::string searched;
+    for (const auto& candidate : candidates) searched += (searched.empty() ? "'" : ", '") + candidate + "'";
+    diags.report(DiagCode::E1101, include.pathRange, fmt::format("cannot open included file '{}'", include.path))
+        .note({}, "searched " + searched);
+  }
+
+  void reportCycle(const ast::UsingDecl& include, std::vector<OpenFile>::const_iterator first) {
+    std::string chain;
+    for (auto it = first; it != openFiles.end(); ++it) chain += it->displayPath + " -> ";
+    chain += first->displayPath;
+    diags.report(DiagCode::E1102, include.range, "include cycle: " + chain);
+  }
+};
+
+ModuleLoader::ModuleLoader(SourceManager& sources, DiagnosticList& diags, LoadOptions options)
+    : impl_(std::make_unique<Impl>(Impl{sources, diags, std::move(options), {}, {}})) {
+  if (!impl_->options.readFile) impl_->options.readFile = readFromDisk;
+}
+
+ModuleLoader::~ModuleLoader() = default;
+
+bool ModuleLoader::loadFile(const std::string& path, ast::Program& program) {
+  std::string key = fileKey(path);
+  if (impl_->loaded.contains(key)) return true;
+  auto text = impl_->options.readFile(path);
+  if (!text) {
+    impl_->diags.report(DiagCode::E1101, {}, fmt::format("cannot open source file '{}'", path));
+    return false;
+  }
+  impl_->load(path, std::move(key), std::move(*text), program);
+  return true;
+}
+
+void ModuleLoader::loadSource(std::string displayPath, std::string text, ast::Program& program) {
+  std::string key = fileKey(displayPath);
+  impl_->load(std::move(displayPath), std::move(key), std::move(text), program);
+}
+
+}  // namespace spire

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Builds and runs every test: the `default` preset (build/, RelWithDebInfo,
+# GCC), then the `asan` preset (build-asan/, Debug with AddressSanitizer and
+# UndefinedBehaviorSanitizer). Exits non-zero if any build or test fails;
+# a test failure in one preset still lets the other preset run.
+# Usage: scripts/test.sh            (from any directory; this is what CI runs)
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$ROOT"
+
+bash scripts/install-deps.sh
+
+# Make sanitizer failures fatal and readable in CTest output.
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+
+failed=()
+for preset in default asan; do
+  echo "==> [$preset] configure and build"
+  cmake --preset "$preset"
+  cmake --build --preset "$preset"
+  echo "==> [$preset] ctest"
+  if ! ctest --preset "$preset" --no-tests=error; then
+    failed+=("$preset")
+  fi
+done
+
+if ((${#failed[@]} > 0)); then
+  echo "test.sh: tests failed in preset(s): ${failed[*]}" >&2
+  exit 1
+fi
+echo "test.sh: all tests passed (default, asan)"

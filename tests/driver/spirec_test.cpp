@@ -1,0 +1,137 @@
+#include "driver/spirec.h"
+#include "support/diagnostic.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace spire {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SpirecRun {
+  int exitCode;
+  std::string out;
+  std::string err;
+};
+
+SpirecRun spirec(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  const int code = runSpirec(args, out, err);
+  return {code, out.str(), err.str()};
+}
+
+fs::path sourceDir() { return SPIRE_SOURCE_DIR; }
+
+TEST(Spirec, HelpAndVersionSucceed) {
+  const SpirecRun help = spirec({"--help"});
+  EXPECT_EQ(help.exitCode, kExitSuccess);
+  EXPECT_NE(help.out.find("--diagnostics-format"), std::string::npos);
+  const SpirecRun version = spirec({"--version"});
+  EXPECT_EQ(version.exitCode, kExitSuccess);
+  EXPECT_EQ(version.out.rfind("spirec ", 0), 0u);
+}
+
+TEST(Spirec, BadUsageExitsWithTwo) {
+  EXPECT_EQ(spirec({}).exitCode, kExitUsageError);
+  EXPECT_EQ(spirec({"--no-such-flag", "a.spire"}).exitCode, kExitUsageError);
+  EXPECT_EQ(spirec({"--diagnostics-format=xml", "a.spire"}).exitCode, kExitUsageError);
+}
+
+TEST(Spirec, MissingInputFileIsAnInputError) {
+  const SpirecRun run = spirec({"does/not/exist.spire"});
+  EXPECT_EQ(run.exitCode, kExitInputError);
+  EXPECT_NE(run.err.find("E1101"), std::string::npos);
+}
+
+TEST(Spirec, EveryExampleCompilesWithoutAnyDiagnostic) {
+  size_t examples = 0;
+  for (const auto& entry : fs::directory_iterator(sourceDir() / "examples")) {
+    if (entry.path().extension() != ".spire") continue;
+    ++examples;
+    const SpirecRun run = spirec({entry.path().string()});
+    EXPECT_EQ(run.exitCode, kExitSuccess) << entry.path();
+    EXPECT_EQ(run.err, "") << entry.path();
+  }
+  EXPECT_GE(examples, 2u);
+}
+
+TEST(Spirec, JsonDiagnosticsCarryCodeAndLocation) {
+  const fs::path source = sourceDir() / "tests/golden/diagnostics/undefined_identifier.spire";
+  const SpirecRun run = spirec({"--diagnostics-format=json", source.string()});
+  EXPECT_EQ(run.exitCode, kExitInputError);
+  const auto json = nlohmann::json::parse(run.err);
+  ASSERT_EQ(json["diagnostics"].size(), 1u);
+  const auto& d = json["diagnostics"][0];
+  EXPECT_EQ(d["code"], "E3001");
+  EXPECT_EQ(d["severity"], "error");
+  EXPECT_EQ(d["range"]["line"], 7);
+  EXPECT_EQ(d["range"]["column"], 27);
+  EXPECT_EQ(json["errorCount"], 1);
+}
+
+TEST(Spirec, ChoicesListTerrainComponentsDeterministically) {
+  const fs::path terrain = sourceDir() / "examples/terrain.spire";
+  const SpirecRun first = spirec({terrain.string(), "--choices"});
+  ASSERT_EQ(first.exitCode, kExitSuccess) << first.err;
+  EXPECT_NE(first.out.find("Terrain.lighting = {*:basic,*:ggx}"), std::string::npos) << first.out;
+  EXPECT_NE(first.out.find("Terrain.normal = {Vertex,Fragment}"), std::string::npos) << first.out;
+  EXPECT_EQ(first.out, spirec({terrain.string(), "--choices"}).out);
+}
+
+TEST(Spirec, ChoicesFileIsWrittenWhole) {
+  const fs::path dir = fs::temp_directory_path() / "spirec_choices_test";
+  fs::create_directories(dir);
+  const fs::path target = dir / "terrain.choices";
+  const SpirecRun run = spirec({(sourceDir() / "examples/terrain.spire").string(), "--choices", target.string()});
+  ASSERT_EQ(run.exitCode, kExitSuccess) << run.err;
+  std::ifstream in(target);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find("Terrain.albedo"), std::string::npos);
+  // No temporary is left beside the output.
+  size_t files = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 1u);
+  fs::remove_all(dir);
+}
+
+TEST(Spirec, UnwritableChoicesPathFailsCleanly) {
+  const SpirecRun run = spirec({(sourceDir() / "examples/terrain.spire").string(), "--choices", "/nonexistent/dir/x.choices"});
+  EXPECT_EQ(run.exitCode, kExitInputError);
+  EXPECT_NE(run.err.find("cannot write"), std::string::npos);
+}
+
+TEST(Spirec, ErrorLimitCapsOutput) {
+  std::string source = "pipeline P { world W : \"GLSL\" export standardExport; }\n";
+  for (int i = 0; i < 100; ++i) source += "shader S" + std::to_string(i) + " using Q {}\n";
+  const fs::path path = fs::temp_directory_path() / "spirec_many_errors.spire";
+  std::ofstream(path) << source;
+  const SpirecRun run = spirec({path.string(), "--max-errors", "5"});
+  EXPECT_EQ(run.exitCode, kExitInputError);
+  EXPECT_NE(run.err.find("too many errors"), std::string::npos);
+  fs::remove(path);
+}
+
+}  // namespace
+}  // namespace spire
+
+namespace spire {
+namespace {
+
+TEST(Docs, DiagnosticsPageListsEveryCode) {
+  std::ifstream in(std::filesystem::path(SPIRE_SOURCE_DIR) / "docs/diagnostics.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  for (DiagCode code : allDiagCodes()) {
+    const std::string name(diagCodeInfo(code).name);
+    EXPECT_NE(text.str().find("| " + name + " |"), std::string::npos) << name << " is missing from docs/diagnostics.md";
+  }
+}
+
+}  // namespace
+}  // namespace spire

@@ -1,0 +1,94 @@
+// printModule must produce source that parses back to the same tree. This
+// runs over a handwritten file with every construct and over every Spire
+// file shipped with the project.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "syntax_test_util.h"
+
+namespace spire {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Parses `source`, prints it, parses the print and compares the dumps; the
+// printed form must also be a fixed point of printing.
+void expectRoundTrip(const std::string& source, const std::string& name) {
+  SCOPED_TRACE(name);
+  const auto original = test::parse(source);
+  ASSERT_EQ(original->diagnostics(), std::vector<std::string>{}) << "the input itself has syntax errors";
+  const std::string printed = printModule(*original->module);
+  const auto reparsed = test::parse(printed);
+  ASSERT_EQ(reparsed->diagnostics(), std::vector<std::string>{}) << "printed source:\n" << printed;
+  EXPECT_EQ(original->dump(), reparsed->dump()) << "printed source:\n" << printed;
+  EXPECT_EQ(printModule(*reparsed->module), printed);
+}
+
+TEST(RoundTrip, EveryConstruct) {
+  const std::string source = readFile(fs::path(SPIRE_TEST_DATA_DIR) / "syntax" / "all_constructs.spire");
+  ASSERT_FALSE(source.empty());
+  expectRoundTrip(source, "all_constructs.spire");
+}
+
+TEST(RoundTrip, PaperListings) {
+  const std::string source = readFile(fs::path(SPIRE_TEST_DATA_DIR) / "syntax" / "paper_listings.spire");
+  ASSERT_FALSE(source.empty());
+  expectRoundTrip(source, "paper_listings.spire");
+}
+
+TEST(RoundTrip, ExpressionsNeedingParentheses) {
+  expectRoundTrip(R"(void f() {
+    x = -(-a) + (-(--b)) - (+(+c)) - (a - b) - (a = b) + (p ? a : b);
+    x = (a, b)[(c, d)] + f((a, b), c) + g(a = b) + float[(n, m)](a);
+    x = (a ? b : c) = d;
+    x = (1).x + (1.5).y + 2.0.z + 1e3.w;
+  })",
+                  "expressions");
+}
+
+// The examples of docs/language.md must be valid, too.
+TEST(RoundTrip, DocumentationExamples) {
+  const std::string doc = readFile(fs::path(SPIRE_SOURCE_DIR) / "docs" / "language.md");
+  const std::string open = "```spire\n";
+  size_t count = 0;
+  for (size_t begin = doc.find(open); begin != std::string::npos; begin = doc.find(open, begin)) {
+    begin += open.size();
+    const size_t end = doc.find("```", begin);
+    ASSERT_NE(end, std::string::npos);
+    expectRoundTrip(doc.substr(begin, end - begin), fmt::format("example {} of docs/language.md", ++count));
+  }
+  EXPECT_GE(count, 3u);
+}
+
+// The folders hold the project's pipelines, standard library and examples;
+// they may still be empty, which is not an error.
+TEST(RoundTrip, EveryShippedSpireFile) {
+  size_t count = 0;
+  for (const char* folder : {"examples", "pipelines", "stdlib"}) {
+    const fs::path root = fs::path(SPIRE_SOURCE_DIR) / folder;
+    std::error_code error;
+    if (!fs::is_directory(root, error)) continue;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::recursive_directory_iterator(root, error)) {
+      if (entry.is_regular_file() && entry.path().extension() == ".spire") files.push_back(entry.path());
+    }
+    std::sort(files.begin(), files.end());
+    for (const fs::path& file : files) {
+      expectRoundTrip(readFile(file), file.string());
+      ++count;
+    }
+  }
+  RecordProperty("files", static_cast<int>(count));
+}
+
+}  // namespace
+}  // namespace spire
