@@ -1,5 +1,10 @@
 #include "driver/frontend.h"
 
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
 #include "sema/analyzer.h"
 #include "syntax/module_loader.h"
 
@@ -24,6 +29,22 @@ bool FrontEnd::addFile(const std::string& path) { return loader_->loader.loadFil
 
 void FrontEnd::addSource(std::string displayPath, std::string text) {
   loader_->loader.loadSource(std::move(displayPath), std::move(text), program_);
+}
+
+std::optional<FileId> FrontEnd::loadAuxiliaryFile(const std::string& path) {
+  std::optional<std::string> text;
+  if (options_.readFile) {
+    text = options_.readFile(path);
+  } else if (std::ifstream in(path, std::ios::binary); in) {
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    text = buffer.str();
+  }
+  if (!text) {
+    diags_.report(DiagCode::E1101, {}, fmt::format("cannot open file '{}'", path));
+    return std::nullopt;
+  }
+  return sources_.addFile(path, std::move(*text));
 }
 
 const sem::Model& FrontEnd::analyze() {

@@ -37,6 +37,10 @@ class FrontEnd {
   // Loads in-memory source; includes resolve relative to displayPath.
   void addSource(std::string displayPath, std::string text);
 
+  // Loads a non-Spire input (a decision file) so that its diagnostics render
+  // like any source's. Reports E1101 and returns nullopt if unreadable.
+  std::optional<FileId> loadAuxiliaryFile(const std::string& path);
+
   // Runs semantic analysis over everything loaded. After errors in loading
   // or parsing the model is empty; after semantic errors it holds what was
   // understood, with failed entities marked. Check diagnostics().hasErrors().

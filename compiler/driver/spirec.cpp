@@ -5,8 +5,10 @@
 
 #include <ostream>
 
-#include "driver/definition_listing.h"
 #include "driver/frontend.h"
+#include "graph/choice_space.h"
+#include "graph/decision_file.h"
+#include "graph/shader_graph.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
 
@@ -19,6 +21,8 @@ struct Options {
   std::string diagnosticsFormat = "text";
   std::string choicesPath;  // "-" is stdout
   bool choices = false;
+  std::string decisionsPath;
+  bool dumpPlacement = false;
   std::string shader;
   uint32_t maxErrors = 20;
 };
@@ -40,6 +44,10 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
                                  "Write the choice file to PATH (stdout when PATH is omitted or '-')")
                       ->expected(0, 1)
                       ->type_name("[PATH]");
+  app.add_option("--decisions", options.decisionsPath, "Apply the decision file PATH to every shader it names")
+      ->type_name("PATH");
+  app.add_flag("--dump-placement", options.dumpPlacement,
+               "Print each variant's placement (as a decision file) and what each world computes, imports and exports");
   app.add_option("--shader", options.shader, "Restrict output to one shader")->type_name("NAME");
   app.add_option("--max-errors", options.maxErrors, "Stop after N errors (0: no limit)")->type_name("N");
 
@@ -67,23 +75,70 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
   for (const std::string& file : options.files) frontEnd.addFile(file);
   const sem::Model& model = frontEnd.analyze();
 
-  if (!options.shader.empty() && !frontEnd.diagnostics().hasErrors() && !model.findShader(options.shader)) {
-    err << fmt::format("spirec: error: no shader named '{}'\n", options.shader);
-    return kExitUsageError;
+  // Concrete shaders, their graphs and choice spaces: everything the
+  // requested outputs need, built once.
+  DiagnosticList& diags = frontEnd.diagnostics();
+  std::vector<const sem::Shader*> shaders;
+  if (!diags.hasErrors()) {
+    for (const sem::Shader* shader : graph::concreteShaders(model)) {
+      const bool selected = options.shader.empty() || shader->name == options.shader ||
+                            (shader->derivedFrom && shader->decl->name == options.shader);
+      if (selected) shaders.push_back(shader);
+    }
+    if (!options.shader.empty() && shaders.empty()) {
+      err << fmt::format("spirec: error: no concrete shader named '{}'\n", options.shader);
+      return kExitUsageError;
+    }
   }
-  const std::string rendered = renderDiagnostics(frontEnd.sources(), frontEnd.diagnostics(), format);
-  if (format == DiagnosticFormat::Json || !rendered.empty()) err << rendered;
-  if (frontEnd.diagnostics().hasErrors()) return kExitInputError;
+  std::vector<std::unique_ptr<graph::ShaderGraph>> graphs;
+  std::vector<graph::ChoiceSpace> spaces;
+  for (const sem::Shader* shader : shaders) {
+    if (auto g = graph::ShaderGraph::build(model, *shader, diags)) {
+      spaces.emplace_back(*g);
+      if (!spaces.back().consistent()) {
+        diags.report(DiagCode::E4017, shader->decl->nameRange,
+                     fmt::format("shader '{}' has no valid variant: the pipeline's requirements cannot all be met",
+                                 shader->name));
+      }
+      graphs.push_back(std::move(g));
+    }
+  }
 
-  if (options.choices) {
-    const std::string listing = listDeclaredDefinitions(model, options.shader);
-    if (options.choicesPath.empty() || options.choicesPath == "-") {
-      out << listing;
-    } else if (auto error = writeFileAtomically(options.choicesPath, listing)) {
+  std::string choicesText;
+  std::string output;
+  if (!diags.hasErrors() && options.choices) {
+    for (const graph::ChoiceSpace& space : spaces) choicesText += graph::writeChoiceFile(space);
+  }
+  if (!diags.hasErrors() && (!options.decisionsPath.empty() || options.dumpPlacement)) {
+    graph::DecisionFile decisions;
+    if (!options.decisionsPath.empty()) {
+      if (const auto id = frontEnd.loadAuxiliaryFile(options.decisionsPath)) {
+        decisions = graph::parseDecisionFile(frontEnd.sources(), *id, diags);
+        checkDecisionPrefixes(decisions, model, diags);
+      }
+    }
+    if (!diags.hasErrors()) {
+      for (const graph::ChoiceSpace& space : spaces) {
+        const auto variant = graph::applyDecisions(decisions, space, diags);
+        if (variant && options.dumpPlacement) {
+          output += fmt::format("// variant of {}\n{}", space.graph().shader().name, variant->describe());
+        }
+      }
+    }
+  }
+
+  const std::string rendered = renderDiagnostics(frontEnd.sources(), diags, format);
+  if (format == DiagnosticFormat::Json || !rendered.empty()) err << rendered;
+  if (diags.hasErrors()) return kExitInputError;
+  if (options.choices && !options.choicesPath.empty() && options.choicesPath != "-") {
+    if (auto error = writeFileAtomically(options.choicesPath, choicesText)) {
       err << "spirec: error: " << *error << "\n";
       return kExitInputError;
     }
+  } else {
+    out << choicesText;
   }
+  out << output;
   return kExitSuccess;
 }
 

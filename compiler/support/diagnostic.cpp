@@ -54,6 +54,16 @@ Diagnostic& DiagnosticList::report(DiagCode code, SourceRange range, std::string
   return diagnostics_.back();
 }
 
+Diagnostic& DiagnosticList::reportOnce(DiagCode code, SourceRange range, std::string message) {
+  for (const Diagnostic& d : diagnostics_) {
+    if (d.code == code && d.range == range && d.message == message) {
+      scratch_ = {};
+      return scratch_;
+    }
+  }
+  return report(code, range, std::move(message));
+}
+
 std::vector<Diagnostic> DiagnosticList::takeSince(size_t mark) {
   std::vector<Diagnostic> taken(diagnostics_.begin() + static_cast<std::ptrdiff_t>(mark), diagnostics_.end());
   diagnostics_.resize(mark);

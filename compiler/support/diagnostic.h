@@ -59,6 +59,10 @@ class DiagnosticList {
   // extended with notes; when the limit is reached it is a discarded scratch.
   Diagnostic& report(DiagCode code, SourceRange range, std::string message);
 
+  // As report(), unless an identical diagnostic (code, range, message) was
+  // already reported: checks repeated per derived shader report once.
+  Diagnostic& reportOnce(DiagCode code, SourceRange range, std::string message);
+
   const std::vector<Diagnostic>& all() const { return diagnostics_; }
   uint32_t errorCount() const { return errorCount_; }
   uint32_t warningCount() const { return warningCount_; }

@@ -1,0 +1,47 @@
+// Decision files (docs/decisions.md): one `Shader.component = World[:variation]`
+// per line, with `//` comments and optional attributes before a decision,
+// such as `[Format: "RGB10_A2"] Terrain.albedo = PrebakeTex`.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "graph/variant.h"
+#include "sema/semantic_model.h"
+#include "support/diagnostic.h"
+#include "support/source_manager.h"
+
+namespace spire::graph {
+
+struct DecisionLine {
+  SourceRange range;
+  std::string prefix;  // a shader, one of its bases, or a group-derived shader
+  SourceRange prefixRange;
+  std::string component;
+  SourceRange componentRange;
+  std::string world;
+  SourceRange worldRange;
+  std::string variation;  // empty when none
+  SourceRange variationRange;
+  std::vector<std::pair<std::string, std::string>> attributes;
+};
+
+struct DecisionFile {
+  std::vector<DecisionLine> lines;
+};
+
+// Syntax errors are E5001 errors; the malformed line is skipped.
+DecisionFile parseDecisionFile(const SourceManager& sources, FileId file, DiagnosticList& diags);
+
+// Warns (W5001) about lines whose prefix names no shader or group at all.
+void checkDecisionPrefixes(const DecisionFile& decisions, const sem::Model& model, DiagnosticList& diags);
+
+// Builds the variant of the space's shader from the lines that apply to it,
+// warning about unknown components, worlds and variations (W5001),
+// decisions outside the choice space (W5003), duplicates (W5004) and
+// conflicts (W5002, naming the earlier decision). Every such line is skipped.
+std::optional<Variant> applyDecisions(const DecisionFile& decisions, const ChoiceSpace& space, DiagnosticList& diags);
+
+}  // namespace spire::graph

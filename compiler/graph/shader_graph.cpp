@@ -1,0 +1,255 @@
+#include "graph/shader_graph.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <set>
+
+namespace spire::graph {
+namespace {
+
+std::string worldList(const sem::Pipeline& pipeline, WorldMask mask) {
+  std::string text;
+  for (sem::WorldId w : pipeline.topologicalOrder) {
+    if (!((mask >> w) & 1) || pipeline.worlds[w].isAbstract) continue;
+    text += fmt::format("{}{}", text.empty() ? "" : ", ", pipeline.worlds[w].name);
+  }
+  return text.empty() ? "no world that computes" : text;
+}
+
+// Worlds a definition written by `origin` may not use implicitly: those
+// finalized by a shader above `origin` in the inheritance chain (section 6.2).
+WorldMask lockedWorldsFor(const sem::Shader& shader, const std::string& origin) {
+  std::vector<const sem::Shader*> chain;
+  for (const sem::Shader* s = &shader; s; s = s->base) chain.push_back(s);
+  size_t position = chain.size();  // pipeline components sit above every shader
+  for (size_t i = 0; i < chain.size(); ++i) {
+    if (chain[i]->name == origin) position = i;
+  }
+  WorldMask locked = 0;
+  for (size_t k = position + 1; k < chain.size(); ++k) {
+    for (const ast::NameRef& ref : chain[k]->decl->finalizes) {
+      if (auto w = shader.pipeline->findWorld(ref.name)) locked |= WorldMask{1} << *w;
+    }
+  }
+  return locked;
+}
+
+}  // namespace
+
+std::vector<const sem::Shader*> concreteShaders(const sem::Model& model) {
+  std::set<const sem::Shader*> abstractOnes;
+  for (const auto& s : model.shaders) {
+    if (s->base) abstractOnes.insert(s->base);
+  }
+  for (const auto& g : model.groups) {
+    if (g->derivedDecl) continue;
+    for (const sem::GroupMember& m : g->members) abstractOnes.insert(m.shader);
+  }
+  std::vector<const sem::Shader*> result;
+  for (const auto& s : model.shaders) {
+    if (s->valid && !abstractOnes.count(s.get())) result.push_back(s.get());
+  }
+  return result;
+}
+
+std::unique_ptr<ShaderGraph> ShaderGraph::build(const sem::Model& model, const sem::Shader& shader,
+                                                DiagnosticList& diags) {
+  const sem::Pipeline& pipeline = *shader.pipeline;
+  if (pipeline.worlds.size() > kMaxWorlds) {
+    diags.reportOnce(DiagCode::E4016, pipeline.decl->nameRange,
+                     fmt::format("pipeline '{}' has {} worlds; at most {} are supported", pipeline.name,
+                                 pipeline.worlds.size(), kMaxWorlds));
+    return nullptr;
+  }
+  if (!pipeline.valid || pipeline.topologicalOrder.size() != pipeline.worlds.size()) return nullptr;
+  std::unique_ptr<ShaderGraph> graph(new ShaderGraph());
+  graph->shader_ = &shader;
+  const size_t worldCount = pipeline.worlds.size();
+  graph->worldRank_.assign(worldCount, 0);
+  for (uint32_t i = 0; i < worldCount; ++i) graph->worldRank_[pipeline.topologicalOrder[i]] = i;
+  graph->reachable_.assign(worldCount, 0);
+  for (sem::WorldId from = 0; from < worldCount; ++from) {
+    for (sem::WorldId to = 0; to < worldCount; ++to) {
+      if (pipeline.reaches(from, to)) graph->reachable_[from] |= WorldMask{1} << to;
+    }
+  }
+  if (!graph->expand(model, diags)) return nullptr;
+  return graph;
+}
+
+bool ShaderGraph::expand(const sem::Model&, DiagnosticList& diags) {
+  const sem::Shader& shader = *shader_;
+  const sem::Pipeline& pipeline = *shader.pipeline;
+  const size_t n = shader.components.size();
+  bool ok = true;
+
+  // Producers before consumers (sema has rejected cycles).
+  std::vector<uint8_t> state(n, 0);
+  for (sem::ComponentId root = 0; root < n; ++root) {
+    if (state[root]) continue;
+    std::vector<std::pair<sem::ComponentId, std::vector<sem::ComponentId>>> stack;
+    auto depsOf = [&](sem::ComponentId id) {
+      std::vector<sem::ComponentId> deps;
+      for (const sem::Definition& d : shader.components[id].definitions) {
+        deps.insert(deps.end(), d.dependencies.begin(), d.dependencies.end());
+      }
+      return deps;
+    };
+    stack.emplace_back(root, depsOf(root));
+    state[root] = 1;
+    while (!stack.empty()) {
+      auto& [id, pending] = stack.back();
+      if (pending.empty()) {
+        state[id] = 2;
+        order_.push_back(id);
+        stack.pop_back();
+        continue;
+      }
+      const sem::ComponentId next = pending.back();
+      pending.pop_back();
+      if (state[next] == 0) {
+        state[next] = 1;
+        stack.emplace_back(next, depsOf(next));
+      }
+    }
+  }
+
+  nodes_.resize(n);
+  std::vector<WorldMask> available(n, 0);
+  std::vector<bool> failed(n, false);
+  WorldMask concrete = 0;
+  for (sem::WorldId w = 0; w < pipeline.worlds.size(); ++w) {
+    if (!pipeline.worlds[w].isAbstract) concrete |= WorldMask{1} << w;
+  }
+
+  for (sem::ComponentId id : order_) {
+    const sem::Component& component = shader.components[id];
+    ComponentNode& node = nodes_[id];
+    node.id = id;
+    node.component = &component;
+    node.isInput = !component.definitions.empty() && component.definitions.front().isInput();
+    const bool ownsDefinition = std::any_of(component.definitions.begin(), component.definitions.end(),
+                                            [&](const sem::Definition& d) { return d.origin == shader.name; });
+    node.choicePrefix = ownsDefinition || !shader.base ? shader.name : shader.base->name;
+
+    if (component.isAbstract && component.definitions.empty()) {
+      diags.report(DiagCode::E4013, shader.decl->nameRange,
+                   fmt::format("shader '{}' does not define '{}', which '{}' requires", shader.name, component.name,
+                               component.origin))
+          .note(component.firstDecl->nameRange, fmt::format("'{}' is declared abstract here", component.name));
+      ok = false;
+      failed[id] = true;
+      continue;
+    }
+    for (const sem::Definition& d : component.definitions) {
+      if (std::find(node.variations.begin(), node.variations.end(), d.variation) == node.variations.end()) {
+        node.variations.push_back(d.variation);
+      }
+    }
+    auto variationIndex = [&](const std::string& v) {
+      return static_cast<uint32_t>(std::find(node.variations.begin(), node.variations.end(), v) - node.variations.begin());
+    };
+    const bool depFailed = std::any_of(component.definitions.begin(), component.definitions.end(), [&](const auto& d) {
+      return std::any_of(d.dependencies.begin(), d.dependencies.end(), [&](sem::ComponentId dep) { return failed[dep]; });
+    });
+    if (depFailed) {
+      failed[id] = true;
+      ok = false;
+      continue;
+    }
+
+    for (const sem::Definition& d : component.definitions) {
+      if (d.world) {
+        for (size_t i = 0; i < d.dependencies.size(); ++i) {
+          const sem::ComponentId dep = d.dependencies[i];
+          if ((available[dep] >> *d.world) & 1) continue;
+          diags.reportOnce(DiagCode::E4015, d.dependencyUses[i],
+                           fmt::format("'{}' is not available in world '{}', where '{}' is defined (it is available in {})",
+                                       shader.components[dep].name, pipeline.worlds[*d.world].name, component.name,
+                                       worldList(pipeline, available[dep])));
+          ok = false;
+          failed[id] = true;
+        }
+        node.alternatives.push_back({*d.world, variationIndex(d.variation), &d});
+        continue;
+      }
+      // Implicit overloading (section 5.2): every concrete world where all
+      // dependencies are available, except worlds an explicit definition of
+      // the same variation already uses and worlds locked above the author.
+      WorldMask candidates = concrete & ~lockedWorldsFor(shader, d.origin);
+      for (const sem::Definition& other : component.definitions) {
+        if (other.world && other.variation == d.variation) candidates &= ~(WorldMask{1} << *other.world);
+      }
+      WorldMask allowed = candidates;
+      for (sem::ComponentId dep : d.dependencies) allowed &= available[dep];
+      if (allowed == 0 && component.definitions.size() == 1) {
+        // Name the dependency that empties the set of possible worlds.
+        WorldMask running = candidates;
+        std::string explanation = "no world can compute it";
+        std::vector<std::string> seen;
+        for (sem::ComponentId dep : d.dependencies) {
+          const WorldMask next = running & available[dep];
+          seen.push_back(fmt::format("'{}' ({})", shader.components[dep].name, worldList(pipeline, available[dep])));
+          if (next == 0) {
+            explanation = seen.size() == 1
+                              ? fmt::format("it uses {}, which is available in no world where it could be computed",
+                                            seen.front())
+                              : fmt::format("no world has all of its dependencies; '{}' is blocked by {}",
+                                            component.name, fmt::join(seen, " and "));
+            break;
+          }
+          running = next;
+        }
+        diags.reportOnce(DiagCode::E4014, d.decl->nameRange,
+                         fmt::format("component '{}' can be defined nowhere: {}", component.name, explanation));
+        ok = false;
+        failed[id] = true;
+      }
+      for (sem::WorldId w = 0; w < pipeline.worlds.size(); ++w) {
+        if ((allowed >> w) & 1) node.alternatives.push_back({w, variationIndex(d.variation), &d});
+      }
+    }
+    std::stable_sort(node.alternatives.begin(), node.alternatives.end(), [&](const Alternative& a, const Alternative& b) {
+      if (a.variation != b.variation) return a.variation < b.variation;
+      return worldRank_[a.world] < worldRank_[b.world];
+    });
+    for (const Alternative& alt : node.alternatives) available[id] |= reachable_[alt.world];
+  }
+
+  // Pipeline requirements: exports in their world, strategy arguments in the
+  // world whose export strategy reads them.
+  for (sem::ComponentId id = 0; id < n; ++id) {
+    const sem::Component& c = shader.components[id];
+    if (c.isExport && c.requiredWorld) sinks_.push_back({id, *c.requiredWorld});
+  }
+  for (sem::WorldId w = 0; w < pipeline.worlds.size(); ++w) {
+    const auto& strategy = pipeline.worlds[w].exportStrategy;
+    if (!strategy) continue;
+    for (const std::string& name : strategy->componentArgs) {
+      if (auto it = shader.componentByName.find(name); it != shader.componentByName.end()) {
+        sinks_.push_back({it->second, w});
+      }
+    }
+  }
+  return ok;
+}
+
+std::string ShaderGraph::altName(const ComponentNode& node, AltId alt) const {
+  const Alternative& a = node.alternatives[alt];
+  const std::string& variation = node.variations[a.variation];
+  const std::string& world = pipeline().worlds[a.world].name;
+  return variation.empty() ? world : world + ":" + variation;
+}
+
+std::optional<AltId> ShaderGraph::findAlternative(const ComponentNode& node, std::string_view world,
+                                                  std::string_view variation) const {
+  for (AltId i = 0; i < node.alternatives.size(); ++i) {
+    const Alternative& a = node.alternatives[i];
+    if (pipeline().worlds[a.world].name == world && node.variations[a.variation] == variation) return i;
+  }
+  return std::nullopt;
+}
+
+}  // namespace spire::graph

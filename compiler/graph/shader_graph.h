@@ -1,0 +1,89 @@
+// The shader graph of one concrete shader (paper section 5.2): every
+// component with all its concrete alternatives, i.e. each declared definition
+// instantiated in each world where it can be computed.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sema/semantic_model.h"
+#include "support/diagnostic.h"
+
+namespace spire::graph {
+
+using AltId = uint32_t;
+// Sets of worlds as bit masks; pipelines have at most 64 worlds.
+using WorldMask = uint64_t;
+inline constexpr uint32_t kMaxWorlds = 64;
+
+struct Alternative {
+  sem::WorldId world = 0;
+  uint32_t variation = 0;  // index into ComponentNode::variations
+  const sem::Definition* definition = nullptr;
+};
+
+struct ComponentNode {
+  sem::ComponentId id = 0;
+  const sem::Component* component = nullptr;
+  // The prefix in choice and decision files: the shader that defines the
+  // component, or the base it is inherited through (paper section 6.2).
+  std::string choicePrefix;
+  std::vector<std::string> variations;  // in declaration order; "" if unnamed
+  // Ordered as the choice file lists them: by variation, then by the
+  // pipeline's world order.
+  std::vector<Alternative> alternatives;
+  bool isInput = false;
+};
+
+// A requirement of the pipeline: `component` must be available in `world`
+// (the exported output in its world, vertexExport's position in Vertex).
+struct Sink {
+  sem::ComponentId component = 0;
+  sem::WorldId world = 0;
+};
+
+class ShaderGraph {
+ public:
+  // Builds the graph, reporting components that cannot be defined anywhere,
+  // explicit definitions whose dependencies are unavailable and required
+  // components left undefined. Returns null after such errors.
+  static std::unique_ptr<ShaderGraph> build(const sem::Model& model, const sem::Shader& shader, DiagnosticList& diags);
+
+  const sem::Shader& shader() const { return *shader_; }
+  const sem::Pipeline& pipeline() const { return *shader_->pipeline; }
+  const std::vector<ComponentNode>& nodes() const { return nodes_; }
+  const ComponentNode& node(sem::ComponentId id) const { return nodes_[id]; }
+  const std::vector<Sink>& sinks() const { return sinks_; }
+  // Components with producers before consumers.
+  const std::vector<sem::ComponentId>& dependencyOrder() const { return order_; }
+  // Position of each world in the pipeline's topological order.
+  uint32_t worldRank(sem::WorldId world) const { return worldRank_[world]; }
+  // Worlds reachable from `world` through zero or more imports.
+  WorldMask reachable(sem::WorldId world) const { return reachable_[world]; }
+  bool reaches(sem::WorldId from, sem::WorldId to) const { return (reachable_[from] >> to) & 1; }
+
+  // "World" or "World:variation", as choice and decision files spell it.
+  std::string altName(const ComponentNode& node, AltId alt) const;
+  std::optional<AltId> findAlternative(const ComponentNode& node, std::string_view world,
+                                       std::string_view variation) const;
+
+ private:
+  ShaderGraph() = default;
+  bool expand(const sem::Model& model, DiagnosticList& diags);
+
+  const sem::Shader* shader_ = nullptr;
+  std::vector<ComponentNode> nodes_;
+  std::vector<Sink> sinks_;
+  std::vector<sem::ComponentId> order_;
+  std::vector<uint32_t> worldRank_;
+  std::vector<WorldMask> reachable_;
+};
+
+// Shaders for which variants are built: instances and shaders that no other
+// shader derives from and no group lists.
+std::vector<const sem::Shader*> concreteShaders(const sem::Model& model);
+
+}  // namespace spire::graph

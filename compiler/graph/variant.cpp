@@ -1,0 +1,273 @@
+#include "graph/variant.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <deque>
+#include <set>
+
+namespace spire::graph {
+
+class VariantBuilder {
+ public:
+  explicit VariantBuilder(const ShaderGraph& graph) : graph_(graph) {}
+
+  // Chooses an alternative for every live component, consumers first, with
+  // backtracking when a choice leaves a dependency nowhere to go.
+  std::optional<Variant> place(const ChoiceSpace& domains);
+
+ private:
+  void route(Variant& v, sem::ComponentId component, sem::WorldId from, sem::WorldId to,
+             std::set<std::pair<sem::ComponentId, uint32_t>>& seen);
+  const std::vector<uint32_t>& path(sem::WorldId from, sem::WorldId to);
+
+  const ShaderGraph& graph_;
+  std::map<std::pair<sem::WorldId, sem::WorldId>, std::vector<uint32_t>> paths_;
+};
+
+std::optional<Variant> VariantBuilder::place(const ChoiceSpace& domains) {
+  const size_t n = graph_.nodes().size();
+  const auto& dependencyOrder = graph_.dependencyOrder();
+  const std::vector<sem::ComponentId> order(dependencyOrder.rbegin(), dependencyOrder.rend());
+  // Worlds each component must reach: its live consumers' and sinks'.
+  std::vector<WorldMask> mustReach(n, 0);
+  for (const Sink& sink : graph_.sinks()) mustReach[sink.component] |= WorldMask{1} << sink.world;
+
+  // Default preference per component: latest world, then first variation.
+  auto preferred = [&](sem::ComponentId c) {
+    std::vector<AltId> alts = domains.aliveAlternatives(c);
+    const auto& all = graph_.node(c).alternatives;
+    std::stable_sort(alts.begin(), alts.end(), [&](AltId a, AltId b) {
+      const uint32_t ra = graph_.worldRank(all[a].world), rb = graph_.worldRank(all[b].world);
+      if (ra != rb) return ra > rb;
+      return all[a].variation < all[b].variation;
+    });
+    return alts;
+  };
+  auto fits = [&](sem::ComponentId c, AltId a) {
+    const WorldMask reach = graph_.reachable(graph_.node(c).alternatives[a].world);
+    return (reach & mustReach[c]) == mustReach[c];
+  };
+
+  struct Frame {
+    std::vector<AltId> candidates;
+    size_t next = 0;
+    std::vector<std::pair<sem::ComponentId, WorldMask>> saved;  // mustReach before this choice
+    bool skipped = false;
+  };
+  std::vector<Frame> frames(order.size());
+  std::vector<std::optional<AltId>> choice(n);
+  size_t i = 0;
+  size_t steps = 0;
+  constexpr size_t kMaxSteps = 1'000'000;
+  bool entering = true;
+  while (i < order.size()) {
+    if (++steps > kMaxSteps) return std::nullopt;
+    const sem::ComponentId c = order[i];
+    Frame& frame = frames[i];
+    if (entering) {
+      frame = Frame{};
+      if (mustReach[c] == 0) {
+        frame.skipped = true;  // not live
+        ++i;
+        continue;
+      }
+      frame.candidates = preferred(c);
+    } else {
+      // Backtracking into this frame: undo its choice.
+      for (const auto& [dep, mask] : frame.saved) mustReach[dep] = mask;
+      frame.saved.clear();
+      choice[c].reset();
+    }
+    bool chosen = false;
+    while (frame.next < frame.candidates.size()) {
+      const AltId a = frame.candidates[frame.next++];
+      if (!fits(c, a)) continue;
+      const Alternative& alt = graph_.node(c).alternatives[a];
+      bool supported = true;
+      for (sem::ComponentId dep : alt.definition->dependencies) {
+        frame.saved.emplace_back(dep, mustReach[dep]);
+        mustReach[dep] |= WorldMask{1} << alt.world;
+        bool any = false;
+        for (AltId d : domains.aliveAlternatives(dep)) any = any || fits(dep, d);
+        supported = supported && any;
+      }
+      if (supported) {
+        choice[c] = a;
+        chosen = true;
+        break;
+      }
+      for (const auto& [dep, mask] : frame.saved) mustReach[dep] = mask;
+      frame.saved.clear();
+    }
+    if (chosen) {
+      ++i;
+      entering = true;
+      continue;
+    }
+    // Exhausted: return to the closest earlier frame that made a choice.
+    do {
+      if (i == 0) return std::nullopt;
+      --i;
+    } while (frames[i].skipped);
+    entering = false;
+  }
+
+  Variant v;
+  v.graph_ = &graph_;
+  v.choice_ = std::move(choice);
+  v.worlds_.resize(graph_.pipeline().worlds.size());
+  for (sem::ComponentId c : dependencyOrder) {
+    if (!v.choice_[c]) continue;
+    v.live_.push_back(c);
+    if (!graph_.node(c).isInput) v.worlds_[v.worldOf(c)].computed.push_back(c);
+  }
+  std::set<std::pair<sem::ComponentId, uint32_t>> seen;
+  for (sem::ComponentId c : v.live_) {
+    const Alternative& alt = graph_.node(c).alternatives[*v.choice_[c]];
+    for (sem::ComponentId dep : alt.definition->dependencies) route(v, dep, v.worldOf(dep), alt.world, seen);
+  }
+  for (const Sink& sink : graph_.sinks()) route(v, sink.component, v.worldOf(sink.component), sink.world, seen);
+  return v;
+}
+
+const std::vector<uint32_t>& VariantBuilder::path(sem::WorldId from, sem::WorldId to) {
+  auto [it, inserted] = paths_.try_emplace({from, to});
+  if (!inserted) return it->second;
+  // Breadth-first over imports in declaration order: the shortest route,
+  // and the same route every time.
+  const auto& imports = graph_.pipeline().imports;
+  std::vector<int> via(graph_.pipeline().worlds.size(), -1);
+  std::deque<sem::WorldId> queue{from};
+  std::vector<bool> visited(via.size(), false);
+  visited[from] = true;
+  while (!queue.empty()) {
+    const sem::WorldId w = queue.front();
+    queue.pop_front();
+    if (w == to) break;
+    for (uint32_t k = 0; k < imports.size(); ++k) {
+      if (imports[k].from != w || visited[imports[k].to]) continue;
+      visited[imports[k].to] = true;
+      via[imports[k].to] = static_cast<int>(k);
+      queue.push_back(imports[k].to);
+    }
+  }
+  std::vector<uint32_t>& result = it->second;
+  for (sem::WorldId w = to; w != from && via[w] >= 0; w = imports[static_cast<size_t>(via[w])].from) {
+    result.push_back(static_cast<uint32_t>(via[w]));
+  }
+  std::reverse(result.begin(), result.end());
+  return result;
+}
+
+void VariantBuilder::route(Variant& v, sem::ComponentId component, sem::WorldId from, sem::WorldId to,
+                           std::set<std::pair<sem::ComponentId, uint32_t>>& seen) {
+  if (from == to) return;
+  for (uint32_t importIndex : path(from, to)) {
+    if (!seen.insert({component, importIndex}).second) continue;
+    const sem::Import& import = graph_.pipeline().imports[importIndex];
+    v.worlds_[import.from].outputs.push_back({component, importIndex});
+    v.worlds_[import.to].inputs.push_back({component, importIndex});
+  }
+}
+
+const std::vector<std::pair<std::string, std::string>>& Variant::attributes(sem::ComponentId c) const {
+  static const std::vector<std::pair<std::string, std::string>> kNone;
+  auto it = attributes_.find(c);
+  return it == attributes_.end() ? kNone : it->second;
+}
+
+std::string Variant::placementText() const {
+  std::string out;
+  for (sem::ComponentId c : live_) {
+    const ComponentNode& node = graph_->node(c);
+    if (node.isInput) continue;
+    out += fmt::format("{}.{} = {}\n", node.choicePrefix, node.component->name, graph_->altName(node, *choice_[c]));
+  }
+  return out;
+}
+
+std::string Variant::describe() const {
+  std::string out = placementText();
+  const sem::Pipeline& pipeline = graph_->pipeline();
+  auto names = [&](const std::vector<sem::ComponentId>& ids) {
+    std::string text;
+    for (sem::ComponentId c : ids) text += fmt::format("{}{}", text.empty() ? "" : ", ", graph_->node(c).component->name);
+    return text;
+  };
+  auto transfers = [&](const std::vector<Transfer>& list, bool incoming) {
+    std::string text;
+    for (const Transfer& t : list) {
+      const sem::Import& import = pipeline.imports[t.importIndex];
+      text += fmt::format("{}{} {} {} ({})", text.empty() ? "" : ", ", graph_->node(t.component).component->name,
+                          incoming ? "from" : "to", pipeline.worlds[incoming ? import.from : import.to].name,
+                          import.strategy.ref->name);
+    }
+    return text;
+  };
+  for (sem::WorldId w : pipeline.topologicalOrder) {
+    const WorldPlan& plan = worlds_[w];
+    if (plan.computed.empty() && plan.inputs.empty() && plan.outputs.empty()) continue;
+    out += fmt::format("// world {}\n", pipeline.worlds[w].name);
+    if (!plan.computed.empty()) out += fmt::format("//   computes: {}\n", names(plan.computed));
+    if (!plan.inputs.empty()) out += fmt::format("//   imports:  {}\n", transfers(plan.inputs, true));
+    if (!plan.outputs.empty()) out += fmt::format("//   exports:  {}\n", transfers(plan.outputs, false));
+  }
+  return out;
+}
+
+VariantResult buildVariant(const ChoiceSpace& space, const std::vector<DecisionRequest>& requests) {
+  VariantResult result;
+  result.outcomes.resize(requests.size());
+  ChoiceSpace current = space;
+  std::vector<size_t> applied;
+  for (size_t r = 0; r < requests.size(); ++r) {
+    const DecisionRequest& request = requests[r];
+    DecisionOutcome& outcome = result.outcomes[r];
+    if (!space.alive(request.component, request.alternative)) {
+      outcome.status = DecisionStatus::NotAChoice;
+      continue;
+    }
+    ChoiceSpace trial = current;
+    if (trial.restrict(request.component, request.alternative)) {
+      current = std::move(trial);
+      applied.push_back(r);
+      continue;
+    }
+    // Name the earliest decision that, with this one, has no variant.
+    outcome.status = DecisionStatus::Conflict;
+    outcome.conflictsWith = applied.empty() ? r : applied.back();
+    ChoiceSpace prefix = space;
+    for (size_t index : applied) {
+      prefix.restrict(requests[index].component, requests[index].alternative);
+      ChoiceSpace probe = prefix;
+      if (!probe.restrict(request.component, request.alternative)) {
+        outcome.conflictsWith = index;
+        break;
+      }
+    }
+  }
+  VariantBuilder builder(space.graph());
+  result.variant = builder.place(current);
+  // Propagation is not complete search; if placement still fails, drop the
+  // latest decisions until it succeeds.
+  while (!result.variant && !applied.empty()) {
+    const size_t dropped = applied.back();
+    applied.pop_back();
+    result.outcomes[dropped] = {DecisionStatus::Conflict, applied.empty() ? dropped : applied.back()};
+    current = space;
+    for (size_t index : applied) current.restrict(requests[index].component, requests[index].alternative);
+    result.variant = builder.place(current);
+  }
+  if (result.variant) {
+    for (size_t index : applied) {
+      if (!requests[index].attributes.empty()) {
+        auto& list = result.variant->attributes_[requests[index].component];
+        list.insert(list.end(), requests[index].attributes.begin(), requests[index].attributes.end());
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace spire::graph
