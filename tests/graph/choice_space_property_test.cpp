@@ -1,0 +1,115 @@
+// Property tests over whole choice spaces: every decision map drawn from a
+// shader's choice file yields a valid variant, and a variant's placement
+// applied as a decision file reproduces it.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
+#include "graph/decision_file.h"
+#include "graph/variant.h"
+#include "graph_test_util.h"
+
+namespace spire {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Checks the variant's invariants: every live definition's dependencies are
+// live and placed in a world that reaches it, every pipeline requirement is
+// met, and each crossing is carried by the world plans.
+void expectValid(const graph::Variant& v, const std::string& context) {
+  const graph::ShaderGraph& g = v.graph();
+  for (sem::ComponentId c : v.live()) {
+    const graph::Alternative& alt = g.node(c).alternatives[*v.choice(c)];
+    for (sem::ComponentId dep : alt.definition->dependencies) {
+      ASSERT_TRUE(v.choice(dep).has_value()) << context << ": dead dependency " << g.node(dep).component->name;
+      ASSERT_TRUE(g.reaches(v.worldOf(dep), alt.world))
+          << context << ": " << g.node(dep).component->name << " is not available where "
+          << g.node(c).component->name << " is computed";
+      if (v.worldOf(dep) != alt.world) {
+        bool carried = false;
+        for (const graph::Transfer& t : v.world(alt.world).inputs) carried = carried || t.component == dep;
+        ASSERT_TRUE(carried) << context << ": " << g.node(dep).component->name << " is not imported";
+      }
+    }
+  }
+  for (const graph::Sink& sink : g.sinks()) {
+    ASSERT_TRUE(v.choice(sink.component).has_value()) << context;
+    ASSERT_TRUE(g.reaches(v.worldOf(sink.component), sink.world)) << context;
+  }
+}
+
+void expectRoundTrip(const graph::Variant& v, const graph::ChoiceSpace& space, const std::string& context) {
+  SourceManager sources;
+  DiagnosticList diags;
+  const FileId file = sources.addFile("placement.decisions", v.placementText());
+  const graph::DecisionFile decisions = graph::parseDecisionFile(sources, file, diags);
+  const auto again = graph::applyDecisions(decisions, space, diags);
+  ASSERT_TRUE(again.has_value()) << context;
+  EXPECT_EQ(diags.all().size(), 0u) << context << "\n" << renderDiagnostics(sources, diags, DiagnosticFormat::Text);
+  EXPECT_EQ(again->placementText(), v.placementText()) << context;
+  for (sem::ComponentId c = 0; c < space.graph().nodes().size(); ++c) {
+    EXPECT_EQ(again->choice(c), v.choice(c)) << context;
+  }
+}
+
+void walkChoiceSpace(const graph::ChoiceSpace& space) {
+  const graph::ShaderGraph& g = space.graph();
+  const std::vector<bool> possiblyLive = space.possiblyLive();
+  std::vector<sem::ComponentId> choices;
+  for (const graph::ComponentNode& node : g.nodes()) {
+    if (!node.isInput && possiblyLive[node.id] && space.aliveCount(node.id) > 1) choices.push_back(node.id);
+  }
+  double total = 1;
+  for (sem::ComponentId c : choices) total *= space.aliveCount(c);
+  const bool exhaustive = total < 10000;
+  const size_t count = exhaustive ? static_cast<size_t>(total) : 1000;
+  std::mt19937 rng(1234);
+  for (size_t index = 0; index < count; ++index) {
+    std::vector<graph::DecisionRequest> requests;
+    size_t rest = index;
+    for (sem::ComponentId c : choices) {
+      const auto alts = space.aliveAlternatives(c);
+      const size_t pick = exhaustive ? rest % alts.size() : rng() % alts.size();
+      rest /= alts.size();
+      requests.push_back({c, alts[pick], {}});
+    }
+    const std::string context = g.shader().name + " decision map #" + std::to_string(index);
+    const auto result = graph::buildVariant(space, requests);
+    ASSERT_TRUE(result.variant) << context;
+    expectValid(*result.variant, context);
+    for (size_t r = 0; r < requests.size(); ++r) {
+      if (result.outcomes[r].status == graph::DecisionStatus::Applied) {
+        const sem::ComponentId c = requests[r].component;
+        if (result.variant->choice(c)) {
+          EXPECT_EQ(*result.variant->choice(c), requests[r].alternative) << context;
+        }
+      }
+    }
+    expectRoundTrip(*result.variant, space, context);
+  }
+}
+
+TEST(ChoiceSpaceProperty, EveryDecisionMapOfEveryExampleYieldsAValidVariant) {
+  size_t shaders = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(SPIRE_SOURCE_DIR) / "examples")) {
+    if (entry.path().extension() != ".spire") continue;
+    FrontEnd frontEnd;
+    frontEnd.addFile(entry.path().string());
+    const sem::Model& model = frontEnd.analyze();
+    ASSERT_FALSE(frontEnd.diagnostics().hasErrors()) << entry.path();
+    for (const sem::Shader* shader : graph::concreteShaders(model)) {
+      auto g = graph::ShaderGraph::build(model, *shader, frontEnd.diagnostics());
+      ASSERT_TRUE(g) << shader->name;
+      graph::ChoiceSpace space(*g);
+      ASSERT_TRUE(space.consistent()) << shader->name;
+      walkChoiceSpace(space);
+      ++shaders;
+    }
+  }
+  EXPECT_GE(shaders, 3u);
+}
+
+}  // namespace
+}  // namespace spire
