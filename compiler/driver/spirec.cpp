@@ -5,10 +5,8 @@
 
 #include <ostream>
 
-#include "driver/frontend.h"
-#include "graph/choice_space.h"
+#include "driver/shader_library.h"
 #include "graph/decision_file.h"
-#include "graph/shader_graph.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
 
@@ -71,63 +69,50 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
   FrontEndOptions feOptions;
   feOptions.includeDirs = options.includeDirs;
   feOptions.errorLimit = options.maxErrors == 0 ? UINT32_MAX : options.maxErrors;
-  FrontEnd frontEnd(std::move(feOptions));
-  for (const std::string& file : options.files) frontEnd.addFile(file);
-  const sem::Model& model = frontEnd.analyze();
+  ShaderLibrary library(std::move(feOptions));
+  for (const std::string& file : options.files) library.addFile(file);
+  library.compile();
+  DiagnosticList& diags = library.diagnostics();
 
-  // Concrete shaders, their graphs and choice spaces: everything the
-  // requested outputs need, built once.
-  DiagnosticList& diags = frontEnd.diagnostics();
-  std::vector<const sem::Shader*> shaders;
+  std::vector<const graph::ChoiceSpace*> spaces;
   if (!diags.hasErrors()) {
-    for (const sem::Shader* shader : graph::concreteShaders(model)) {
-      const bool selected = options.shader.empty() || shader->name == options.shader ||
-                            (shader->derivedFrom && shader->decl->name == options.shader);
-      if (selected) shaders.push_back(shader);
+    for (const std::string& name : library.shaderNames()) {
+      const graph::ChoiceSpace* space = library.choiceSpace(name);
+      const sem::Shader& shader = space->graph().shader();
+      const bool selected = options.shader.empty() || name == options.shader ||
+                            (shader.derivedFrom && shader.decl->name == options.shader);
+      if (selected) spaces.push_back(space);
     }
-    if (!options.shader.empty() && shaders.empty()) {
+    if (!options.shader.empty() && spaces.empty()) {
       err << fmt::format("spirec: error: no concrete shader named '{}'\n", options.shader);
       return kExitUsageError;
-    }
-  }
-  std::vector<std::unique_ptr<graph::ShaderGraph>> graphs;
-  std::vector<graph::ChoiceSpace> spaces;
-  for (const sem::Shader* shader : shaders) {
-    if (auto g = graph::ShaderGraph::build(model, *shader, diags)) {
-      spaces.emplace_back(*g);
-      if (!spaces.back().consistent()) {
-        diags.report(DiagCode::E4017, shader->decl->nameRange,
-                     fmt::format("shader '{}' has no valid variant: the pipeline's requirements cannot all be met",
-                                 shader->name));
-      }
-      graphs.push_back(std::move(g));
     }
   }
 
   std::string choicesText;
   std::string output;
   if (!diags.hasErrors() && options.choices) {
-    for (const graph::ChoiceSpace& space : spaces) choicesText += graph::writeChoiceFile(space);
+    for (const graph::ChoiceSpace* space : spaces) choicesText += graph::writeChoiceFile(*space);
   }
   if (!diags.hasErrors() && (!options.decisionsPath.empty() || options.dumpPlacement)) {
     graph::DecisionFile decisions;
     if (!options.decisionsPath.empty()) {
-      if (const auto id = frontEnd.loadAuxiliaryFile(options.decisionsPath)) {
-        decisions = graph::parseDecisionFile(frontEnd.sources(), *id, diags);
-        checkDecisionPrefixes(decisions, model, diags);
+      if (const auto id = library.frontEnd().loadAuxiliaryFile(options.decisionsPath)) {
+        decisions = graph::parseDecisionFile(library.sources(), *id, diags);
+        checkDecisionPrefixes(decisions, library.model(), diags);
       }
     }
     if (!diags.hasErrors()) {
-      for (const graph::ChoiceSpace& space : spaces) {
-        const auto variant = graph::applyDecisions(decisions, space, diags);
+      for (const graph::ChoiceSpace* space : spaces) {
+        const auto variant = graph::applyDecisions(decisions, *space, diags);
         if (variant && options.dumpPlacement) {
-          output += fmt::format("// variant of {}\n{}", space.graph().shader().name, variant->describe());
+          output += fmt::format("// variant of {}\n{}", space->graph().shader().name, variant->describe());
         }
       }
     }
   }
 
-  const std::string rendered = renderDiagnostics(frontEnd.sources(), diags, format);
+  const std::string rendered = renderDiagnostics(library.sources(), diags, format);
   if (format == DiagnosticFormat::Json || !rendered.empty()) err << rendered;
   if (diags.hasErrors()) return kExitInputError;
   if (options.choices && !options.choicesPath.empty() && options.choicesPath != "-") {
