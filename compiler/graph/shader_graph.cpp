@@ -116,6 +116,8 @@ bool ShaderGraph::expand(const sem::Model&, DiagnosticList& diags) {
     }
   }
 
+  rank_.assign(n, 0);
+  for (uint32_t i = 0; i < order_.size(); ++i) rank_[order_[i]] = i;
   nodes_.resize(n);
   std::vector<WorldMask> available(n, 0);
   std::vector<bool> failed(n, false);

@@ -59,6 +59,8 @@ class ShaderGraph {
   const std::vector<Sink>& sinks() const { return sinks_; }
   // Components with producers before consumers.
   const std::vector<sem::ComponentId>& dependencyOrder() const { return order_; }
+  // Position of a component in dependencyOrder().
+  uint32_t dependencyRank(sem::ComponentId c) const { return rank_[c]; }
   // Position of each world in the pipeline's topological order.
   uint32_t worldRank(sem::WorldId world) const { return worldRank_[world]; }
   // Worlds reachable from `world` through zero or more imports.
@@ -78,6 +80,7 @@ class ShaderGraph {
   std::vector<ComponentNode> nodes_;
   std::vector<Sink> sinks_;
   std::vector<sem::ComponentId> order_;
+  std::vector<uint32_t> rank_;
   std::vector<uint32_t> worldRank_;
   std::vector<WorldMask> reachable_;
 };

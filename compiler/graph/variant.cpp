@@ -20,6 +20,7 @@ class VariantBuilder {
   void route(Variant& v, sem::ComponentId component, sem::WorldId from, sem::WorldId to,
              std::set<std::pair<sem::ComponentId, uint32_t>>& seen);
   const std::vector<uint32_t>& path(sem::WorldId from, sem::WorldId to);
+  bool routeStrategyArguments(Variant& v, std::set<std::pair<sem::ComponentId, uint32_t>>& seen);
 
   const ShaderGraph& graph_;
   std::map<std::pair<sem::WorldId, sem::WorldId>, std::vector<uint32_t>> paths_;
@@ -128,6 +129,7 @@ std::optional<Variant> VariantBuilder::place(const ChoiceSpace& domains) {
     for (sem::ComponentId dep : alt.definition->dependencies) route(v, dep, v.worldOf(dep), alt.world, seen);
   }
   for (const Sink& sink : graph_.sinks()) route(v, sink.component, v.worldOf(sink.component), sink.world, seen);
+  if (!routeStrategyArguments(v, seen)) return std::nullopt;
   return v;
 }
 
@@ -158,6 +160,39 @@ const std::vector<uint32_t>& VariantBuilder::path(sem::WorldId from, sem::WorldI
   }
   std::reverse(result.begin(), result.end());
   return result;
+}
+
+// An import whose strategy takes arguments (`textureImport(vert_uv)`)
+// evaluates them in the consuming world, so every import the variant uses
+// brings its arguments there too; routing them may use further imports.
+bool VariantBuilder::routeStrategyArguments(Variant& v, std::set<std::pair<sem::ComponentId, uint32_t>>& seen) {
+  const auto& imports = graph_.pipeline().imports;
+  std::set<uint32_t> handled;
+  bool progress = true;
+  while (progress) {
+    progress = false;
+    for (uint32_t k = 0; k < imports.size(); ++k) {
+      const bool used = std::any_of(seen.begin(), seen.end(), [&](const auto& s) { return s.second == k; });
+      if (!used || !handled.insert(k).second) continue;
+      progress = true;
+      for (const std::string& name : imports[k].strategy.componentArgs) {
+        const sem::ComponentId arg = graph_.shader().componentByName.at(name);
+        if (!v.choice_[arg]) {
+          // Inputs have a single placement; a computed argument would need
+          // its own placement decision, which pipelines do not use.
+          if (!graph_.node(arg).isInput) return false;
+          v.choice_[arg] = 0;
+          v.live_.insert(std::upper_bound(v.live_.begin(), v.live_.end(), arg,
+                                          [&](sem::ComponentId a, sem::ComponentId b) {
+                                            return graph_.dependencyRank(a) < graph_.dependencyRank(b);
+                                          }),
+                         arg);
+        }
+        route(v, arg, v.worldOf(arg), imports[k].to, seen);
+      }
+    }
+  }
+  return true;
 }
 
 void VariantBuilder::route(Variant& v, sem::ComponentId component, sem::WorldId from, sem::WorldId to,

@@ -28,6 +28,9 @@ struct GoldenCase {
   int exitCode;
 };
 
+// Failure messages name the case instead of dumping its bytes.
+void PrintTo(const GoldenCase& golden, std::ostream* os) { *os << golden.name; }
+
 std::vector<fs::path> filesIn(const fs::path& dir, const std::string& extension) {
   std::vector<fs::path> files;
   for (const auto& entry : fs::directory_iterator(fs::path(SPIRE_SOURCE_DIR) / dir)) {

@@ -179,6 +179,8 @@ struct ErrorCase {
   const char* code;
 };
 
+void PrintTo(const ErrorCase& c, std::ostream* os) { *os << c.name; }
+
 class AnalyzerErrors : public testing::TestWithParam<ErrorCase> {};
 
 TEST_P(AnalyzerErrors, ReportsExactlyOneError) {
