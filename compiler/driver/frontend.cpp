@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "codegen/strategy_registry.h"
 #include "sema/analyzer.h"
 #include "syntax/module_loader.h"
 
@@ -56,7 +57,8 @@ const sem::Model& FrontEnd::analyze() {
     model_->reserveExprs(program_.exprCount);
     return *model_;
   }
-  const sem::StrategyCatalog& strategies = options_.strategies ? *options_.strategies : sem::StrategyCatalog::builtin();
+  const sem::StrategyCatalog& strategies =
+      options_.strategies ? *options_.strategies : codegen::StrategyRegistry::builtin().catalog();
   model_ = sem::analyze(program_, diags_, strategies);
   return *model_;
 }

@@ -21,7 +21,8 @@ struct FrontEndOptions {
   uint32_t errorLimit = 20;
   // See LoadOptions::readFile; the default reads the file system.
   std::function<std::optional<std::string>(const std::string& path)> readFile;
-  // Strategies pipelines may name; null means the built-in catalogue.
+  // Strategies pipelines may name; null means those of
+  // codegen::StrategyRegistry::builtin().
   const sem::StrategyCatalog* strategies = nullptr;
 };
 

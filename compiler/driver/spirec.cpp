@@ -3,9 +3,12 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <ostream>
 
 #include "driver/shader_library.h"
+#include "codegen/kernel_generator.h"
+#include "codegen/spirv_compiler.h"
 #include "graph/decision_file.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
@@ -20,10 +23,57 @@ struct Options {
   std::string choicesPath;  // "-" is stdout
   bool choices = false;
   std::string decisionsPath;
+  std::string outputDir;
+  std::string emit = "both";
   bool dumpPlacement = false;
   std::string shader;
   uint32_t maxErrors = 20;
 };
+
+// Generates a variant's kernels and writes DIR/<Shader>/<World>.glsl|.spv and
+// reflection.json, each file atomically. glslang rejecting generated code is
+// a compiler bug: it is reported as an internal error against the shader,
+// with the kernel saved for inspection.
+void writeKernels(ShaderLibrary& library, const graph::Variant& variant, const std::string& outputDir,
+                  const std::string& emit, DiagnosticList& diags) {
+  const auto generated = codegen::generateKernels(library.model(), library.sources(), variant,
+                                                  codegen::StrategyRegistry::builtin(), diags);
+  if (!generated) return;
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(outputDir) / generated->directory;
+  const SourceRange shaderRange = variant.graph().shader().decl->nameRange;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) {
+    diags.report(DiagCode::E6003, {}, fmt::format("cannot create directory '{}': {}", dir.string(), ec.message()));
+    return;
+  }
+  auto write = [&](const fs::path& path, std::string_view contents) {
+    if (auto error = writeFileAtomically(path.string(), contents)) diags.report(DiagCode::E6003, {}, *error);
+  };
+  const bool wantGlsl = emit != "spirv";
+  const bool wantSpirv = emit != "glsl";
+  for (const codegen::Kernel& kernel : generated->kernels) {
+    const fs::path glslPath = dir / (kernel.world + ".glsl");
+    const codegen::SpirvResult spirv = codegen::compileGlslToSpirv(kernel.stage, kernel.glsl, glslPath.string());
+    std::optional<std::string> invalid = spirv.ok() ? codegen::validateSpirv(spirv.words) : std::nullopt;
+    if (!spirv.ok() || invalid) {
+      write(glslPath, kernel.glsl);
+      diags.report(DiagCode::E6002, shaderRange,
+                   fmt::format("internal error: the generated {} kernel of '{}' was rejected; this is a spirec bug",
+                               kernel.world, generated->shader))
+          .note({}, spirv.ok() ? *invalid : spirv.log)
+          .note({}, fmt::format("the kernel is saved as '{}'", glslPath.string()));
+      continue;
+    }
+    if (wantGlsl) write(glslPath, kernel.glsl);
+    if (wantSpirv) {
+      write(dir / (kernel.world + ".spv"),
+            std::string_view(reinterpret_cast<const char*>(spirv.words.data()), spirv.words.size() * sizeof(uint32_t)));
+    }
+  }
+  write(dir / "reflection.json", generated->reflection(variant).dump(2) + "\n");
+}
 
 }  // namespace
 
@@ -44,6 +94,10 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
                       ->type_name("[PATH]");
   app.add_option("--decisions", options.decisionsPath, "Apply the decision file PATH to every shader it names")
       ->type_name("PATH");
+  app.add_option("-o,--output", options.outputDir, "Write kernels and reflection to DIR/<Shader>/")->type_name("DIR");
+  app.add_option("--emit", options.emit, "What -o writes besides reflection.json")
+      ->check(CLI::IsMember({"glsl", "spirv", "both"}))
+      ->type_name("glsl|spirv|both");
   app.add_flag("--dump-placement", options.dumpPlacement,
                "Print each variant's placement (as a decision file) and what each world computes, imports and exports");
   app.add_option("--shader", options.shader, "Restrict output to one shader")->type_name("NAME");
@@ -94,7 +148,8 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
   if (!diags.hasErrors() && options.choices) {
     for (const graph::ChoiceSpace* space : spaces) choicesText += graph::writeChoiceFile(*space);
   }
-  if (!diags.hasErrors() && (!options.decisionsPath.empty() || options.dumpPlacement)) {
+  const bool generate = !options.outputDir.empty();
+  if (!diags.hasErrors() && (!options.decisionsPath.empty() || options.dumpPlacement || generate)) {
     graph::DecisionFile decisions;
     if (!options.decisionsPath.empty()) {
       if (const auto id = library.frontEnd().loadAuxiliaryFile(options.decisionsPath)) {
@@ -107,6 +162,9 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
         const auto variant = graph::applyDecisions(decisions, *space, diags);
         if (variant && options.dumpPlacement) {
           output += fmt::format("// variant of {}\n{}", space->graph().shader().name, variant->describe());
+        }
+        if (variant && generate) {
+          writeKernels(library, *variant, options.outputDir, options.emit, diags);
         }
       }
     }

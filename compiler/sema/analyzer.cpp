@@ -94,7 +94,9 @@ void Analyzer::declareStruct(const ast::StructDecl& decl) {
   }
   // A struct with errors is still registered so that its uses do not cascade
   // into "unknown type" errors.
-  model_->structs[decl.name] = model_->types().structType(decl.name, std::move(fields));
+  const Type* type = model_->types().structType(decl.name, std::move(fields));
+  model_->structs[decl.name] = type;
+  model_->structOrder.push_back(type);
 }
 
 void Analyzer::declareFunction(const ast::FunctionDecl& decl) {

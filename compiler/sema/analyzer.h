@@ -14,7 +14,6 @@ namespace spire::sem {
 // Analyses every module of `program`. Always returns a model; entities that
 // failed are marked invalid (Pipeline::valid, Shader::valid) and errors go to
 // `diags`. The model points into `program`, which must outlive it.
-std::unique_ptr<Model> analyze(const ast::Program& program, DiagnosticList& diags,
-                               const StrategyCatalog& strategies = StrategyCatalog::builtin());
+std::unique_ptr<Model> analyze(const ast::Program& program, DiagnosticList& diags, const StrategyCatalog& strategies);
 
 }  // namespace spire::sem

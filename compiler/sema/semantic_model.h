@@ -195,6 +195,7 @@ class Model {
   std::vector<std::unique_ptr<Group>> groups;
   std::vector<std::unique_ptr<Function>> functions;
   std::map<std::string, const Type*, std::less<>> structs;
+  std::vector<const Type*> structOrder;  // declaration order
   // Each local declarator's resolved type.
   std::map<const ast::VarDeclarator*, const Type*> localTypes;
 

@@ -2,21 +2,6 @@
 
 namespace spire::sem {
 
-const StrategyCatalog& StrategyCatalog::builtin() {
-  static const StrategyCatalog catalog = [] {
-    StrategyCatalog c;
-    c.add({"uniformImport", StrategyRole::Import, {}, "std140 uniform block"});
-    c.add({"standardImport", StrategyRole::Import, {}, "'in' variables matching the producer's 'out'"});
-    c.add({"textureImport", StrategyRole::Import, {{"uv", "vec2"}}, "one sampler per component, fetched at uv"});
-    c.add({"bufferImport", StrategyRole::Import, {}, "std430 storage buffer read at the invocation index"});
-    c.add({"standardExport", StrategyRole::Export, {}, "'out' variables"});
-    c.add({"vertexExport", StrategyRole::Export, {{"position", "vec4"}}, "'out' variables plus gl_Position"});
-    c.add({"bufferExport", StrategyRole::Export, {}, "std430 storage buffer written per invocation"});
-    return c;
-  }();
-  return catalog;
-}
-
 void StrategyCatalog::add(StrategySignature signature) {
   std::string key = signature.name;
   strategies_.insert_or_assign(std::move(key), std::move(signature));

@@ -1,6 +1,7 @@
 // The names and parameter lists of the import/export strategies a pipeline may
-// use. Sema checks pipelines against this catalogue; code generation attaches
-// an implementation to each name (codegen's strategy registry feeds it).
+// use. Sema checks pipelines against this catalogue; codegen's
+// StrategyRegistry builds it from the strategies it holds, so each strategy
+// declares its signature once, next to its code.
 #pragma once
 
 #include <map>
@@ -26,9 +27,6 @@ struct StrategySignature {
 
 class StrategyCatalog {
  public:
-  // The seven strategies of the paper's Table 1.
-  static const StrategyCatalog& builtin();
-
   void add(StrategySignature signature);
   const StrategySignature* find(std::string_view name) const;
   // Names of strategies with the given role, sorted.

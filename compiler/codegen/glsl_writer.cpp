@@ -1,0 +1,269 @@
+#include "codegen/glsl_writer.h"
+
+#include <fmt/format.h>
+
+#include "codegen/kernel_builder.h"
+#include "sema/operator_rules.h"
+
+namespace spire::codegen {
+namespace {
+
+// GLSL precedence, loosest first (GLSL 4.50 section 5.1).
+enum Precedence : int {
+  kComma = 1, kAssign, kTernary, kLogicalOr, kLogicalXor, kLogicalAnd, kBitOr, kBitXor, kBitAnd,
+  kEquality, kRelational, kShift, kAdditive, kMultiplicative, kPrefix, kPostfix, kPrimary,
+};
+
+int precedenceOf(ast::BinaryOp op) {
+  using ast::BinaryOp;
+  switch (op) {
+    case BinaryOp::Comma: return kComma;
+    case BinaryOp::LogicalOr: return kLogicalOr;
+    case BinaryOp::LogicalXor: return kLogicalXor;
+    case BinaryOp::LogicalAnd: return kLogicalAnd;
+    case BinaryOp::BitOr: return kBitOr;
+    case BinaryOp::BitXor: return kBitXor;
+    case BinaryOp::BitAnd: return kBitAnd;
+    case BinaryOp::Equal:
+    case BinaryOp::NotEqual: return kEquality;
+    case BinaryOp::Less:
+    case BinaryOp::Greater:
+    case BinaryOp::LessEqual:
+    case BinaryOp::GreaterEqual: return kRelational;
+    case BinaryOp::Shl:
+    case BinaryOp::Shr: return kShift;
+    case BinaryOp::Add:
+    case BinaryOp::Sub: return kAdditive;
+    case BinaryOp::Mul:
+    case BinaryOp::Div:
+    case BinaryOp::Mod: return kMultiplicative;
+  }
+  return kComma;
+}
+
+bool isPostfix(ast::UnaryOp op) { return op == ast::UnaryOp::PostIncrement || op == ast::UnaryOp::PostDecrement; }
+
+// GLSL needs a `.` or an exponent in a float literal (`1f` is not GLSL).
+std::string floatLiteral(const std::string& spelling) {
+  if (spelling.find_first_of(".eE") != std::string::npos) return spelling;
+  std::string digits = spelling;
+  while (!digits.empty() && (digits.back() == 'f' || digits.back() == 'F')) digits.pop_back();
+  return digits + ".0";
+}
+
+std::string indentation(int indent) { return std::string(static_cast<size_t>(indent) * 4, ' '); }
+
+}  // namespace
+
+void GlslOutput::line(std::string_view text) {
+  text_.append(text);
+  text_.push_back('\n');
+  ++physicalLine_;
+  ++mappedLine_;
+}
+
+void GlslOutput::mapTo(const std::string& file, uint32_t sourceLine) {
+  if (mappedFile_ == file && mappedLine_ == sourceLine) return;
+  line(fmt::format("#line {} \"{}\"", sourceLine, file));
+  mappedFile_ = file;
+  mappedLine_ = sourceLine;
+}
+
+void GlslOutput::mapToKernel() {
+  if (mappedFile_.empty()) return;
+  // The directive's own line is physicalLine_; the next one is physicalLine_ + 1.
+  line(fmt::format("#line {} \"{}\"", physicalLine_ + 1, kernelFile_));
+  mappedFile_.clear();
+  mappedLine_ = physicalLine_;
+}
+
+std::string GlslWriter::typeName(const sem::Type* type) const {
+  static const std::map<std::string, std::string, std::less<>> kNone;
+  return glslTypeName(type, names_.structs ? *names_.structs : kNone);
+}
+
+std::string GlslWriter::declare(const sem::Type* type, const std::string& name) const {
+  static const std::map<std::string, std::string, std::less<>> kNone;
+  return declareVariable(type, name, names_.structs ? *names_.structs : kNone);
+}
+
+std::string GlslWriter::localName(const void* decl, std::string_view source) {
+  auto [it, inserted] = locals_.try_emplace(decl);
+  if (inserted) it->second = table_.local(source);
+  return it->second;
+}
+
+std::string GlslWriter::expr(const ast::Expr& e, int minPrecedence) {
+  const sem::ExprInfo& info = model_.info(e);
+  auto wrap = [&](int precedence, std::string text) {
+    return precedence < minPrecedence ? "(" + text + ")" : text;
+  };
+  switch (e.kind) {
+    case ast::ExprKind::BoolLiteral: return ast::cast<ast::BoolLiteral>(e).value ? "true" : "false";
+    case ast::ExprKind::IntLiteral: return ast::cast<ast::IntLiteral>(e).spelling;
+    case ast::ExprKind::FloatLiteral: return floatLiteral(ast::cast<ast::FloatLiteral>(e).spelling);
+    case ast::ExprKind::Name: {
+      const auto& n = ast::cast<ast::NameExpr>(e);
+      if (info.ref == sem::RefKind::Local) return localName(info.local, n.name);
+      if (info.ref == sem::RefKind::Parameter) return localName(info.parameter, n.name);
+      return names_.component(n.name);
+    }
+    case ast::ExprKind::Unary: {
+      const auto& u = ast::cast<ast::UnaryExpr>(e);
+      if (isPostfix(u.op)) return wrap(kPostfix, expr(*u.operand, kPostfix) + std::string(sem::spelling(u.op)));
+      std::string operand = expr(*u.operand, kPrefix);
+      const std::string op(sem::spelling(u.op));
+      // `- -x` must not become the decrement `--x`.
+      const bool separate = !operand.empty() && (operand[0] == '-' || operand[0] == '+');
+      return wrap(kPrefix, op + (separate ? " " : "") + operand);
+    }
+    case ast::ExprKind::Binary: {
+      const auto& b = ast::cast<ast::BinaryExpr>(e);
+      const int p = precedenceOf(b.op);
+      return wrap(p, fmt::format("{} {} {}", expr(*b.lhs, p), sem::spelling(b.op), expr(*b.rhs, p + 1)));
+    }
+    case ast::ExprKind::Assign: {
+      const auto& a = ast::cast<ast::AssignExpr>(e);
+      return wrap(kAssign, fmt::format("{} {} {}", expr(*a.target, kPrefix), sem::spelling(a.op), expr(*a.value, kAssign)));
+    }
+    case ast::ExprKind::Ternary: {
+      const auto& t = ast::cast<ast::TernaryExpr>(e);
+      return wrap(kTernary, fmt::format("{} ? {} : {}", expr(*t.condition, kLogicalOr), expr(*t.thenValue, kAssign),
+                                        expr(*t.elseValue, kTernary)));
+    }
+    case ast::ExprKind::Call: {
+      const auto& c = ast::cast<ast::CallExpr>(e);
+      std::string callee = c.callee.name;
+      if (info.ref == sem::RefKind::Function) callee = names_.functions.at(info.function);
+      else if (info.ref == sem::RefKind::Constructor || info.ref == sem::RefKind::StructConstructor) callee = typeName(info.type);
+      std::string args;
+      for (const ast::ExprPtr& arg : c.args) args += (args.empty() ? "" : ", ") + expr(*arg, kAssign);
+      return fmt::format("{}({})", callee, args);
+    }
+    case ast::ExprKind::Member: {
+      const auto& m = ast::cast<ast::MemberExpr>(e);
+      std::string member = m.member;
+      if (info.ref == sem::RefKind::Field && isReservedInGlsl(member)) member += '_';
+      return wrap(kPostfix, expr(*m.object, kPostfix) + "." + member);
+    }
+    case ast::ExprKind::Index: {
+      const auto& i = ast::cast<ast::IndexExpr>(e);
+      return wrap(kPostfix, fmt::format("{}[{}]", expr(*i.object, kPostfix), expr(*i.index, 0)));
+    }
+  }
+  return "";
+}
+
+void GlslWriter::mapLine(GlslOutput& out, const SourceRange& range) {
+  if (!range.valid()) return;
+  out.mapTo(sources_.file(range.file).path, sources_.begin(range).line);
+}
+
+std::string GlslWriter::statementText(const ast::Stmt& s) {
+  if (const auto* e = ast::dyn_cast<ast::ExprStmt>(&s)) return expr(*e->expr);
+  if (const auto* d = ast::dyn_cast<ast::VarDeclStmt>(&s)) {
+    std::string text;
+    for (const ast::VarDeclarator& v : d->declarators) {
+      const sem::Type* type = model_.localTypes.at(&v);
+      std::string one = (d->isConst ? "const " : "") + declare(type, localName(&v, v.name));
+      if (v.init) one += " = " + expr(*v.init, kAssign);
+      text += (text.empty() ? "" : ", ") + one;
+    }
+    return text;
+  }
+  return "";
+}
+
+void GlslWriter::block(GlslOutput& out, const ast::BlockStmt& b, int indent) {
+  for (const ast::StmtPtr& s : b.statements) stmt(out, *s, indent);
+}
+
+void GlslWriter::body(GlslOutput& out, const ast::Stmt& s, int indent) {
+  if (const auto* b = ast::dyn_cast<ast::BlockStmt>(&s)) block(out, *b, indent);
+  else stmt(out, s, indent);
+}
+
+void GlslWriter::stmt(GlslOutput& out, const ast::Stmt& s, int indent) {
+  const std::string pad = indentation(indent);
+  mapLine(out, s.range);
+  switch (s.kind) {
+    case ast::StmtKind::Block:
+      out.line(pad + "{");
+      block(out, ast::cast<ast::BlockStmt>(s), indent + 1);
+      out.line(pad + "}");
+      return;
+    case ast::StmtKind::VarDecl: {
+      // One declaration per name keeps per-name array sizes right.
+      const auto& d = ast::cast<ast::VarDeclStmt>(s);
+      for (const ast::VarDeclarator& v : d.declarators) {
+        const sem::Type* type = model_.localTypes.at(&v);
+        std::string text = pad + (d.isConst ? "const " : "") + declare(type, localName(&v, v.name));
+        if (v.init) text += " = " + expr(*v.init, kAssign);
+        out.line(text + ";");
+      }
+      return;
+    }
+    case ast::StmtKind::Expr: out.line(pad + expr(*ast::cast<ast::ExprStmt>(s).expr) + ";"); return;
+    case ast::StmtKind::If: {
+      const auto& i = ast::cast<ast::IfStmt>(s);
+      out.line(pad + "if (" + expr(*i.condition) + ") {");
+      body(out, *i.thenBranch, indent + 1);
+      if (i.elseBranch) {
+        out.line(pad + "} else {");
+        body(out, *i.elseBranch, indent + 1);
+      }
+      out.line(pad + "}");
+      return;
+    }
+    case ast::StmtKind::For: {
+      const auto& f = ast::cast<ast::ForStmt>(s);
+      out.line(fmt::format("{}for ({}; {}; {}) {{", pad, f.init ? statementText(*f.init) : "",
+                           f.condition ? expr(*f.condition) : "", f.step ? expr(*f.step) : ""));
+      body(out, *f.body, indent + 1);
+      out.line(pad + "}");
+      return;
+    }
+    case ast::StmtKind::While: {
+      const auto& w = ast::cast<ast::WhileStmt>(s);
+      out.line(pad + "while (" + expr(*w.condition) + ") {");
+      body(out, *w.body, indent + 1);
+      out.line(pad + "}");
+      return;
+    }
+    case ast::StmtKind::DoWhile: {
+      const auto& d = ast::cast<ast::DoWhileStmt>(s);
+      out.line(pad + "do {");
+      body(out, *d.body, indent + 1);
+      out.line(pad + "} while (" + expr(*d.condition) + ");");
+      return;
+    }
+    case ast::StmtKind::Break: out.line(pad + "break;"); return;
+    case ast::StmtKind::Continue: out.line(pad + "continue;"); return;
+    case ast::StmtKind::Return: {
+      const auto& r = ast::cast<ast::ReturnStmt>(s);
+      out.line(pad + (r.value ? "return " + expr(*r.value) + ";" : std::string("return;")));
+      return;
+    }
+    case ast::StmtKind::Discard: out.line(pad + "discard;"); return;
+    case ast::StmtKind::Empty: return;
+  }
+}
+
+void GlslWriter::function(GlslOutput& out, const sem::Function& f, const std::string& name) {
+  std::string params;
+  for (size_t i = 0; i < f.params.size(); ++i) {
+    const ast::Param& p = f.decl->params[i];
+    std::string qualifier = p.isConst ? "const " : "";
+    if (p.direction == ast::ParamDirection::Out) qualifier += "out ";
+    if (p.direction == ast::ParamDirection::InOut) qualifier += "inout ";
+    const std::string paramName = p.name.empty() ? fmt::format("spire_unused{}", i) : localName(&p, p.name);
+    params += (params.empty() ? "" : ", ") + qualifier + declare(f.params[i].type, paramName);
+  }
+  mapLine(out, f.decl->range);
+  out.line(fmt::format("{} {}({}) {{", typeName(f.returnType), name, params));
+  block(out, *f.decl->body, 1);
+  out.line("}");
+  out.mapToKernel();
+}
+
+}  // namespace spire::codegen

@@ -1,0 +1,76 @@
+// Writes Spire function and component code as GLSL, using the semantic
+// model to resolve every name: components become the kernel's globals,
+// locals and parameters keep their names unless GLSL reserves them.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <set>
+#include <string>
+#include <string_view>
+
+#include "codegen/glsl_names.h"
+#include "sema/semantic_model.h"
+#include "support/source_manager.h"
+#include "syntax/ast.h"
+
+namespace spire::codegen {
+
+// Kernel text with `#line` bookkeeping: user code is mapped back to its
+// .spire file and line, generated code to the kernel file itself, so
+// glslang's messages point at the right place.
+class GlslOutput {
+ public:
+  explicit GlslOutput(std::string kernelFile) : kernelFile_(std::move(kernelFile)) {}
+
+  void line(std::string_view text);
+  // The next line comes from `file`:`sourceLine`.
+  void mapTo(const std::string& file, uint32_t sourceLine);
+  // The next line is generated code.
+  void mapToKernel();
+  const std::string& text() const { return text_; }
+
+ private:
+  std::string kernelFile_;
+  std::string text_;
+  uint32_t physicalLine_ = 1;  // line number of the next line written
+  std::string mappedFile_;     // empty: mapped to the kernel file itself
+  uint32_t mappedLine_ = 1;    // what glslang calls the next line
+};
+
+struct GlslNameMaps {
+  // Component source name -> the kernel global holding it.
+  std::function<std::string(std::string_view)> component;
+  std::map<const sem::Function*, std::string> functions;
+  const std::map<std::string, std::string, std::less<>>* structs = nullptr;
+};
+
+class GlslWriter {
+ public:
+  GlslWriter(const sem::Model& model, const SourceManager& sources, GlslNameMaps names, const NameTable& table)
+      : model_(model), sources_(sources), names_(std::move(names)), table_(table) {}
+
+  std::string expr(const ast::Expr& e, int minPrecedence = 0);
+  // A block's statements at `indent` levels (4 spaces each), with #line.
+  void block(GlslOutput& out, const ast::BlockStmt& block, int indent);
+  void stmt(GlslOutput& out, const ast::Stmt& s, int indent);
+  // A user function's definition.
+  void function(GlslOutput& out, const sem::Function& f, const std::string& name);
+  std::string typeName(const sem::Type* type) const;
+  std::string declare(const sem::Type* type, const std::string& name) const;
+
+ private:
+  // A loop or branch body: a block's statements, or one statement.
+  void body(GlslOutput& out, const ast::Stmt& s, int indent);
+  std::string localName(const void* decl, std::string_view source);
+  std::string statementText(const ast::Stmt& s);  // single-line statements for `for` headers
+  void mapLine(GlslOutput& out, const SourceRange& range);
+
+  const sem::Model& model_;
+  const SourceManager& sources_;
+  GlslNameMaps names_;
+  const NameTable& table_;
+  std::map<const void*, std::string> locals_;
+};
+
+}  // namespace spire::codegen

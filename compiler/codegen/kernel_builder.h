@@ -1,0 +1,102 @@
+// One kernel under construction: its sections of GLSL text, its names and
+// its reflection. Strategies add to it; the generator assembles it.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "codegen/glsl_names.h"
+#include "codegen/spirv_compiler.h"
+#include "sema/semantic_model.h"
+
+namespace spire::codegen {
+
+// GLSL spelling of a type; struct names go through `structNames` (a struct
+// named like a GLSL reserved word is renamed in the kernel).
+std::string glslTypeName(const sem::Type* type, const std::map<std::string, std::string, std::less<>>& structNames);
+// `T name` with array dimensions where GLSL wants them.
+std::string declareVariable(const sem::Type* type, const std::string& name,
+                            const std::map<std::string, std::string, std::less<>>& structNames);
+// Number of `in`/`out` locations a value of `type` occupies.
+uint32_t locationSlots(const sem::Type* type);
+
+// A component crossing this kernel's boundary.
+struct KernelValue {
+  sem::ComponentId component = 0;
+  std::string sourceName;  // the Spire name, kept in reflection
+  std::string glslName;    // the global that holds the value in this kernel
+  const sem::Type* type = nullptr;
+  // Hints from component and decision attributes ([Format], [TextureSize]).
+  std::vector<std::pair<std::string, std::string>> attributes;
+};
+
+// Binding numbers are unique across all kernels of a variant (all in set 0),
+// so an engine can put the stages of one pipeline in one descriptor set.
+class BindingAllocator {
+ public:
+  uint32_t next() { return next_++; }
+
+ private:
+  uint32_t next_ = 0;
+};
+
+class KernelBuilder {
+ public:
+  KernelBuilder(std::string world, ShaderStage stage, BindingAllocator& bindings)
+      : world_(std::move(world)), stage_(stage), bindings_(bindings) {}
+
+  const std::string& world() const { return world_; }
+  ShaderStage stage() const { return stage_; }
+  NameTable& names() { return names_; }
+  std::map<std::string, std::string, std::less<>>& structNames() { return structNames_; }
+  std::string declaration(const sem::Type* type, const std::string& name) const {
+    return declareVariable(type, name, structNames_);
+  }
+  uint32_t allocateBinding() { return bindings_.next(); }
+  static constexpr uint32_t kDescriptorSet = 0;
+
+  // Interface declarations (in/out variables, blocks, samplers, buffers).
+  void declare(std::string text) { declarations_.push_back(std::move(text)); }
+  // A private global holding a component value in this kernel.
+  void declareGlobal(const sem::Type* type, const std::string& name);
+  // Statements at the start of main(), before anything else.
+  void addEntry(std::string statement) { entry_.push_back(std::move(statement)); }
+  // Statements that fetch imported values, before the computations.
+  void addFetch(std::string statement) { fetches_.push_back(std::move(statement)); }
+  // Statements that store exported values, after the computations.
+  void addStore(std::string statement) { stores_.push_back(std::move(statement)); }
+
+  // Reflection entries: one object per input, output and block.
+  void reflectInput(nlohmann::ordered_json entry) { inputs_.push_back(std::move(entry)); }
+  void reflectOutput(nlohmann::ordered_json entry) { outputs_.push_back(std::move(entry)); }
+  void reflectBlock(nlohmann::ordered_json entry) { blocks_.push_back(std::move(entry)); }
+
+  const std::vector<std::string>& declarations() const { return declarations_; }
+  const std::vector<std::string>& globals() const { return globals_; }
+  const std::vector<std::string>& entry() const { return entry_; }
+  const std::vector<std::string>& fetches() const { return fetches_; }
+  const std::vector<std::string>& stores() const { return stores_; }
+  const nlohmann::ordered_json& inputs() const { return inputs_; }
+  const nlohmann::ordered_json& outputs() const { return outputs_; }
+  const nlohmann::ordered_json& blocks() const { return blocks_; }
+
+ private:
+  std::string world_;
+  ShaderStage stage_;
+  BindingAllocator& bindings_;
+  NameTable names_;
+  std::map<std::string, std::string, std::less<>> structNames_;
+  std::vector<std::string> declarations_;
+  std::vector<std::string> globals_;
+  std::vector<std::string> entry_;
+  std::vector<std::string> fetches_;
+  std::vector<std::string> stores_;
+  nlohmann::ordered_json inputs_ = nlohmann::ordered_json::array();
+  nlohmann::ordered_json outputs_ = nlohmann::ordered_json::array();
+  nlohmann::ordered_json blocks_ = nlohmann::ordered_json::array();
+};
+
+}  // namespace spire::codegen

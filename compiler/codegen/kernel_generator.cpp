@@ -1,0 +1,363 @@
+#include "codegen/kernel_generator.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <functional>
+#include <map>
+#include <set>
+
+#include "codegen/glsl_writer.h"
+
+namespace spire::codegen {
+namespace {
+
+struct Located {
+  sem::ComponentId component;
+  uint32_t location;
+};
+
+// What world `w` exports: values other worlds import from it, and the
+// pipeline's exports computed there, ordered by component and given
+// consecutive locations. Producer and consumers both derive locations from
+// this list, so `out` and `in` variables always match.
+std::vector<Located> worldOutputs(const graph::Variant& variant, sem::WorldId w) {
+  const graph::ShaderGraph& g = variant.graph();
+  std::set<sem::ComponentId> ids;
+  for (const graph::Transfer& t : variant.world(w).outputs) ids.insert(t.component);
+  for (const graph::Sink& sink : g.sinks()) {
+    if (sink.world == w && g.node(sink.component).component->isExport) ids.insert(sink.component);
+  }
+  std::vector<Located> result;
+  uint32_t location = 0;
+  for (sem::ComponentId id : ids) {
+    result.push_back({id, location});
+    location += locationSlots(g.node(id).component->type);
+  }
+  return result;
+}
+
+std::optional<ShaderStage> stageFromAttribute(const ast::WorldDecl& decl) {
+  for (const ast::Attribute& a : decl.attributes) {
+    if (a.name != "Stage" || !a.value) continue;
+    if (*a.value == "vertex") return ShaderStage::Vertex;
+    if (*a.value == "fragment") return ShaderStage::Fragment;
+    if (*a.value == "compute") return ShaderStage::Compute;
+  }
+  return std::nullopt;
+}
+
+bool containsWord(const std::string& text, const std::string& word) {
+  for (size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) {
+    auto isIdent = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    const bool startOk = at == 0 || !isIdent(text[at - 1]);
+    const bool endOk = at + word.size() >= text.size() || !isIdent(text[at + word.size()]);
+    if (startOk && endOk) return true;
+  }
+  return false;
+}
+
+class KernelGenerator {
+ public:
+  KernelGenerator(const sem::Model& model, const SourceManager& sources, const graph::Variant& variant,
+                  const StrategyRegistry& strategies, DiagnosticList& diags)
+      : model_(model), sources_(sources), variant_(variant), graph_(variant.graph()),
+        pipeline_(graph_.pipeline()), strategies_(strategies), diags_(diags) {}
+
+  std::optional<Kernel> generate(sem::WorldId world);
+
+ private:
+  bool fail(std::string message) {
+    diags_.report(DiagCode::E6001, graph_.shader().decl->nameRange,
+                  fmt::format("cannot generate the kernel of world '{}' for shader '{}': {}", currentWorld_,
+                              graph_.shader().name, message));
+    return false;
+  }
+  KernelValue value(sem::ComponentId id, const std::map<sem::ComponentId, std::string>& names) const;
+  std::vector<const sem::Function*> calledFunctions(const std::vector<sem::ComponentId>& computed) const;
+  std::string structDeclarations(const std::string& code, const std::map<std::string, std::string, std::less<>>& names) const;
+
+  const sem::Model& model_;
+  const SourceManager& sources_;
+  const graph::Variant& variant_;
+  const graph::ShaderGraph& graph_;
+  const sem::Pipeline& pipeline_;
+  const StrategyRegistry& strategies_;
+  DiagnosticList& diags_;
+  BindingAllocator bindings_;
+  std::string currentWorld_;
+};
+
+KernelValue KernelGenerator::value(sem::ComponentId id, const std::map<sem::ComponentId, std::string>& names) const {
+  const sem::Component& c = *graph_.node(id).component;
+  KernelValue v{id, c.name, names.at(id), c.type, {}};
+  for (const ast::Attribute* a : c.attributes) v.attributes.emplace_back(a->name, a->value.value_or(""));
+  for (const auto& attribute : variant_.attributes(id)) v.attributes.push_back(attribute);
+  return v;
+}
+
+std::vector<const sem::Function*> KernelGenerator::calledFunctions(const std::vector<sem::ComponentId>& computed) const {
+  // Callees before callers, each once: GLSL needs a declaration before use.
+  std::vector<const sem::Function*> ordered;
+  std::set<const sem::Function*> seen;
+  std::function<void(const sem::Function*)> visit = [&](const sem::Function* f) {
+    if (!seen.insert(f).second) return;
+    for (const sem::Function* callee : f->callees) visit(callee);
+    ordered.push_back(f);
+  };
+  for (sem::ComponentId id : computed) {
+    const graph::Alternative& alt = graph_.node(id).alternatives[*variant_.choice(id)];
+    for (const sem::Function* f : alt.definition->functions) visit(f);
+  }
+  return ordered;
+}
+
+std::string KernelGenerator::structDeclarations(const std::string& code,
+                                                const std::map<std::string, std::string, std::less<>>& names) const {
+  // A struct is needed when the kernel names it, or a needed struct has a
+  // field of its type; declarations follow the source order, which already
+  // puts field types first.
+  std::set<const sem::Type*> needed;
+  for (auto it = model_.structOrder.rbegin(); it != model_.structOrder.rend(); ++it) {
+    const sem::Type* s = *it;
+    bool used = containsWord(code, names.at(s->structName));
+    for (const sem::Type* other : needed) {
+      for (const sem::StructField& f : other->fields) {
+        const sem::Type* base = f.type;
+        while (base->isArray()) base = base->element;
+        used = used || base == s;
+      }
+    }
+    if (used) needed.insert(s);
+  }
+  std::string text;
+  for (const sem::Type* s : model_.structOrder) {
+    if (!needed.count(s)) continue;
+    text += fmt::format("struct {} {{\n", names.at(s->structName));
+    for (const sem::StructField& f : s->fields) {
+      const std::string field = isReservedInGlsl(f.name) ? f.name + "_" : f.name;
+      text += fmt::format("    {};\n", declareVariable(f.type, field, names));
+    }
+    text += "};\n\n";
+  }
+  return text;
+}
+
+std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
+  const sem::World& world = pipeline_.worlds[w];
+  currentWorld_ = world.name;
+  const graph::WorldPlan& plan = variant_.world(w);
+  const std::vector<Located> outputs = worldOutputs(variant_, w);
+  if (plan.computed.empty() && outputs.empty()) return std::nullopt;
+
+  const Strategy* exportStrategy = world.exportStrategy ? strategies_.find(world.exportStrategy->ref->name) : nullptr;
+  std::optional<ShaderStage> stage = stageFromAttribute(*world.decl);
+  if (!stage && exportStrategy) stage = exportStrategy->stage();
+  if (!stage) {
+    fail("its export strategy implies no pipeline stage; add [Stage: \"vertex\"], \"fragment\" or \"compute\"");
+    return std::nullopt;
+  }
+  KernelBuilder kernel(world.name, *stage, bindings_);
+
+  // Names first, in a fixed order, so renaming is deterministic: structs,
+  // then every component this kernel touches, then functions.
+  for (const sem::Type* s : model_.structOrder) kernel.structNames()[s->structName] = kernel.names().claim(s->structName);
+  std::set<sem::ComponentId> touched(plan.computed.begin(), plan.computed.end());
+  for (const graph::Transfer& t : plan.inputs) touched.insert(t.component);
+  for (const Located& o : outputs) touched.insert(o.component);
+  std::map<sem::ComponentId, std::string> names;
+  for (sem::ComponentId id : touched) names[id] = kernel.names().claim(graph_.node(id).component->name);
+  const std::vector<const sem::Function*> functions = calledFunctions(plan.computed);
+  GlslNameMaps maps;
+  for (const sem::Function* f : functions) maps.functions[f] = kernel.names().claim(f->name);
+  maps.structs = &kernel.structNames();
+  maps.component = [&](std::string_view name) {
+    const auto it = graph_.shader().componentByName.find(name);
+    if (it != graph_.shader().componentByName.end()) {
+      if (auto n = names.find(it->second); n != names.end()) return n->second;
+    }
+    return std::string(name);
+  };
+  GlslWriter writer(model_, sources_, maps, kernel.names());
+
+  // Inputs, one import edge at a time in declaration order.
+  std::map<uint32_t, std::vector<sem::ComponentId>> byImport;
+  for (const graph::Transfer& t : plan.inputs) byImport[t.importIndex].push_back(t.component);
+  for (auto& [importIndex, ids] : byImport) {
+    const sem::Import& import = pipeline_.imports[importIndex];
+    const Strategy* strategy = strategies_.find(import.strategy.ref->name);
+    if (!strategy) {
+      fail(fmt::format("no code generator is registered for strategy '{}'", import.strategy.ref->name));
+      return std::nullopt;
+    }
+    std::sort(ids.begin(), ids.end());
+    const std::vector<Located> producerOutputs = worldOutputs(variant_, import.from);
+    ImportSite site{kernel, pipeline_, import, {}, {}, [&](sem::ComponentId id) {
+                      for (const Located& l : producerOutputs) {
+                        if (l.component == id) return l.location;
+                      }
+                      return 0u;
+                    }};
+    for (sem::ComponentId id : ids) site.values.push_back(value(id, names));
+    for (const ast::ExprPtr& arg : import.strategy.ref->args) site.args.push_back(writer.expr(*arg));
+    if (auto problem = strategy->emitImport(site)) {
+      fail(*problem);
+      return std::nullopt;
+    }
+  }
+
+  // The world's computations, producers first. A block body becomes a
+  // function, so its locals and returns stay as written.
+  std::map<sem::ComponentId, std::string> helpers;
+  for (sem::ComponentId id : plan.computed) {
+    kernel.declareGlobal(graph_.node(id).component->type, names.at(id));
+    if (!graph_.node(id).alternatives[*variant_.choice(id)].definition->decl->init) {
+      helpers[id] = kernel.names().generate(names.at(id));
+    }
+  }
+
+  // Outputs, through the world's export strategy.
+  if (!outputs.empty() || (world.exportStrategy && !world.exportStrategy->ref->args.empty())) {
+    if (!exportStrategy) {
+      fail(fmt::format("no code generator is registered for strategy '{}'", world.exportStrategy->ref->name));
+      return std::nullopt;
+    }
+    ExportSite site{kernel, pipeline_, world, {}, {}, {}};
+    for (const Located& o : outputs) {
+      site.values.push_back(value(o.component, names));
+      site.locations.push_back(o.location);
+    }
+    for (const ast::ExprPtr& arg : world.exportStrategy->ref->args) site.args.push_back(writer.expr(*arg));
+    if (auto problem = exportStrategy->emitExport(site)) {
+      fail(*problem);
+      return std::nullopt;
+    }
+  }
+
+  auto writeCode = [&](GlslOutput& out) {
+    for (const std::string& d : kernel.declarations()) {
+      size_t start = 0;
+      for (size_t end = d.find('\n'); end != std::string::npos; start = end + 1, end = d.find('\n', start)) {
+        out.line(std::string_view(d).substr(start, end - start));
+      }
+      out.line(std::string_view(d).substr(start));
+      out.line("");
+    }
+    for (const std::string& g : kernel.globals()) out.line(g);
+    if (!kernel.globals().empty()) out.line("");
+    for (const sem::Function* f : functions) {
+      writer.function(out, *f, maps.functions.at(f));
+      out.line("");
+    }
+    for (const auto& [id, helper] : helpers) {
+      const ast::ComponentDecl& decl = *graph_.node(id).alternatives[*variant_.choice(id)].definition->decl;
+      out.mapTo(sources_.file(decl.range.file).path, sources_.begin(decl.range).line);
+      out.line(fmt::format("{} {}() {{", writer.typeName(graph_.node(id).component->type), helper));
+      writer.block(out, *decl.body, 1);
+      out.line("}");
+      out.mapToKernel();
+      out.line("");
+    }
+    out.line("void main() {");
+    for (const std::string& statement : kernel.entry()) out.line("    " + statement);
+    for (const std::string& statement : kernel.fetches()) out.line("    " + statement);
+    for (sem::ComponentId id : plan.computed) {
+      const ast::ComponentDecl& decl = *graph_.node(id).alternatives[*variant_.choice(id)].definition->decl;
+      const SourceRange where = decl.init ? decl.init->range : decl.range;
+      out.mapTo(sources_.file(where.file).path, sources_.begin(where).line);
+      out.line(fmt::format("    {} = {};", names.at(id), decl.init ? writer.expr(*decl.init) : helpers.at(id) + "()"));
+    }
+    out.mapToKernel();
+    for (const std::string& statement : kernel.stores()) out.line("    " + statement);
+    out.line("}");
+  };
+
+  // Struct declarations go first but depend on what the code uses: write the
+  // code once to find out, then the kernel for real.
+  GlslOutput scratch(world.name + ".glsl");
+  writeCode(scratch);
+  const std::string structs = structDeclarations(scratch.text(), kernel.structNames());
+  GlslOutput out(world.name + ".glsl");
+  out.line("#version 450");
+  out.line("#extension GL_GOOGLE_cpp_style_line_directive : require");
+  out.line(fmt::format("// Generated by spirec: shader '{}', world '{}' ({} stage). Do not edit.", graph_.shader().name,
+                       world.name, stageName(*stage)));
+  out.line("");
+  if (*stage == ShaderStage::Compute) {
+    out.line("layout(local_size_x = 64) in;");
+    out.line("");
+  }
+  for (size_t start = 0, end = structs.find('\n'); end != std::string::npos; start = end + 1, end = structs.find('\n', start)) {
+    out.line(std::string_view(structs).substr(start, end - start));
+  }
+  writeCode(out);
+
+  Kernel result;
+  result.world = world.name;
+  result.stage = *stage;
+  result.glsl = out.text();
+  nlohmann::ordered_json& r = result.reflection;
+  r["world"] = world.name;
+  r["stage"] = stageName(*stage);
+  r["entry"] = "main";
+  r["glsl"] = world.name + ".glsl";
+  r["spirv"] = world.name + ".spv";
+  r["hash"] = contentHash(result.glsl);
+  r["inputs"] = kernel.inputs();
+  r["outputs"] = kernel.outputs();
+  r["blocks"] = kernel.blocks();
+  return result;
+}
+
+}  // namespace
+
+std::string contentHash(std::string_view text) {
+  uint64_t hash = 14695981039346656037ull;
+  for (char c : text) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 1099511628211ull;
+  }
+  return fmt::format("{:016x}", hash);
+}
+
+nlohmann::ordered_json GeneratedShader::reflection(const graph::Variant& variant) const {
+  const graph::ShaderGraph& g = variant.graph();
+  nlohmann::ordered_json root;
+  root["format"] = "spire-reflection";
+  root["version"] = 1;
+  root["shader"] = shader;
+  root["pipeline"] = g.pipeline().name;
+  nlohmann::ordered_json placement = nlohmann::ordered_json::object();
+  for (sem::ComponentId c : variant.live()) {
+    const graph::ComponentNode& node = g.node(c);
+    if (!node.isInput) placement[node.component->name] = g.altName(node, *variant.choice(c));
+  }
+  root["placement"] = std::move(placement);
+  root["kernels"] = nlohmann::ordered_json::array();
+  for (const Kernel& k : kernels) root["kernels"].push_back(k.reflection);
+  return root;
+}
+
+std::optional<GeneratedShader> generateKernels(const sem::Model& model, const SourceManager& sources,
+                                               const graph::Variant& variant, const StrategyRegistry& strategies,
+                                               DiagnosticList& diags) {
+  GeneratedShader result;
+  result.shader = variant.graph().shader().name;
+  result.directory = result.shader;
+  for (char& c : result.directory) {
+    if (c == '<') c = '-';
+  }
+  result.directory.erase(std::remove(result.directory.begin(), result.directory.end(), '>'), result.directory.end());
+  KernelGenerator generator(model, sources, variant, strategies, diags);
+  const sem::Pipeline& pipeline = variant.graph().pipeline();
+  const uint32_t errors = diags.errorCount();
+  for (sem::WorldId w : pipeline.topologicalOrder) {
+    if (pipeline.worlds[w].isAbstract) continue;
+    if (auto kernel = generator.generate(w)) result.kernels.push_back(std::move(*kernel));
+    if (diags.errorCount() != errors) return std::nullopt;
+  }
+  return result;
+}
+
+}  // namespace spire::codegen

@@ -1,0 +1,57 @@
+// bufferImport: a std430 storage buffer of per-element records, read at the
+// vertex index (vertex kernels) or the invocation index (compute kernels).
+#include <fmt/format.h>
+
+#include "codegen/strategies/strategy_support.h"
+
+namespace spire::codegen {
+namespace {
+
+class BufferImport final : public Strategy {
+ public:
+  const sem::StrategySignature& signature() const override { return signature_; }
+
+  std::optional<std::string> emitImport(ImportSite& site) const override {
+    KernelBuilder& kernel = site.consumer;
+    std::string index;
+    switch (kernel.stage()) {
+      case ShaderStage::Vertex: index = "gl_VertexIndex"; break;
+      case ShaderStage::Compute: index = "gl_GlobalInvocationID.x"; break;
+      case ShaderStage::Fragment:
+        return fmt::format("bufferImport reads one record per vertex or invocation and cannot feed the fragment "
+                           "world '{}'",
+                           kernel.world());
+    }
+    const std::string& from = site.pipeline.worlds[site.import.from].name;
+    // Values arrive under their own names, so the record members get
+    // generated ones and the fetch copies them out.
+    std::vector<KernelValue> members = site.values;
+    for (KernelValue& m : members) m.glslName = kernel.names().generate(from + "_" + m.glslName);
+    const BlockDeclaration block =
+        declareBlock(kernel, from + "_in", members, BlockLayout::Std430, "readonly buffer", "bufferImport");
+    for (size_t i = 0; i < site.values.size(); ++i) {
+      const KernelValue& v = site.values[i];
+      kernel.declareGlobal(v.type, v.glslName);
+      kernel.addFetch(fmt::format("{} = {}[{}].{};", v.glslName, block.recordsName, index, members[i].glslName));
+      nlohmann::ordered_json entry = valueEntry(v, "bufferImport");
+      entry["from"] = from;
+      entry["set"] = KernelBuilder::kDescriptorSet;
+      entry["binding"] = block.binding;
+      entry["block"] = block.blockName;
+      entry["offset"] = block.offsets[i];
+      entry["index"] = index;
+      kernel.reflectInput(std::move(entry));
+    }
+    return std::nullopt;
+  }
+
+ private:
+  sem::StrategySignature signature_ = makeSignature("bufferImport", sem::StrategyRole::Import, {},
+                                                    "std430 storage buffer read at the vertex or invocation index");
+};
+
+}  // namespace
+
+std::unique_ptr<Strategy> makeBufferImport() { return std::make_unique<BufferImport>(); }
+
+}  // namespace spire::codegen

@@ -1,0 +1,45 @@
+// standardImport: `in` variables at the locations the producer gave its
+// `out` variables (vertex attributes when the producer is the mesh).
+#include <fmt/format.h>
+
+#include "codegen/strategies/strategy_support.h"
+
+namespace spire::codegen {
+namespace {
+
+class StandardImport final : public Strategy {
+ public:
+  const sem::StrategySignature& signature() const override { return signature_; }
+
+  std::optional<std::string> emitImport(ImportSite& site) const override {
+    KernelBuilder& kernel = site.consumer;
+    if (kernel.stage() == ShaderStage::Compute) {
+      return fmt::format("standardImport cannot feed world '{}': a compute kernel has no 'in' variables; use "
+                         "bufferImport",
+                         kernel.world());
+    }
+    const std::string& from = site.pipeline.worlds[site.import.from].name;
+    for (const KernelValue& v : site.values) {
+      if (auto problem = checkVarying(v, "standardImport")) return problem;
+      const uint32_t location = site.producerLocation(v.component);
+      const bool flat = kernel.stage() == ShaderStage::Fragment && needsFlat(v.type);
+      kernel.declare(fmt::format("layout(location = {}) {}in {};", location, flat ? "flat " : "",
+                                 kernel.declaration(v.type, v.glslName)));
+      nlohmann::ordered_json entry = valueEntry(v, "standardImport");
+      entry["from"] = from;
+      entry["location"] = location;
+      kernel.reflectInput(std::move(entry));
+    }
+    return std::nullopt;
+  }
+
+ private:
+  sem::StrategySignature signature_ =
+      makeSignature("standardImport", sem::StrategyRole::Import, {}, "'in' variables matching the producer's 'out'");
+};
+
+}  // namespace
+
+std::unique_ptr<Strategy> makeStandardImport() { return std::make_unique<StandardImport>(); }
+
+}  // namespace spire::codegen

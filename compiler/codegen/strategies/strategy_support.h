@@ -1,0 +1,47 @@
+// Helpers shared by the built-in strategies.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "codegen/memory_layout.h"
+#include "codegen/strategy.h"
+
+namespace spire::codegen {
+
+// A signature built in place, for Strategy::signature() implementations.
+sem::StrategySignature makeSignature(std::string name, sem::StrategyRole role,
+                                     std::vector<sem::StrategyParam> params, std::string summary);
+
+// The reflection entry common to inputs and outputs.
+nlohmann::ordered_json valueEntry(const KernelValue& value, std::string_view strategy);
+
+// Declares `values` as members of one interface block and reflects its
+// layout; returns the block's binding. `qualifier` is `uniform`,
+// `readonly buffer` or `writeonly buffer`. For buffers the members sit in a
+// record struct and the block holds a runtime array `records` of it.
+struct BlockDeclaration {
+  std::string blockName;
+  std::string recordType;     // buffers only
+  std::string recordsName;    // buffers only
+  uint32_t binding = 0;
+  std::vector<uint32_t> offsets;  // per value
+};
+BlockDeclaration declareBlock(KernelBuilder& kernel, const std::string& hint, const std::vector<KernelValue>& values,
+                              BlockLayout layout, std::string_view qualifier, std::string_view strategy);
+
+// `flat` where GLSL requires it for integer varyings.
+bool needsFlat(const sem::Type* type);
+// Types that may cross stages as `in`/`out` variables.
+std::optional<std::string> checkVarying(const KernelValue& value, std::string_view strategy);
+
+}  // namespace spire::codegen
+
+namespace spire::codegen {
+
+// `layout(location = L) out T spire_out_x;` for every exported value, stored
+// at the end of main(); shared by standardExport and vertexExport.
+std::optional<std::string> emitOutVariables(ExportSite& site, std::string_view strategy);
+
+}  // namespace spire::codegen

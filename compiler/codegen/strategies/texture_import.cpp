@@ -1,0 +1,52 @@
+// textureImport(uv): one sampler per component, fetched at the uv
+// expression evaluated in the consuming kernel (paper section 5.1).
+#include <fmt/format.h>
+
+#include "codegen/strategies/strategy_support.h"
+
+namespace spire::codegen {
+namespace {
+
+class TextureImport final : public Strategy {
+ public:
+  const sem::StrategySignature& signature() const override { return signature_; }
+
+  std::optional<std::string> emitImport(ImportSite& site) const override {
+    KernelBuilder& kernel = site.consumer;
+    const std::string& from = site.pipeline.worlds[site.import.from].name;
+    const std::string& uv = site.args.at(0);
+    for (const KernelValue& v : site.values) {
+      const sem::Type* t = v.type;
+      if (!(t->isScalar() || t->isVector()) || t->scalar != sem::ScalarKind::Float) {
+        return fmt::format("textureImport can only carry float scalars and vectors, not '{}' of type '{}'",
+                           v.sourceName, t->name());
+      }
+      static constexpr std::string_view kSwizzles[] = {"", ".x", ".xy", ".xyz", ""};
+      const std::string sampler = kernel.names().generate("tex_" + v.glslName);
+      const uint32_t binding = kernel.allocateBinding();
+      kernel.declare(fmt::format("layout(set = {}, binding = {}) uniform sampler2D {};", KernelBuilder::kDescriptorSet,
+                                 binding, sampler));
+      kernel.declareGlobal(t, v.glslName);
+      kernel.addFetch(fmt::format("{} = texture({}, {}){};", v.glslName, sampler, uv, kSwizzles[t->rows]));
+      nlohmann::ordered_json entry = valueEntry(v, "textureImport");
+      entry["from"] = from;
+      entry["set"] = KernelBuilder::kDescriptorSet;
+      entry["binding"] = binding;
+      entry["sampler"] = sampler;
+      entry["uv"] = uv;
+      entry["channels"] = t->rows;
+      kernel.reflectInput(std::move(entry));
+    }
+    return std::nullopt;
+  }
+
+ private:
+  sem::StrategySignature signature_ = makeSignature("textureImport", sem::StrategyRole::Import, {{"uv", "vec2"}},
+                                                    "one sampler per component, fetched at uv");
+};
+
+}  // namespace
+
+std::unique_ptr<Strategy> makeTextureImport() { return std::make_unique<TextureImport>(); }
+
+}  // namespace spire::codegen

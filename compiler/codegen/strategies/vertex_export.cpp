@@ -1,0 +1,33 @@
+// vertexExport(position): `out` variables plus `gl_Position = position`.
+#include <fmt/format.h>
+
+#include "codegen/strategies/strategy_support.h"
+
+namespace spire::codegen {
+namespace {
+
+class VertexExport final : public Strategy {
+ public:
+  const sem::StrategySignature& signature() const override { return signature_; }
+  std::optional<ShaderStage> stage() const override { return ShaderStage::Vertex; }
+  std::optional<std::string> emitExport(ExportSite& site) const override {
+    if (auto problem = emitOutVariables(site, "vertexExport")) return problem;
+    site.producer.addStore(fmt::format("gl_Position = {};", site.args.at(0)));
+    nlohmann::ordered_json entry;
+    entry["builtin"] = "gl_Position";
+    entry["expression"] = site.args.at(0);
+    entry["strategy"] = "vertexExport";
+    site.producer.reflectOutput(std::move(entry));
+    return std::nullopt;
+  }
+
+ private:
+  sem::StrategySignature signature_ = makeSignature("vertexExport", sem::StrategyRole::Export, {{"position", "vec4"}},
+                                                    "'out' variables plus gl_Position");
+};
+
+}  // namespace
+
+std::unique_ptr<Strategy> makeVertexExport() { return std::make_unique<VertexExport>(); }
+
+}  // namespace spire::codegen
