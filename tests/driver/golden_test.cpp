@@ -89,5 +89,44 @@ TEST_P(Golden, MatchesExpectedOutput) {
 INSTANTIATE_TEST_SUITE_P(Spirec, Golden, testing::ValuesIn(goldenCases()),
                          [](const testing::TestParamInfo<GoldenCase>& param) { return param.param.name; });
 
+// Kernels and reflection of the paper's Figure 3 variants of Terrain, one
+// golden folder per decision file: tests/golden/kernels/<decisions>/.
+class GoldenKernels : public testing::TestWithParam<fs::path> {};
+
+TEST_P(GoldenKernels, MatchExpectedFiles) {
+  fs::current_path(SPIRE_SOURCE_DIR);
+  const fs::path decisions = GetParam();
+  const fs::path out = fs::temp_directory_path() / ("spire_golden_" + decisions.stem().string());
+  fs::remove_all(out);
+  std::ostringstream stdoutText, stderrText;
+  ASSERT_EQ(runSpirec({"examples/terrain.spire", "--decisions", decisions.string(), "-o", out.string(), "--emit=glsl"},
+                      stdoutText, stderrText),
+            kExitSuccess)
+      << stderrText.str();
+  EXPECT_EQ(stderrText.str(), "");
+  const fs::path expectedDir = fs::path("tests/golden/kernels") / decisions.stem();
+  std::vector<std::string> produced;
+  for (const auto& entry : fs::directory_iterator(out / "Terrain")) produced.push_back(entry.path().filename().string());
+  std::sort(produced.begin(), produced.end());
+  if (std::getenv("SPIRE_UPDATE_GOLDENS")) {
+    fs::remove_all(expectedDir);
+    fs::create_directories(expectedDir);
+    for (const std::string& name : produced) fs::copy_file(out / "Terrain" / name, expectedDir / name);
+    fs::remove_all(out);
+    GTEST_SKIP() << "updated " << expectedDir;
+  }
+  std::vector<std::string> expected;
+  for (const auto& entry : fs::directory_iterator(expectedDir)) expected.push_back(entry.path().filename().string());
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(produced, expected);
+  for (const std::string& name : expected) {
+    EXPECT_EQ(readFile(out / "Terrain" / name), readFile(expectedDir / name)) << name;
+  }
+  fs::remove_all(out);
+}
+
+INSTANTIATE_TEST_SUITE_P(Spirec, GoldenKernels, testing::ValuesIn(filesIn("examples/decisions", ".decisions")),
+                         [](const testing::TestParamInfo<fs::path>& param) { return param.param.stem().string(); });
+
 }  // namespace
 }  // namespace spire
