@@ -31,9 +31,10 @@ struct Options {
 };
 
 // Generates a variant's kernels and writes DIR/<Shader>/<World>.glsl|.spv and
-// reflection.json, each file atomically. glslang rejecting generated code is
-// a compiler bug: it is reported as an internal error against the shader,
-// with the kernel saved for inspection.
+// reflection.json, each file atomically. SPIR-V is made (and validated) only
+// when asked for: glslang's start-up costs far more than the rest of spirec.
+// glslang rejecting generated code is a compiler bug: it is reported as an
+// internal error against the shader, with the kernel saved for inspection.
 void writeKernels(ShaderLibrary& library, const graph::Variant& variant, const std::string& outputDir,
                   const std::string& emit, DiagnosticList& diags) {
   const auto generated = codegen::generateKernels(library.model(), library.sources(), variant,
@@ -55,6 +56,10 @@ void writeKernels(ShaderLibrary& library, const graph::Variant& variant, const s
   const bool wantSpirv = emit != "glsl";
   for (const codegen::Kernel& kernel : generated->kernels) {
     const fs::path glslPath = dir / (kernel.world + ".glsl");
+    if (!wantSpirv) {
+      write(glslPath, kernel.glsl);
+      continue;
+    }
     const codegen::SpirvResult spirv = codegen::compileGlslToSpirv(kernel.stage, kernel.glsl, glslPath.string());
     std::optional<std::string> invalid = spirv.ok() ? codegen::validateSpirv(spirv.words) : std::nullopt;
     if (!spirv.ok() || invalid) {
