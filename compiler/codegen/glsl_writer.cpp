@@ -3,45 +3,12 @@
 #include <fmt/format.h>
 
 #include "codegen/kernel_builder.h"
-#include "sema/operator_rules.h"
+#include "syntax/ast_spelling.h"
 
 namespace spire::codegen {
 namespace {
 
-// GLSL precedence, loosest first (GLSL 4.50 section 5.1).
-enum Precedence : int {
-  kComma = 1, kAssign, kTernary, kLogicalOr, kLogicalXor, kLogicalAnd, kBitOr, kBitXor, kBitAnd,
-  kEquality, kRelational, kShift, kAdditive, kMultiplicative, kPrefix, kPostfix, kPrimary,
-};
-
-int precedenceOf(ast::BinaryOp op) {
-  using ast::BinaryOp;
-  switch (op) {
-    case BinaryOp::Comma: return kComma;
-    case BinaryOp::LogicalOr: return kLogicalOr;
-    case BinaryOp::LogicalXor: return kLogicalXor;
-    case BinaryOp::LogicalAnd: return kLogicalAnd;
-    case BinaryOp::BitOr: return kBitOr;
-    case BinaryOp::BitXor: return kBitXor;
-    case BinaryOp::BitAnd: return kBitAnd;
-    case BinaryOp::Equal:
-    case BinaryOp::NotEqual: return kEquality;
-    case BinaryOp::Less:
-    case BinaryOp::Greater:
-    case BinaryOp::LessEqual:
-    case BinaryOp::GreaterEqual: return kRelational;
-    case BinaryOp::Shl:
-    case BinaryOp::Shr: return kShift;
-    case BinaryOp::Add:
-    case BinaryOp::Sub: return kAdditive;
-    case BinaryOp::Mul:
-    case BinaryOp::Div:
-    case BinaryOp::Mod: return kMultiplicative;
-  }
-  return kComma;
-}
-
-bool isPostfix(ast::UnaryOp op) { return op == ast::UnaryOp::PostIncrement || op == ast::UnaryOp::PostDecrement; }
+using ast::Precedence;
 
 // GLSL needs a `.` or an exponent in a float literal (`1f` is not GLSL).
 std::string floatLiteral(const std::string& spelling) {
@@ -93,9 +60,9 @@ std::string GlslWriter::localName(const void* decl, std::string_view source) {
   return it->second;
 }
 
-std::string GlslWriter::expr(const ast::Expr& e, int minPrecedence) {
+std::string GlslWriter::expr(const ast::Expr& e, Precedence minPrecedence) {
   const sem::ExprInfo& info = model_.info(e);
-  auto wrap = [&](int precedence, std::string text) {
+  auto wrap = [&](Precedence precedence, std::string text) {
     return precedence < minPrecedence ? "(" + text + ")" : text;
   };
   switch (e.kind) {
@@ -110,26 +77,27 @@ std::string GlslWriter::expr(const ast::Expr& e, int minPrecedence) {
     }
     case ast::ExprKind::Unary: {
       const auto& u = ast::cast<ast::UnaryExpr>(e);
-      if (isPostfix(u.op)) return wrap(kPostfix, expr(*u.operand, kPostfix) + std::string(sem::spelling(u.op)));
-      std::string operand = expr(*u.operand, kPrefix);
-      const std::string op(sem::spelling(u.op));
+      if (ast::isPostfix(u.op)) return wrap(Precedence::Postfix, expr(*u.operand, Precedence::Postfix) + std::string(ast::spelling(u.op)));
+      std::string operand = expr(*u.operand, Precedence::Unary);
+      const std::string op(ast::spelling(u.op));
       // `- -x` must not become the decrement `--x`.
       const bool separate = !operand.empty() && (operand[0] == '-' || operand[0] == '+');
-      return wrap(kPrefix, op + (separate ? " " : "") + operand);
+      return wrap(Precedence::Unary, op + (separate ? " " : "") + operand);
     }
     case ast::ExprKind::Binary: {
       const auto& b = ast::cast<ast::BinaryExpr>(e);
-      const int p = precedenceOf(b.op);
-      return wrap(p, fmt::format("{} {} {}", expr(*b.lhs, p), sem::spelling(b.op), expr(*b.rhs, p + 1)));
+      const Precedence p = ast::precedenceOf(b.op);
+      const auto tighter = static_cast<Precedence>(static_cast<uint8_t>(p) + 1);
+      return wrap(p, fmt::format("{} {} {}", expr(*b.lhs, p), ast::spelling(b.op), expr(*b.rhs, tighter)));
     }
     case ast::ExprKind::Assign: {
       const auto& a = ast::cast<ast::AssignExpr>(e);
-      return wrap(kAssign, fmt::format("{} {} {}", expr(*a.target, kPrefix), sem::spelling(a.op), expr(*a.value, kAssign)));
+      return wrap(Precedence::Assignment, fmt::format("{} {} {}", expr(*a.target, Precedence::Unary), ast::spelling(a.op), expr(*a.value, Precedence::Assignment)));
     }
     case ast::ExprKind::Ternary: {
       const auto& t = ast::cast<ast::TernaryExpr>(e);
-      return wrap(kTernary, fmt::format("{} ? {} : {}", expr(*t.condition, kLogicalOr), expr(*t.thenValue, kAssign),
-                                        expr(*t.elseValue, kTernary)));
+      return wrap(Precedence::Conditional, fmt::format("{} ? {} : {}", expr(*t.condition, Precedence::LogicalOr), expr(*t.thenValue, Precedence::Assignment),
+                                        expr(*t.elseValue, Precedence::Conditional)));
     }
     case ast::ExprKind::Call: {
       const auto& c = ast::cast<ast::CallExpr>(e);
@@ -137,18 +105,18 @@ std::string GlslWriter::expr(const ast::Expr& e, int minPrecedence) {
       if (info.ref == sem::RefKind::Function) callee = names_.functions.at(info.function);
       else if (info.ref == sem::RefKind::Constructor || info.ref == sem::RefKind::StructConstructor) callee = typeName(info.type);
       std::string args;
-      for (const ast::ExprPtr& arg : c.args) args += (args.empty() ? "" : ", ") + expr(*arg, kAssign);
+      for (const ast::ExprPtr& arg : c.args) args += (args.empty() ? "" : ", ") + expr(*arg, Precedence::Assignment);
       return fmt::format("{}({})", callee, args);
     }
     case ast::ExprKind::Member: {
       const auto& m = ast::cast<ast::MemberExpr>(e);
       std::string member = m.member;
       if (info.ref == sem::RefKind::Field && isReservedInGlsl(member)) member += '_';
-      return wrap(kPostfix, expr(*m.object, kPostfix) + "." + member);
+      return wrap(Precedence::Postfix, expr(*m.object, Precedence::Postfix) + "." + member);
     }
     case ast::ExprKind::Index: {
       const auto& i = ast::cast<ast::IndexExpr>(e);
-      return wrap(kPostfix, fmt::format("{}[{}]", expr(*i.object, kPostfix), expr(*i.index, 0)));
+      return wrap(Precedence::Postfix, fmt::format("{}[{}]", expr(*i.object, Precedence::Postfix), expr(*i.index, Precedence::Comma)));
     }
   }
   return "";
@@ -166,7 +134,7 @@ std::string GlslWriter::statementText(const ast::Stmt& s) {
     for (const ast::VarDeclarator& v : d->declarators) {
       const sem::Type* type = model_.localTypes.at(&v);
       std::string one = (d->isConst ? "const " : "") + declare(type, localName(&v, v.name));
-      if (v.init) one += " = " + expr(*v.init, kAssign);
+      if (v.init) one += " = " + expr(*v.init, Precedence::Assignment);
       text += (text.empty() ? "" : ", ") + one;
     }
     return text;
@@ -198,7 +166,7 @@ void GlslWriter::stmt(GlslOutput& out, const ast::Stmt& s, int indent) {
       for (const ast::VarDeclarator& v : d.declarators) {
         const sem::Type* type = model_.localTypes.at(&v);
         std::string text = pad + (d.isConst ? "const " : "") + declare(type, localName(&v, v.name));
-        if (v.init) text += " = " + expr(*v.init, kAssign);
+        if (v.init) text += " = " + expr(*v.init, Precedence::Assignment);
         out.line(text + ";");
       }
       return;

@@ -13,6 +13,7 @@
 #include "sema/semantic_model.h"
 #include "support/source_manager.h"
 #include "syntax/ast.h"
+#include "syntax/ast_spelling.h"
 
 namespace spire::codegen {
 
@@ -50,7 +51,7 @@ class GlslWriter {
   GlslWriter(const sem::Model& model, const SourceManager& sources, GlslNameMaps names, const NameTable& table)
       : model_(model), sources_(sources), names_(std::move(names)), table_(table) {}
 
-  std::string expr(const ast::Expr& e, int minPrecedence = 0);
+  std::string expr(const ast::Expr& e, ast::Precedence minPrecedence = ast::Precedence::Comma);
   // A block's statements at `indent` levels (4 spaces each), with #line.
   void block(GlslOutput& out, const ast::BlockStmt& block, int indent);
   void stmt(GlslOutput& out, const ast::Stmt& s, int indent);

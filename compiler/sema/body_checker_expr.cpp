@@ -7,6 +7,7 @@
 #include "sema/body_checker.h"
 #include "sema/operator_rules.h"
 #include "support/spelling.h"
+#include "syntax/ast_spelling.h"
 
 namespace spire::sem {
 namespace {
@@ -119,12 +120,12 @@ const Type* BodyChecker::checkUnary(const ast::UnaryExpr& e, ExprInfo&) {
   const Type* result = unaryResultType(e.op, operand);
   if (!result) {
     diags_.report(DiagCode::E3006, e.opRange,
-                  fmt::format("invalid operand to unary '{}' (have '{}')", spelling(e.op), operand->name()));
+                  fmt::format("invalid operand to unary '{}' (have '{}')", ast::spelling(e.op), operand->name()));
     return model_.types().error();
   }
   const bool mutates = e.op == ast::UnaryOp::PreIncrement || e.op == ast::UnaryOp::PreDecrement ||
                        e.op == ast::UnaryOp::PostIncrement || e.op == ast::UnaryOp::PostDecrement;
-  if (mutates && !requireLValue(*e.operand, e.opRange, fmt::format("apply '{}' to", spelling(e.op)))) {
+  if (mutates && !requireLValue(*e.operand, e.opRange, fmt::format("apply '{}' to", ast::spelling(e.op)))) {
     return model_.types().error();
   }
   return result;
@@ -138,7 +139,7 @@ const Type* BodyChecker::checkBinary(const ast::BinaryExpr& e, ExprInfo&) {
   const Type* result = binaryResultType(model_.types(), e.op, lhs, rhs);
   if (!result) {
     diags_.report(DiagCode::E3005, e.opRange,
-                  fmt::format("invalid operands to binary '{}' ('{}' and '{}')", spelling(e.op), lhs->name(), rhs->name()))
+                  fmt::format("invalid operands to binary '{}' ('{}' and '{}')", ast::spelling(e.op), lhs->name(), rhs->name()))
         .note(e.lhs->range, fmt::format("left operand has type '{}'", lhs->name()))
         .note(e.rhs->range, fmt::format("right operand has type '{}'", rhs->name()));
     return model_.types().error();
@@ -162,7 +163,7 @@ const Type* BodyChecker::checkAssign(const ast::AssignExpr& e) {
   const Type* result = binaryResultType(model_.types(), compoundOperator(e.op), target, value);
   if (!result || result != target) {
     diags_.report(DiagCode::E3005, e.opRange,
-                  fmt::format("invalid operands to '{}' ('{}' and '{}')", spelling(e.op), target->name(), value->name()));
+                  fmt::format("invalid operands to '{}' ('{}' and '{}')", ast::spelling(e.op), target->name(), value->name()));
     return model_.types().error();
   }
   return target;

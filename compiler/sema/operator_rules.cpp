@@ -164,63 +164,6 @@ std::optional<std::string> checkConstructor(const Type* target, const std::vecto
   return std::nullopt;
 }
 
-std::string_view spelling(ast::BinaryOp op) {
-  switch (op) {
-    case BinaryOp::Mul: return "*";
-    case BinaryOp::Div: return "/";
-    case BinaryOp::Mod: return "%";
-    case BinaryOp::Add: return "+";
-    case BinaryOp::Sub: return "-";
-    case BinaryOp::Shl: return "<<";
-    case BinaryOp::Shr: return ">>";
-    case BinaryOp::Less: return "<";
-    case BinaryOp::Greater: return ">";
-    case BinaryOp::LessEqual: return "<=";
-    case BinaryOp::GreaterEqual: return ">=";
-    case BinaryOp::Equal: return "==";
-    case BinaryOp::NotEqual: return "!=";
-    case BinaryOp::BitAnd: return "&";
-    case BinaryOp::BitXor: return "^";
-    case BinaryOp::BitOr: return "|";
-    case BinaryOp::LogicalAnd: return "&&";
-    case BinaryOp::LogicalXor: return "^^";
-    case BinaryOp::LogicalOr: return "||";
-    case BinaryOp::Comma: return ",";
-  }
-  return "?";
-}
-
-std::string_view spelling(ast::UnaryOp op) {
-  switch (op) {
-    case ast::UnaryOp::Plus: return "+";
-    case ast::UnaryOp::Negate: return "-";
-    case ast::UnaryOp::LogicalNot: return "!";
-    case ast::UnaryOp::BitNot: return "~";
-    case ast::UnaryOp::PreIncrement:
-    case ast::UnaryOp::PostIncrement: return "++";
-    case ast::UnaryOp::PreDecrement:
-    case ast::UnaryOp::PostDecrement: return "--";
-  }
-  return "?";
-}
-
-std::string_view spelling(ast::AssignOp op) {
-  switch (op) {
-    case ast::AssignOp::Assign: return "=";
-    case ast::AssignOp::Mul: return "*=";
-    case ast::AssignOp::Div: return "/=";
-    case ast::AssignOp::Mod: return "%=";
-    case ast::AssignOp::Add: return "+=";
-    case ast::AssignOp::Sub: return "-=";
-    case ast::AssignOp::Shl: return "<<=";
-    case ast::AssignOp::Shr: return ">>=";
-    case ast::AssignOp::BitAnd: return "&=";
-    case ast::AssignOp::BitXor: return "^=";
-    case ast::AssignOp::BitOr: return "|=";
-  }
-  return "?";
-}
-
 ast::BinaryOp compoundOperator(ast::AssignOp op) {
   switch (op) {
     case ast::AssignOp::Mul: return BinaryOp::Mul;

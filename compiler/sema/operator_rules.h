@@ -26,9 +26,6 @@ const Type* commonType(const Type* a, const Type* b);
 // message explaining why ("too few components ...").
 std::optional<std::string> checkConstructor(const Type* target, const std::vector<const Type*>& args);
 
-std::string_view spelling(ast::BinaryOp op);
-std::string_view spelling(ast::UnaryOp op);
-std::string_view spelling(ast::AssignOp op);
 // The binary operator a compound assignment applies (`+=` -> `+`).
 ast::BinaryOp compoundOperator(ast::AssignOp op);
 

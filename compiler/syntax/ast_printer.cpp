@@ -8,59 +8,13 @@
 namespace spire {
 namespace {
 
-// Binding strength, loosest first, mirroring the expression grammar.
-enum class Prec : uint8_t {
-  Comma,
-  Assignment,
-  Conditional,
-  LogicalOr,
-  LogicalXor,
-  LogicalAnd,
-  BitOr,
-  BitXor,
-  BitAnd,
-  Equality,
-  Relational,
-  Shift,
-  Additive,
-  Multiplicative,
-  Unary,
-  Postfix,
-  Primary,
-};
+using Prec = ast::Precedence;
 
 Prec next(Prec p) { return static_cast<Prec>(static_cast<uint8_t>(p) + 1); }
 
-Prec binaryPrecedence(ast::BinaryOp op) {
-  using ast::BinaryOp;
-  switch (op) {
-    case BinaryOp::Mul:
-    case BinaryOp::Div:
-    case BinaryOp::Mod: return Prec::Multiplicative;
-    case BinaryOp::Add:
-    case BinaryOp::Sub: return Prec::Additive;
-    case BinaryOp::Shl:
-    case BinaryOp::Shr: return Prec::Shift;
-    case BinaryOp::Less:
-    case BinaryOp::Greater:
-    case BinaryOp::LessEqual:
-    case BinaryOp::GreaterEqual: return Prec::Relational;
-    case BinaryOp::Equal:
-    case BinaryOp::NotEqual: return Prec::Equality;
-    case BinaryOp::BitAnd: return Prec::BitAnd;
-    case BinaryOp::BitXor: return Prec::BitXor;
-    case BinaryOp::BitOr: return Prec::BitOr;
-    case BinaryOp::LogicalAnd: return Prec::LogicalAnd;
-    case BinaryOp::LogicalXor: return Prec::LogicalXor;
-    case BinaryOp::LogicalOr: return Prec::LogicalOr;
-    case BinaryOp::Comma: return Prec::Comma;
-  }
-  return Prec::Comma;
-}
-
 Prec precedence(const ast::Expr& expr) {
   switch (expr.kind) {
-    case ast::ExprKind::Binary: return binaryPrecedence(ast::cast<ast::BinaryExpr>(expr).op);
+    case ast::ExprKind::Binary: return ast::precedenceOf(ast::cast<ast::BinaryExpr>(expr).op);
     case ast::ExprKind::Assign: return Prec::Assignment;
     case ast::ExprKind::Ternary: return Prec::Conditional;
     case ast::ExprKind::Unary: return isPostfix(ast::cast<ast::UnaryExpr>(expr).op) ? Prec::Postfix : Prec::Unary;
@@ -109,7 +63,7 @@ std::string unparenthesized(const ast::Expr& e) {
     }
     case ExprKind::Binary: {
       const auto& b = cast<BinaryExpr>(e);
-      const Prec p = binaryPrecedence(b.op);
+      const Prec p = ast::precedenceOf(b.op);
       const std::string separator = b.op == BinaryOp::Comma ? ", " : fmt::format(" {} ", spelling(b.op));
       return expr(*b.lhs, p) + separator + expr(*b.rhs, next(p));
     }

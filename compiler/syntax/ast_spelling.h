@@ -1,12 +1,61 @@
-// How operators of the AST are written in source, for printers and for
-// diagnostics that quote an operator.
+// How operators of the AST are written in source and how tightly they bind,
+// for printers (Spire and GLSL) and for diagnostics that quote an operator.
 #pragma once
 
+#include <cstdint>
 #include <string_view>
 
 #include "syntax/ast.h"
 
 namespace spire::ast {
+
+// Binding strength, loosest first, as in GLSL 4.50 section 5.1 and the
+// expression grammar; printers use it to place parentheses.
+enum class Precedence : uint8_t {
+  Comma,
+  Assignment,
+  Conditional,
+  LogicalOr,
+  LogicalXor,
+  LogicalAnd,
+  BitOr,
+  BitXor,
+  BitAnd,
+  Equality,
+  Relational,
+  Shift,
+  Additive,
+  Multiplicative,
+  Unary,
+  Postfix,
+  Primary,
+};
+
+constexpr Precedence precedenceOf(BinaryOp op) {
+  switch (op) {
+    case BinaryOp::Mul:
+    case BinaryOp::Div:
+    case BinaryOp::Mod: return Precedence::Multiplicative;
+    case BinaryOp::Add:
+    case BinaryOp::Sub: return Precedence::Additive;
+    case BinaryOp::Shl:
+    case BinaryOp::Shr: return Precedence::Shift;
+    case BinaryOp::Less:
+    case BinaryOp::Greater:
+    case BinaryOp::LessEqual:
+    case BinaryOp::GreaterEqual: return Precedence::Relational;
+    case BinaryOp::Equal:
+    case BinaryOp::NotEqual: return Precedence::Equality;
+    case BinaryOp::BitAnd: return Precedence::BitAnd;
+    case BinaryOp::BitXor: return Precedence::BitXor;
+    case BinaryOp::BitOr: return Precedence::BitOr;
+    case BinaryOp::LogicalAnd: return Precedence::LogicalAnd;
+    case BinaryOp::LogicalXor: return Precedence::LogicalXor;
+    case BinaryOp::LogicalOr: return Precedence::LogicalOr;
+    case BinaryOp::Comma: return Precedence::Comma;
+  }
+  return Precedence::Comma;
+}
 
 constexpr bool isPostfix(UnaryOp op) { return op == UnaryOp::PostIncrement || op == UnaryOp::PostDecrement; }
 
