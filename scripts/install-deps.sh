@@ -14,8 +14,8 @@ PACKAGES=(
   libglfw3-dev libglm-dev libtinygltf-dev libstb-dev
   # libraries used by the compiler
   nlohmann-json3-dev libcli11-dev libfmt-dev
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev xvfb
+  # tests and benchmarks (python3-jsonschema: the reflection schema test)
+  libgtest-dev libgmock-dev libbenchmark-dev xvfb python3-jsonschema
   # libFuzzer target (fuzz preset)
   clang libclang-rt-14-dev
 )

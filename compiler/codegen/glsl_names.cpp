@@ -55,6 +55,21 @@ bool isReservedInGlsl(std::string_view name) {
   return reservedSet().count(name) > 0 || name.substr(0, 3) == "gl_" || name.find("__") != std::string_view::npos;
 }
 
+namespace {
+
+// A spelling GLSL accepts for a user name: no double underscores, no `gl_`
+// prefix, and a trailing `_` on reserved words and on names in the
+// generator's own `spire_` namespace.
+std::string acceptableSpelling(std::string_view source) {
+  std::string base(source);
+  for (size_t at = base.find("__"); at != std::string::npos; at = base.find("__")) base.replace(at, 2, "_x_");
+  if (base.rfind("gl_", 0) == 0) base.replace(0, 3, "glx_");
+  if (isReservedInGlsl(base) || base.rfind("spire_", 0) == 0) base += '_';
+  return base;
+}
+
+}  // namespace
+
 std::string NameTable::unique(std::string base, std::string_view source) {
   std::string candidate = base;
   for (int n = 2; taken_.count(candidate); ++n) candidate = base + std::to_string(n);
@@ -63,20 +78,12 @@ std::string NameTable::unique(std::string base, std::string_view source) {
   return candidate;
 }
 
-std::string NameTable::claim(std::string_view source) {
-  std::string base(source);
-  // Double underscores are reserved anywhere in a GLSL name.
-  for (size_t at = base.find("__"); at != std::string::npos; at = base.find("__")) base.replace(at, 2, "_x_");
-  if (isReservedInGlsl(base) || base.rfind("spire_", 0) == 0) base += '_';
-  return unique(base, source);
-}
+std::string NameTable::claim(std::string_view source) { return unique(acceptableSpelling(source), source); }
 
 std::string NameTable::generate(std::string_view hint) { return unique("spire_" + std::string(hint), {}); }
 
 std::string NameTable::local(std::string_view source) const {
-  std::string base(source);
-  for (size_t at = base.find("__"); at != std::string::npos; at = base.find("__")) base.replace(at, 2, "_x_");
-  if (isReservedInGlsl(base) || base.rfind("spire_", 0) == 0) base += '_';
+  const std::string base = acceptableSpelling(source);
   std::string candidate = base;
   for (int n = 2; introduced_.count(candidate); ++n) candidate = base + "_l" + std::to_string(n);
   return candidate;

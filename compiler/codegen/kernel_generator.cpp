@@ -198,8 +198,17 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
                         if (l.component == id) return l.location;
                       }
                       return 0u;
-                    }};
+                    },
+                    {}};
     for (sem::ComponentId id : ids) site.values.push_back(value(id, names));
+    if (pipeline_.worlds[import.from].isAbstract) {
+      site.producerOutputs = site.values;
+    } else {
+      for (const Located& l : producerOutputs) {
+        const sem::Component& c = *graph_.node(l.component).component;
+        site.producerOutputs.push_back({l.component, c.name, c.name, c.type, {}});
+      }
+    }
     for (const ast::ExprPtr& arg : import.strategy.ref->args) site.args.push_back(writer.expr(*arg));
     if (auto problem = strategy->emitImport(site)) {
       fail(*problem);

@@ -29,6 +29,10 @@ struct ImportSite {
   std::vector<std::string> args;
   // The location the producer world gave each value (standardImport).
   std::function<uint32_t(sem::ComponentId)> producerLocation;
+  // Everything the producer world exports, in its order: what a producer
+  // writes as one record (bufferExport) and a consumer must read back with
+  // the same layout. For an abstract producer (the engine) it is `values`.
+  std::vector<KernelValue> producerOutputs;
 };
 
 // The values a world exports, in location order.

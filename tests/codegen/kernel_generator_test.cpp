@@ -109,7 +109,8 @@ shader S using EnginePipeline {
   @MaterialUniform input common;
   vec4 projPos = matMVP * vec4(vert_pos, 1.0);
   float filter = sample(common.filter);
-  @Fragment vec4 output { vec4 output_ = vec4(filter); return output_; }
+  @Fragment float gl_weight = filter * 0.5;
+  @Fragment vec4 output { vec4 output_ = vec4(filter * gl_weight); return output_; }
 })");
   ASSERT_TRUE(library.compile()) << render(library);
   const auto variant = library.buildVariant("S", {});
@@ -118,6 +119,7 @@ shader S using EnginePipeline {
   const Kernel* fragment = findKernel(kernels, "Fragment");
   ASSERT_TRUE(fragment);
   EXPECT_NE(fragment->glsl.find("vec4 output_;"), std::string::npos) << fragment->glsl;
+  EXPECT_NE(fragment->glsl.find("float glx_weight;"), std::string::npos) << fragment->glsl;
   EXPECT_EQ(fragment->reflection["outputs"][0]["component"], "output");
 }
 
@@ -199,14 +201,16 @@ shader S using Push {
 }
 
 TEST(KernelGenerator, ComputeWorldsWriteAndReadBuffers) {
-  // The five-world shape of the paper's Figure 4, reduced: a per-vertex
-  // compute prebake whose records the vertex stage reads back.
+  // Compute prebakes in the spirit of the paper's Figure 4: PrebakeVertex
+  // writes {displaced, band} per vertex; Smooth reads only `displaced`, the
+  // vertex stage only `band`, and both must read the producer's layout.
   ShaderLibrary library;
   library.addSource("buffers.spire", R"(
 pipeline Buffers {
   abstract world Material;
   abstract world Mesh;
   world PrebakeVertex : "GLSL" export bufferExport;
+  world Smooth : "GLSL" export bufferExport;
   world Vertex : "GLSL" export vertexExport(projPos);
   world Fragment : "GLSL" export standardExport;
   import Material->PrebakeVertex using uniformImport;
@@ -214,6 +218,8 @@ pipeline Buffers {
   import Material->Vertex using uniformImport;
   import Mesh->Vertex using standardImport;
   import PrebakeVertex->Vertex using bufferImport;
+  import PrebakeVertex->Smooth using bufferImport;
+  import Smooth->Vertex using bufferImport;
   import Vertex->Fragment using standardImport;
   @Mesh vec3 pos;
   @Mesh vec3 nrm;
@@ -225,8 +231,10 @@ shader S using Buffers {
   @Material float scale;
   @PrebakeVertex vec3 displaced = pos + nrm * scale;
   @PrebakeVertex int band = int(nrm.y * 4.0);
-  @Vertex vec4 projPos = mvp * vec4(displaced, 1.0);
-  vec4 color = vec4(float(band) * 0.25, displaced.y, 0.0, 1.0);
+  @Smooth vec3 smoothed = displaced * 0.5;
+  @Vertex vec4 projPos = mvp * vec4(smoothed, 1.0);
+  @Vertex float shade = float(band) * 0.25;
+  @Fragment vec4 color = vec4(shade, 0.0, 0.0, 1.0);
 })");
   ASSERT_TRUE(library.compile()) << render(library);
   const auto variant = library.buildVariant("S", {{"color", "Fragment"}});
@@ -236,6 +244,16 @@ shader S using Buffers {
   const Kernel* vertex = findKernel(kernels, "Vertex");
   ASSERT_TRUE(prebake && vertex);
   EXPECT_EQ(prebake->stage, ShaderStage::Compute);
+  // The consumer reads the producer's records with the producer's layout.
+  std::map<std::string, int> written;
+  for (const auto& out : prebake->reflection["outputs"]) written[out["component"]] = out["offset"];
+  size_t read = 0;
+  for (const auto& in : vertex->reflection["inputs"]) {
+    if (in["strategy"] != "bufferImport" || in["from"] != "PrebakeVertex") continue;
+    EXPECT_EQ(in["offset"], written.at(in["component"])) << in.dump();
+    ++read;
+  }
+  EXPECT_GE(read, 1u);
   EXPECT_NE(prebake->glsl.find("if (gl_GlobalInvocationID.x >= uint("), std::string::npos) << prebake->glsl;
   EXPECT_NE(vertex->glsl.find("[gl_VertexIndex]"), std::string::npos) << vertex->glsl;
 }

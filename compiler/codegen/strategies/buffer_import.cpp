@@ -23,22 +23,25 @@ class BufferImport final : public Strategy {
                            kernel.world());
     }
     const std::string& from = site.pipeline.worlds[site.import.from].name;
-    // Values arrive under their own names, so the record members get
-    // generated ones and the fetch copies them out.
-    std::vector<KernelValue> members = site.values;
-    for (KernelValue& m : members) m.glslName = kernel.names().generate(from + "_" + m.glslName);
+    // The record is the producer's whole record, so its layout matches what
+    // the producer wrote; values arrive under their own names, so the
+    // record's members get generated ones and the fetch copies out the
+    // values this kernel uses.
+    std::vector<KernelValue> members = site.producerOutputs;
+    for (KernelValue& m : members) m.glslName = kernel.names().generate(from + "_" + m.sourceName);
     const BlockDeclaration block =
         declareBlock(kernel, from + "_in", members, BlockLayout::Std430, "readonly buffer", "bufferImport");
-    for (size_t i = 0; i < site.values.size(); ++i) {
-      const KernelValue& v = site.values[i];
+    for (const KernelValue& v : site.values) {
+      size_t member = 0;
+      while (members[member].component != v.component) ++member;
       kernel.declareGlobal(v.type, v.glslName);
-      kernel.addFetch(fmt::format("{} = {}[{}].{};", v.glslName, block.recordsName, index, members[i].glslName));
+      kernel.addFetch(fmt::format("{} = {}[{}].{};", v.glslName, block.recordsName, index, members[member].glslName));
       nlohmann::ordered_json entry = valueEntry(v, "bufferImport");
       entry["from"] = from;
       entry["set"] = KernelBuilder::kDescriptorSet;
       entry["binding"] = block.binding;
       entry["block"] = block.blockName;
-      entry["offset"] = block.offsets[i];
+      entry["offset"] = block.offsets[member];
       entry["index"] = index;
       kernel.reflectInput(std::move(entry));
     }
