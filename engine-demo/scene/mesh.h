@@ -1,0 +1,51 @@
+#pragma once
+
+// Triangle meshes for the demo engine and their procedural generators.
+// Conventions: counter-clockwise front faces, +Y up, UV origin at the first
+// texel row; tangent.xyz follows increasing u and the bitangent (increasing v)
+// is cross(normal, tangent.xyz) * tangent.w, as in glTF.
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace spire::scene {
+
+struct Vertex {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 1.0f, 0.0f};
+  glm::vec2 uv{0.0f};
+  glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz tangent, w handedness +-1
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;  // triangle list
+};
+
+// Square in the XZ plane centred at the origin, facing +Y, with
+// `subdivisions` quads per side (at least 1).
+Mesh makePlane(float size, uint32_t subdivisions);
+
+// UV sphere centred at the origin; rings >= 2 latitude bands, segments >= 3.
+// The seam column is duplicated so UVs stay continuous.
+Mesh makeSphere(float radius, uint32_t rings, uint32_t segments);
+
+// Heightfield over a `size` x `size` square with `resolution` quads per side;
+// heights in [0, height] from fBm noise. A given seed gives identical bytes.
+Mesh makeTerrain(float size, uint32_t resolution, float height, uint32_t seed);
+
+// Area-weighted smooth normals from the triangles (for meshes without them).
+void computeNormals(Mesh& mesh);
+
+// Per-vertex tangents from positions and UVs (Lengyel's method), made
+// orthogonal to the normal with Gram-Schmidt; w holds the handedness. Vertices
+// whose UVs are degenerate get an arbitrary tangent perpendicular to the normal.
+void computeTangents(Mesh& mesh);
+
+}  // namespace spire::scene

@@ -1,0 +1,112 @@
+// The Vulkan context of the engine: a headless instance (optionally with the
+// Khronos validation layer), one physical device, one graphics+compute queue,
+// a command pool and a one-shot submit helper.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vk/handle.h"
+#include "vk/result.h"
+
+namespace spire::vk {
+
+struct ContextOptions {
+  // Loads VK_LAYER_KHRONOS_validation and records its warnings and errors
+  // (see Context::validationMessages). Fails with VK_ERROR_LAYER_NOT_PRESENT
+  // when the layer is not installed.
+  bool validation = false;
+  // Case-insensitive substring of the device name (the demo's --device);
+  // empty picks llvmpipe (lavapipe) when present, else the first device.
+  std::string deviceFilter;
+  std::string applicationName = "spire-engine";
+};
+
+struct PhysicalDeviceInfo {
+  VkPhysicalDevice handle = VK_NULL_HANDLE;
+  std::string name;
+  VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
+  uint32_t apiVersion = 0;
+};
+
+// "discrete GPU", "CPU", ...
+const char* deviceTypeName(VkPhysicalDeviceType type);
+
+// Index of the device to use among `devices` (see ContextOptions::deviceFilter);
+// std::nullopt when none matches or the list is empty.
+std::optional<size_t> selectPhysicalDevice(std::span<const PhysicalDeviceInfo> devices, std::string_view filter);
+
+// Warnings and errors reported through VK_EXT_debug_utils. Held behind a
+// pointer so the messenger's user data stays valid when a Context moves.
+struct ValidationLog {
+  std::mutex mutex;
+  std::vector<std::string> messages;
+};
+
+class Context {
+ public:
+  static Expected<Context> create(const ContextOptions& options);
+
+  VkInstance instance() const { return instance_.get(); }
+  VkPhysicalDevice physicalDevice() const { return devices_[selected_].handle; }
+  VkDevice device() const { return device_.get(); }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  VkCommandPool commandPool() const { return commandPool_.get(); }
+
+  // Every physical device the instance reports, and the selected one.
+  const std::vector<PhysicalDeviceInfo>& physicalDevices() const { return devices_; }
+  const PhysicalDeviceInfo& selectedDevice() const { return devices_[selected_]; }
+  // The API version the device was created for: min(instance, device), >= 1.1.
+  uint32_t apiVersion() const { return apiVersion_; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  uint32_t timestampValidBits() const { return timestampValidBits_; }
+
+  // vkCmdBeginRendering / vkCmdEndRendering: core on 1.3, otherwise the
+  // VK_KHR_dynamic_rendering entry points. Context creation fails when the
+  // device has neither.
+  PFN_vkCmdBeginRendering cmdBeginRendering = nullptr;
+  PFN_vkCmdEndRendering cmdEndRendering = nullptr;
+
+  // A memory type allowed by `typeBits` (VkMemoryRequirements) that has all of
+  // `properties`; VK_ERROR_OUT_OF_DEVICE_MEMORY when none has.
+  Expected<uint32_t> findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags properties) const;
+
+  // Records `record` into a fresh primary command buffer, submits it to the
+  // queue and blocks until it finished.
+  Expected<void> submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+
+  // Validation warnings and errors recorded so far (empty without validation).
+  std::vector<std::string> validationMessages() const;
+  void clearValidationMessages();
+
+ private:
+  Context() = default;
+
+  // Declaration order is destruction order reversed: the log outlives the
+  // messenger and instance that write to it; the pool dies before the device.
+  std::unique_ptr<ValidationLog> log_;
+  Instance instance_;
+  DebugMessenger messenger_;
+  std::vector<PhysicalDeviceInfo> devices_;
+  size_t selected_ = 0;
+  VkPhysicalDeviceProperties properties_{};
+  VkPhysicalDeviceMemoryProperties memory_{};
+  uint32_t apiVersion_ = 0;
+  uint32_t timestampValidBits_ = 0;
+  Device device_;
+  uint32_t queueFamily_ = 0;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  CommandPool commandPool_;
+};
+
+}  // namespace spire::vk
