@@ -23,21 +23,12 @@ Expected<Buffer> Buffer::create(const Context& ctx, VkDeviceSize size, VkBufferU
 
   VkMemoryRequirements requirements;
   vkGetBufferMemoryRequirements(ctx.device(), raw, &requirements);
-  auto type = ctx.findMemoryType(requirements.memoryTypeBits,
-                                 VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  if (!type) return type.error();
-  VkMemoryAllocateInfo alloc{};
-  alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-  alloc.allocationSize = requirements.size;
-  alloc.memoryTypeIndex = *type;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  if (auto result = vkAllocateMemory(ctx.device(), &alloc, nullptr, &memory); result != VK_SUCCESS) {
-    return VkError{result, "vkAllocateMemory", {}};
-  }
-  buffer.memory_ = makeDeviceHandle<VkDeviceMemory, vkFreeMemory>(ctx.device(), memory);
-  if (auto ok = check(vkBindBufferMemory(ctx.device(), raw, memory, 0), "vkBindBufferMemory"); !ok) return ok.error();
+  auto memory = ctx.allocateMemory(requirements, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  if (!memory) return memory.error();
+  buffer.memory_ = std::move(*memory);
+  if (auto ok = check(vkBindBufferMemory(ctx.device(), raw, buffer.memory_.get(), 0), "vkBindBufferMemory"); !ok) return ok.error();
   // Freeing the memory unmaps it implicitly, so no unmap is needed.
-  if (auto ok = check(vkMapMemory(ctx.device(), memory, 0, VK_WHOLE_SIZE, 0, &buffer.mapped_), "vkMapMemory"); !ok) {
+  if (auto ok = check(vkMapMemory(ctx.device(), buffer.memory_.get(), 0, VK_WHOLE_SIZE, 0, &buffer.mapped_), "vkMapMemory"); !ok) {
     return ok.error();
   }
   return buffer;

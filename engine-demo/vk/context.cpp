@@ -266,6 +266,21 @@ Expected<uint32_t> Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFl
                  fmt::format("no memory type in mask {:#x} with properties {:#x}", typeBits, properties)};
 }
 
+Expected<DeviceMemory> Context::allocateMemory(const VkMemoryRequirements& requirements,
+                                              VkMemoryPropertyFlags properties) const {
+  auto type = findMemoryType(requirements.memoryTypeBits, properties);
+  if (!type) return type.error();
+  VkMemoryAllocateInfo alloc{};
+  alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+  alloc.allocationSize = requirements.size;
+  alloc.memoryTypeIndex = *type;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  if (auto result = vkAllocateMemory(device(), &alloc, nullptr, &memory); result != VK_SUCCESS) {
+    return VkError{result, "vkAllocateMemory", {}};
+  }
+  return makeDeviceHandle<VkDeviceMemory, vkFreeMemory>(device(), memory);
+}
+
 Expected<void> Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
   VkCommandBufferAllocateInfo allocInfo{};
   allocInfo.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;

@@ -80,6 +80,9 @@ class Context {
   // A memory type allowed by `typeBits` (VkMemoryRequirements) that has all of
   // `properties`; VK_ERROR_OUT_OF_DEVICE_MEMORY when none has.
   Expected<uint32_t> findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags properties) const;
+  // Allocates memory that satisfies `requirements` with `properties`.
+  Expected<DeviceMemory> allocateMemory(const VkMemoryRequirements& requirements,
+                                        VkMemoryPropertyFlags properties) const;
 
   // Records `record` into a fresh primary command buffer, submits it to the
   // queue and blocks until it finished.

@@ -97,18 +97,10 @@ Expected<Image> Image::create(const Context& ctx, const ImageDesc& desc) {
 
   VkMemoryRequirements requirements;
   vkGetImageMemoryRequirements(ctx.device(), raw, &requirements);
-  auto type = ctx.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  if (!type) return type.error();
-  VkMemoryAllocateInfo alloc{};
-  alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-  alloc.allocationSize = requirements.size;
-  alloc.memoryTypeIndex = *type;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  if (auto result = vkAllocateMemory(ctx.device(), &alloc, nullptr, &memory); result != VK_SUCCESS) {
-    return VkError{result, "vkAllocateMemory", {}};
-  }
-  image.memory_ = makeDeviceHandle<VkDeviceMemory, vkFreeMemory>(ctx.device(), memory);
-  if (auto ok = check(vkBindImageMemory(ctx.device(), raw, memory, 0), "vkBindImageMemory"); !ok) return ok.error();
+  auto memory = ctx.allocateMemory(requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  if (!memory) return memory.error();
+  image.memory_ = std::move(*memory);
+  if (auto ok = check(vkBindImageMemory(ctx.device(), raw, image.memory_.get(), 0), "vkBindImageMemory"); !ok) return ok.error();
 
   VkImageViewCreateInfo viewInfo{};
 
