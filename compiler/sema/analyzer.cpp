@@ -22,7 +22,9 @@ std::unique_ptr<Model> Analyzer::run() {
   for (const auto& module : program_.modules) {
     for (const ast::DeclPtr& decl : module->decls) {
       if (diags_.limitReached()) return std::move(model_);
-      if (const auto* p = ast::dyn_cast<ast::PipelineDecl>(decl.get())) analyzePipeline(*p);
+      // A redefined pipeline was reported when its name was claimed.
+      const auto* p = ast::dyn_cast<ast::PipelineDecl>(decl.get());
+      if (p && !model_->findPipeline(p->name)) analyzePipeline(*p);
     }
   }
   checkFunctionBodies();
@@ -50,7 +52,7 @@ void Analyzer::collectDeclarations() {
         case ast::DeclKind::Function: declareFunction(ast::cast<ast::FunctionDecl>(*decl)); break;
         case ast::DeclKind::Pipeline: {
           const auto& p = ast::cast<ast::PipelineDecl>(*decl);
-          if (claimGlobalName(p.name, p.nameRange, "pipeline")) pipelineDecls_[p.name] = &p;
+          claimGlobalName(p.name, p.nameRange, "pipeline");
           break;
         }
         case ast::DeclKind::Shader: {
@@ -160,10 +162,8 @@ void Analyzer::declareFunction(const ast::FunctionDecl& decl) {
       existing->decl = &decl;
       existing->defined = true;
     }
-    functionOf_[&decl] = existing;
     return;
   }
-  functionOf_[&decl] = function.get();
   overloads.push_back(function.get());
   model_->functions.push_back(std::move(function));
 }

@@ -76,7 +76,6 @@ class Analyzer {
   const StrategyCatalog& strategies_;
   std::unique_ptr<Model> model_;
   FunctionTable functions_;
-  std::map<const ast::FunctionDecl*, Function*> functionOf_;
   // Every global name with what it is and where it was declared.
   struct GlobalName {
     std::string kind;
@@ -85,8 +84,6 @@ class Analyzer {
   std::map<std::string, GlobalName, std::less<>> globalNames_;
   std::map<std::string, const ast::ShaderDecl*, std::less<>> shaderDecls_;
   std::map<std::string, const ast::GroupDecl*, std::less<>> groupDecls_;
-  std::map<std::string, const ast::PipelineDecl*, std::less<>> pipelineDecls_;
-  std::map<const ast::ShaderDecl*, std::vector<const Shader*>> shadersOf_;  // a decl's shader or group instances
   std::map<const ast::ShaderDecl*, const Group*> derivedGroups_;  // decls whose base is a group
   std::map<const ast::GroupDecl*, const Group*> groups_;
   std::set<const ast::ShaderDecl*> analyzedShaders_;
