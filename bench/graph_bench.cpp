@@ -58,7 +58,7 @@ void BM_Choices_1000Components(benchmark::State& state) {
   size_t lines = 0;
   for (auto _ : state) {
     spire::DiagnosticList diags;
-    auto graph = spire::graph::ShaderGraph::build(model, *shader, diags);
+    auto graph = spire::graph::ShaderGraph::build(*shader, diags);
     spire::graph::ChoiceSpace space(*graph);
     const std::string choices = spire::graph::writeChoiceFile(space);
     lines = static_cast<size_t>(std::count(choices.begin(), choices.end(), '\n'));

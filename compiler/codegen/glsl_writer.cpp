@@ -127,18 +127,25 @@ void GlslWriter::mapLine(GlslOutput& out, const SourceRange& range) {
   out.mapTo(sources_.file(range.file).path, sources_.begin(range).line);
 }
 
-std::string GlslWriter::statementText(const ast::Stmt& s) {
-  if (const auto* e = ast::dyn_cast<ast::ExprStmt>(&s)) return expr(*e->expr);
-  if (const auto* d = ast::dyn_cast<ast::VarDeclStmt>(&s)) {
-    std::string text;
-    for (const ast::VarDeclarator& v : d->declarators) {
-      const sem::Type* type = model_.localTypes.at(&v);
-      std::string one = (d->isConst ? "const " : "") + declare(type, localName(&v, v.name));
-      if (v.init) one += " = " + expr(*v.init, Precedence::Assignment);
-      text += (text.empty() ? "" : ", ") + one;
-    }
-    return text;
+// `[const] T a = x, b[2]`: one declaration, as GLSL wants it in a `for`
+// header. Every declarator shares the base type; each keeps its own sizes.
+std::string GlslWriter::localDeclaration(const ast::VarDeclStmt& d) {
+  std::string text = d.isConst ? "const " : "";
+  for (size_t i = 0; i < d.declarators.size(); ++i) {
+    const ast::VarDeclarator& v = d.declarators[i];
+    const sem::Type* base = model_.localTypes.at(&v);
+    std::string dims;
+    for (; base->isArray(); base = base->element) dims += fmt::format("[{}]", base->arraySize);
+    text += i == 0 ? typeName(base) + " " : std::string(", ");
+    text += localName(&v, v.name) + dims;
+    if (v.init) text += " = " + expr(*v.init, Precedence::Assignment);
   }
+  return text;
+}
+
+std::string GlslWriter::forInit(const ast::Stmt& s) {
+  if (const auto* e = ast::dyn_cast<ast::ExprStmt>(&s)) return expr(*e->expr);
+  if (const auto* d = ast::dyn_cast<ast::VarDeclStmt>(&s)) return localDeclaration(*d);
   return "";
 }
 
@@ -160,17 +167,7 @@ void GlslWriter::stmt(GlslOutput& out, const ast::Stmt& s, int indent) {
       block(out, ast::cast<ast::BlockStmt>(s), indent + 1);
       out.line(pad + "}");
       return;
-    case ast::StmtKind::VarDecl: {
-      // One declaration per name keeps per-name array sizes right.
-      const auto& d = ast::cast<ast::VarDeclStmt>(s);
-      for (const ast::VarDeclarator& v : d.declarators) {
-        const sem::Type* type = model_.localTypes.at(&v);
-        std::string text = pad + (d.isConst ? "const " : "") + declare(type, localName(&v, v.name));
-        if (v.init) text += " = " + expr(*v.init, Precedence::Assignment);
-        out.line(text + ";");
-      }
-      return;
-    }
+    case ast::StmtKind::VarDecl: out.line(pad + localDeclaration(ast::cast<ast::VarDeclStmt>(s)) + ";"); return;
     case ast::StmtKind::Expr: out.line(pad + expr(*ast::cast<ast::ExprStmt>(s).expr) + ";"); return;
     case ast::StmtKind::If: {
       const auto& i = ast::cast<ast::IfStmt>(s);
@@ -185,7 +182,7 @@ void GlslWriter::stmt(GlslOutput& out, const ast::Stmt& s, int indent) {
     }
     case ast::StmtKind::For: {
       const auto& f = ast::cast<ast::ForStmt>(s);
-      out.line(fmt::format("{}for ({}; {}; {}) {{", pad, f.init ? statementText(*f.init) : "",
+      out.line(fmt::format("{}for ({}; {}; {}) {{", pad, f.init ? forInit(*f.init) : "",
                            f.condition ? expr(*f.condition) : "", f.step ? expr(*f.step) : ""));
       body(out, *f.body, indent + 1);
       out.line(pad + "}");

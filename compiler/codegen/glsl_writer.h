@@ -64,7 +64,8 @@ class GlslWriter {
   // A loop or branch body: a block's statements, or one statement.
   void body(GlslOutput& out, const ast::Stmt& s, int indent);
   std::string localName(const void* decl, std::string_view source);
-  std::string statementText(const ast::Stmt& s);  // single-line statements for `for` headers
+  std::string localDeclaration(const ast::VarDeclStmt& d);
+  std::string forInit(const ast::Stmt& s);
   void mapLine(GlslOutput& out, const SourceRange& range);
 
   const sem::Model& model_;

@@ -68,11 +68,10 @@ class KernelGenerator {
   std::optional<Kernel> generate(sem::WorldId world);
 
  private:
-  bool fail(std::string message) {
+  void fail(std::string message) {
     diags_.report(DiagCode::E6001, graph_.shader().decl->nameRange,
                   fmt::format("cannot generate the kernel of world '{}' for shader '{}': {}", currentWorld_,
                               graph_.shader().name, message));
-    return false;
   }
   KernelValue value(sem::ComponentId id, const std::map<sem::ComponentId, std::string>& names) const;
   std::vector<const sem::Function*> calledFunctions(const std::vector<sem::ComponentId>& computed) const;

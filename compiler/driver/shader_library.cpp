@@ -11,7 +11,7 @@ bool ShaderLibrary::compile() {
   DiagnosticList& diags = frontEnd_.diagnostics();
   if (diags.hasErrors()) return false;
   for (const sem::Shader* shader : graph::concreteShaders(*model_)) {
-    auto g = graph::ShaderGraph::build(*model_, *shader, diags);
+    auto g = graph::ShaderGraph::build(*shader, diags);
     if (!g) continue;
     auto space = std::make_unique<graph::ChoiceSpace>(*g);
     if (!space->consistent()) {
@@ -44,20 +44,8 @@ const graph::ChoiceSpace* ShaderLibrary::choiceSpace(std::string_view shader) co
 }
 
 std::vector<Choice> ShaderLibrary::choices(std::string_view shader) const {
-  std::vector<Choice> result;
   const Entry* e = find(shader);
-  if (!e) return result;
-  const std::vector<bool> live = e->space->possiblyLive();
-  for (const graph::ComponentNode& node : e->graph->nodes()) {
-    if (node.isInput || !live[node.id] || e->space->aliveCount(node.id) < 2) continue;
-    Choice choice{node.id, fmt::format("{}.{}", node.choicePrefix, node.component->name), {}, {}};
-    for (graph::AltId a : e->space->aliveAlternatives(node.id)) {
-      choice.alternatives.push_back(a);
-      choice.names.push_back(e->graph->altName(node, a));
-    }
-    result.push_back(std::move(choice));
-  }
-  return result;
+  return e ? graph::enumerateChoices(*e->space) : std::vector<Choice>{};
 }
 
 std::optional<graph::Variant> ShaderLibrary::buildVariant(std::string_view shader,

@@ -18,13 +18,7 @@
 
 namespace spire {
 
-// One line of a choice file, as data.
-struct Choice {
-  sem::ComponentId component = 0;
-  std::string key;                       // "Terrain.albedo"
-  std::vector<graph::AltId> alternatives;  // feasible, in choice-file order
-  std::vector<std::string> names;        // "PrebakeTex", "Vertex:basic", ...
-};
+using graph::Choice;
 
 class ShaderLibrary {
  public:
@@ -45,6 +39,7 @@ class ShaderLibrary {
   std::vector<std::string> shaderNames() const;
   // The choice space of a concrete shader, or null if there is none by that name.
   const graph::ChoiceSpace* choiceSpace(std::string_view shader) const;
+  // The shader's choice-file lines as data (graph::enumerateChoices).
   std::vector<Choice> choices(std::string_view shader) const;
 
   // Builds a variant from decisions keyed by component name with values

@@ -1,6 +1,7 @@
 #include "graph/choice_space.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 
@@ -88,8 +89,6 @@ bool ChoiceSpace::backwardPass() {
   bool changed = false;
   const auto& order = graph_->dependencyOrder();
   std::fill(mandatory_.begin(), mandatory_.end(), false);
-  // Worlds each component must reach; 0 when unconstrained.
-  std::vector<WorldMask> mustReach(graph_->nodes().size(), 0);
   std::vector<std::vector<WorldMask>> requirements(graph_->nodes().size());
   for (const Sink& sink : graph_->sinks()) {
     mandatory_[sink.component] = true;
@@ -168,17 +167,26 @@ std::vector<bool> ChoiceSpace::possiblyLive() const {
   return seen;
 }
 
-std::string writeChoiceFile(const ChoiceSpace& space) {
+std::vector<Choice> enumerateChoices(const ChoiceSpace& space) {
   const ShaderGraph& graph = space.graph();
   const std::vector<bool> live = space.possiblyLive();
-  std::string out;
+  std::vector<Choice> choices;
   for (const ComponentNode& node : graph.nodes()) {
-    if (node.isInput || space.aliveCount(node.id) < 2 || !live[node.id]) continue;
-    std::string entries;
+    if (node.isInput || !live[node.id] || space.aliveCount(node.id) < 2) continue;
+    Choice choice{node.id, fmt::format("{}.{}", node.choicePrefix, node.component->name), {}, {}};
     for (AltId a : space.aliveAlternatives(node.id)) {
-      entries += fmt::format("{}{}", entries.empty() ? "" : ",", graph.altName(node, a));
+      choice.alternatives.push_back(a);
+      choice.names.push_back(graph.altName(node, a));
     }
-    out += fmt::format("{}.{} = {{{}}}\n", node.choicePrefix, node.component->name, entries);
+    choices.push_back(std::move(choice));
+  }
+  return choices;
+}
+
+std::string writeChoiceFile(const ChoiceSpace& space) {
+  std::string out;
+  for (const Choice& choice : enumerateChoices(space)) {
+    out += fmt::format("{} = {{{}}}\n", choice.key, fmt::join(choice.names, ","));
   }
   return out;
 }

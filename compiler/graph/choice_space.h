@@ -51,8 +51,19 @@ class ChoiceSpace {
   bool consistent_ = true;
 };
 
-// One line per possibly-live component with more than one alternative:
-// `Prefix.component = {World[:variation],...}`, in declaration order.
+// One choice: a possibly-live, computed component with more than one
+// remaining alternative.
+struct Choice {
+  sem::ComponentId component = 0;
+  std::string key;                 // "Terrain.albedo"
+  std::vector<AltId> alternatives;  // remaining, in choice-file order
+  std::vector<std::string> names;   // "PrebakeTex", "Vertex:basic", ...
+};
+
+// The choices of the space, in declaration order.
+std::vector<Choice> enumerateChoices(const ChoiceSpace& space);
+
+// One line per choice: `Prefix.component = {World[:variation],...}`.
 std::string writeChoiceFile(const ChoiceSpace& space);
 
 }  // namespace spire::graph

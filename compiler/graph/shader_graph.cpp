@@ -54,8 +54,7 @@ std::vector<const sem::Shader*> concreteShaders(const sem::Model& model) {
   return result;
 }
 
-std::unique_ptr<ShaderGraph> ShaderGraph::build(const sem::Model& model, const sem::Shader& shader,
-                                                DiagnosticList& diags) {
+std::unique_ptr<ShaderGraph> ShaderGraph::build(const sem::Shader& shader, DiagnosticList& diags) {
   const sem::Pipeline& pipeline = *shader.pipeline;
   if (pipeline.worlds.size() > kMaxWorlds) {
     diags.reportOnce(DiagCode::E4016, pipeline.decl->nameRange,
@@ -75,11 +74,11 @@ std::unique_ptr<ShaderGraph> ShaderGraph::build(const sem::Model& model, const s
       if (pipeline.reaches(from, to)) graph->reachable_[from] |= WorldMask{1} << to;
     }
   }
-  if (!graph->expand(model, diags)) return nullptr;
+  if (!graph->expand(diags)) return nullptr;
   return graph;
 }
 
-bool ShaderGraph::expand(const sem::Model&, DiagnosticList& diags) {
+bool ShaderGraph::expand(DiagnosticList& diags) {
   const sem::Shader& shader = *shader_;
   const sem::Pipeline& pipeline = *shader.pipeline;
   const size_t n = shader.components.size();

@@ -50,7 +50,7 @@ class ShaderGraph {
   // Builds the graph, reporting components that cannot be defined anywhere,
   // explicit definitions whose dependencies are unavailable and required
   // components left undefined. Returns null after such errors.
-  static std::unique_ptr<ShaderGraph> build(const sem::Model& model, const sem::Shader& shader, DiagnosticList& diags);
+  static std::unique_ptr<ShaderGraph> build(const sem::Shader& shader, DiagnosticList& diags);
 
   const sem::Shader& shader() const { return *shader_; }
   const sem::Pipeline& pipeline() const { return *shader_->pipeline; }
@@ -74,7 +74,7 @@ class ShaderGraph {
 
  private:
   ShaderGraph() = default;
-  bool expand(const sem::Model& model, DiagnosticList& diags);
+  bool expand(DiagnosticList& diags);
 
   const sem::Shader* shader_ = nullptr;
   std::vector<ComponentNode> nodes_;

@@ -51,7 +51,8 @@ class Analyzer {
   void analyzePipeline(const ast::PipelineDecl& decl);
   void checkWorld(Pipeline& pipeline, const ast::WorldDecl& world);
   void checkImport(Pipeline& pipeline, const ast::ImportDecl& decl);
-  void checkStrategy(Pipeline& pipeline, const ast::StrategyRef& ref, StrategyRole role);
+  // Checks a strategy use and returns the components its arguments read.
+  std::vector<std::string> checkStrategy(Pipeline& pipeline, const ast::StrategyRef& ref, StrategyRole role);
   void orderWorlds(Pipeline& pipeline);
   std::optional<WorldId> resolveWorld(const Pipeline& pipeline, std::string_view name, SourceRange range);
 
@@ -89,7 +90,6 @@ class Analyzer {
   std::set<const ast::ShaderDecl*> analyzedShaders_;
   std::vector<const ast::ShaderDecl*> shadersInProgress_;
   std::set<const ast::GroupDecl*> groupsInProgress_;
-  std::vector<std::string> lastStrategyArgs_;  // components read by the last checked strategy
 };
 
 }  // namespace spire::sem

@@ -120,15 +120,14 @@ void Analyzer::checkWorld(Pipeline& pipeline, const ast::WorldDecl& decl) {
   }
   world.exportStrategy = StrategyUse{};
   world.exportStrategy->ref = &*decl.exportStrategy;
-  checkStrategy(pipeline, *decl.exportStrategy, StrategyRole::Export);
+  world.exportStrategy->componentArgs = checkStrategy(pipeline, *decl.exportStrategy, StrategyRole::Export);
   world.exportStrategy->signature = strategies_.find(decl.exportStrategy->name);
-  world.exportStrategy->componentArgs = lastStrategyArgs_;
 }
 
 void Analyzer::checkImport(Pipeline& pipeline, const ast::ImportDecl& decl) {
   const auto from = resolveWorld(pipeline, decl.from, decl.fromRange);
   const auto to = resolveWorld(pipeline, decl.to, decl.toRange);
-  checkStrategy(pipeline, decl.strategy, StrategyRole::Import);
+  std::vector<std::string> componentArgs = checkStrategy(pipeline, decl.strategy, StrategyRole::Import);
   if (!from || !to) {
     pipeline.valid = false;
     return;
@@ -157,12 +156,11 @@ void Analyzer::checkImport(Pipeline& pipeline, const ast::ImportDecl& decl) {
   Import import{*from, *to, &decl, {}};
   import.strategy.ref = &decl.strategy;
   import.strategy.signature = strategies_.find(decl.strategy.name);
-  import.strategy.componentArgs = lastStrategyArgs_;
+  import.strategy.componentArgs = std::move(componentArgs);
   pipeline.imports.push_back(std::move(import));
 }
 
-void Analyzer::checkStrategy(Pipeline& pipeline, const ast::StrategyRef& ref, StrategyRole role) {
-  lastStrategyArgs_.clear();
+std::vector<std::string> Analyzer::checkStrategy(Pipeline& pipeline, const ast::StrategyRef& ref, StrategyRole role) {
   const StrategySignature* signature = strategies_.find(ref.name);
   if (!signature || signature->role != role) {
     const auto suggestion = closestSpelling(ref.name, strategies_.names(role));
@@ -175,7 +173,7 @@ void Analyzer::checkStrategy(Pipeline& pipeline, const ast::StrategyRef& ref, St
     for (std::string_view name : strategies_.names(role)) known += fmt::format("{}{}", known.empty() ? "" : ", ", name);
     d.note({}, fmt::format("known {} strategies: {}", roleName(role), known));
     pipeline.valid = false;
-    return;
+    return {};
   }
   std::string expected;
   for (const StrategyParam& p : signature->params) {
@@ -188,7 +186,7 @@ void Analyzer::checkStrategy(Pipeline& pipeline, const ast::StrategyRef& ref, St
                               expected.empty() ? "" : fmt::format(" ({})", expected), ref.args.size(),
                               ref.args.size() == 1 ? "was" : "were"));
     pipeline.valid = false;
-    return;
+    return {};
   }
   ComponentTableResolver resolver(pipeline);
   BodyChecker checker(*model_, diags_, functions_, &resolver);
@@ -209,7 +207,9 @@ void Analyzer::checkStrategy(Pipeline& pipeline, const ast::StrategyRef& ref, St
   std::vector<ComponentId> ids;
   std::vector<SourceRange> uses;
   resolver.takeDependencies(ids, uses);
-  for (ComponentId id : ids) lastStrategyArgs_.push_back(pipeline.components[id].name);
+  std::vector<std::string> componentArgs;
+  for (ComponentId id : ids) componentArgs.push_back(pipeline.components[id].name);
+  return componentArgs;
 }
 
 void Analyzer::orderWorlds(Pipeline& pipeline) {

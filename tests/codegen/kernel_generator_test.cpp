@@ -5,11 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <random>
 
 #include "codegen/spirv_compiler.h"
 #include "codegen/strategies/strategy_support.h"
 #include "driver/shader_library.h"
+#include "graph/graph_test_util.h"
 #include "support/diagnostic_renderer.h"
 
 namespace spire::codegen {
@@ -53,25 +53,11 @@ TEST(KernelGenerator, EveryVariantOfEveryExampleCompilesAndValidates) {
   size_t variants = 0;
   for (const std::string& shader : library.shaderNames()) {
     const graph::ChoiceSpace& space = *library.choiceSpace(shader);
-    const std::vector<Choice> choices = library.choices(shader);
-    double total = 1;
-    for (const Choice& c : choices) total *= static_cast<double>(c.alternatives.size());
-    const bool exhaustive = total < 10000;
-    const size_t count = exhaustive ? static_cast<size_t>(total) : 1000;
-    std::mt19937 rng(7);
-    for (size_t index = 0; index < count; ++index) {
-      std::vector<graph::DecisionRequest> requests;
-      size_t rest = index;
-      for (const Choice& c : choices) {
-        const size_t pick = exhaustive ? rest % c.alternatives.size() : rng() % c.alternatives.size();
-        rest /= c.alternatives.size();
-        requests.push_back({c.component, c.alternatives[pick], {}});
-      }
+    variants += testing_util::forEachDecisionMap(space, [&](const std::vector<graph::DecisionRequest>& requests, size_t) {
       const auto result = graph::buildVariant(space, requests);
       ASSERT_TRUE(result.variant);
       compileAndValidate(library, *result.variant);
-      ++variants;
-    }
+    });
   }
   EXPECT_GE(variants, 72u);
 }
@@ -121,6 +107,30 @@ shader S using EnginePipeline {
   EXPECT_NE(fragment->glsl.find("vec4 output_;"), std::string::npos) << fragment->glsl;
   EXPECT_NE(fragment->glsl.find("float glx_weight;"), std::string::npos) << fragment->glsl;
   EXPECT_EQ(fragment->reflection["outputs"][0]["component"], "output");
+}
+
+TEST(KernelGenerator, LocalDeclarationsKeepTheirShapeInGlsl) {
+  ShaderLibrary library;
+  library.addSource("locals.spire", R"(
+using ")" + std::string(SPIRE_SOURCE_DIR) + R"(/pipelines/engine.spire";
+shader S using EnginePipeline {
+  @FrameUniform mat4 matMVP;
+  vec4 projPos = matMVP * vec4(vert_pos, 1.0);
+  vec4 output {
+    float sum = 0.0, weights[3] = float[3](0.25, 0.5, 0.25);
+    for (int i = 0, last = 2; i <= last; ++i) { sum += weights[i]; }
+    return vec4(sum);
+  }
+})");
+  ASSERT_TRUE(library.compile()) << render(library);
+  const auto variant = library.buildVariant("S", {});
+  ASSERT_TRUE(variant);
+  const std::vector<Kernel> kernels = compileAndValidate(library, *variant);
+  const Kernel* fragment = findKernel(kernels, "Fragment");
+  ASSERT_TRUE(fragment);
+  EXPECT_NE(fragment->glsl.find("float sum = 0.0, weights[3] = float[3](0.25, 0.5, 0.25);"), std::string::npos)
+      << fragment->glsl;
+  EXPECT_NE(fragment->glsl.find("for (int i = 0, last = 2; i <= last; ++i) {"), std::string::npos) << fragment->glsl;
 }
 
 TEST(KernelGenerator, OutputIsDeterministicAndHashesFollowContent) {

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <random>
 
 #include "graph/decision_file.h"
 #include "graph/variant.h"
@@ -55,27 +54,8 @@ void expectRoundTrip(const graph::Variant& v, const graph::ChoiceSpace& space, c
 }
 
 void walkChoiceSpace(const graph::ChoiceSpace& space) {
-  const graph::ShaderGraph& g = space.graph();
-  const std::vector<bool> possiblyLive = space.possiblyLive();
-  std::vector<sem::ComponentId> choices;
-  for (const graph::ComponentNode& node : g.nodes()) {
-    if (!node.isInput && possiblyLive[node.id] && space.aliveCount(node.id) > 1) choices.push_back(node.id);
-  }
-  double total = 1;
-  for (sem::ComponentId c : choices) total *= space.aliveCount(c);
-  const bool exhaustive = total < 10000;
-  const size_t count = exhaustive ? static_cast<size_t>(total) : 1000;
-  std::mt19937 rng(1234);
-  for (size_t index = 0; index < count; ++index) {
-    std::vector<graph::DecisionRequest> requests;
-    size_t rest = index;
-    for (sem::ComponentId c : choices) {
-      const auto alts = space.aliveAlternatives(c);
-      const size_t pick = exhaustive ? rest % alts.size() : rng() % alts.size();
-      rest /= alts.size();
-      requests.push_back({c, alts[pick], {}});
-    }
-    const std::string context = g.shader().name + " decision map #" + std::to_string(index);
+  testing_util::forEachDecisionMap(space, [&](const std::vector<graph::DecisionRequest>& requests, size_t index) {
+    const std::string context = space.graph().shader().name + " decision map #" + std::to_string(index);
     const auto result = graph::buildVariant(space, requests);
     ASSERT_TRUE(result.variant) << context;
     expectValid(*result.variant, context);
@@ -88,7 +68,7 @@ void walkChoiceSpace(const graph::ChoiceSpace& space) {
       }
     }
     expectRoundTrip(*result.variant, space, context);
-  }
+  });
 }
 
 TEST(ChoiceSpaceProperty, EveryDecisionMapOfEveryExampleYieldsAValidVariant) {
@@ -100,7 +80,7 @@ TEST(ChoiceSpaceProperty, EveryDecisionMapOfEveryExampleYieldsAValidVariant) {
     const sem::Model& model = frontEnd.analyze();
     ASSERT_FALSE(frontEnd.diagnostics().hasErrors()) << entry.path();
     for (const sem::Shader* shader : graph::concreteShaders(model)) {
-      auto g = graph::ShaderGraph::build(model, *shader, frontEnd.diagnostics());
+      auto g = graph::ShaderGraph::build(*shader, frontEnd.diagnostics());
       ASSERT_TRUE(g) << shader->name;
       graph::ChoiceSpace space(*g);
       ASSERT_TRUE(space.consistent()) << shader->name;

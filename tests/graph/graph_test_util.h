@@ -2,12 +2,14 @@
 #pragma once
 
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "driver/frontend.h"
 #include "graph/choice_space.h"
 #include "graph/shader_graph.h"
+#include "graph/variant.h"
 #include "support/diagnostic_renderer.h"
 
 namespace spire::testing_util {
@@ -37,9 +39,33 @@ inline CompiledShader compileShader(const std::vector<std::string>& files, const
   c.model = &c.frontEnd->analyze();
   if (c.frontEnd->diagnostics().hasErrors()) return c;
   if (const sem::Shader* s = c.model->findShader(shaderName)) {
-    c.graph = graph::ShaderGraph::build(*c.model, *s, c.frontEnd->diagnostics());
+    c.graph = graph::ShaderGraph::build(*s, c.frontEnd->diagnostics());
   }
   return c;
+}
+
+// Calls `visit(requests, index)` for decision maps drawn from the space's
+// choice file: every map when there are fewer than 10,000, otherwise 1,000
+// seeded random ones. Returns how many maps were visited.
+template <typename Visit>
+size_t forEachDecisionMap(const graph::ChoiceSpace& space, Visit visit) {
+  const std::vector<graph::Choice> choices = graph::enumerateChoices(space);
+  double total = 1;
+  for (const graph::Choice& c : choices) total *= static_cast<double>(c.alternatives.size());
+  const bool exhaustive = total < 10000;
+  const size_t count = exhaustive ? static_cast<size_t>(total) : 1000;
+  std::mt19937 rng(1234);
+  for (size_t index = 0; index < count; ++index) {
+    std::vector<graph::DecisionRequest> requests;
+    size_t rest = index;
+    for (const graph::Choice& c : choices) {
+      const size_t pick = exhaustive ? rest % c.alternatives.size() : rng() % c.alternatives.size();
+      rest /= c.alternatives.size();
+      requests.push_back({c.component, c.alternatives[pick], {}});
+    }
+    visit(requests, index);
+  }
+  return count;
 }
 
 inline std::string altNames(const graph::ChoiceSpace& space, sem::ComponentId c) {
