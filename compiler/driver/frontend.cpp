@@ -2,45 +2,31 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
-#include <sstream>
 
 #include "codegen/strategy_registry.h"
 #include "sema/analyzer.h"
+#include "support/file_io.h"
 #include "syntax/module_loader.h"
 
 namespace spire {
-
-struct FrontEnd::Loader {
-  ModuleLoader loader;
-  Loader(SourceManager& sources, DiagnosticList& diags, LoadOptions options)
-      : loader(sources, diags, std::move(options)) {}
-};
 
 FrontEnd::FrontEnd(FrontEndOptions options) : options_(std::move(options)), diags_(options_.errorLimit) {
   LoadOptions load;
   load.includeDirs = options_.includeDirs;
   load.readFile = options_.readFile;
-  loader_ = std::make_unique<Loader>(sources_, diags_, std::move(load));
+  loader_ = std::make_unique<ModuleLoader>(sources_, diags_, std::move(load));
 }
 
 FrontEnd::~FrontEnd() = default;
 
-bool FrontEnd::addFile(const std::string& path) { return loader_->loader.loadFile(path, program_); }
+bool FrontEnd::addFile(const std::string& path) { return loader_->loadFile(path, program_); }
 
 void FrontEnd::addSource(std::string displayPath, std::string text) {
-  loader_->loader.loadSource(std::move(displayPath), std::move(text), program_);
+  loader_->loadSource(std::move(displayPath), std::move(text), program_);
 }
 
 std::optional<FileId> FrontEnd::loadAuxiliaryFile(const std::string& path) {
-  std::optional<std::string> text;
-  if (options_.readFile) {
-    text = options_.readFile(path);
-  } else if (std::ifstream in(path, std::ios::binary); in) {
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    text = buffer.str();
-  }
+  std::optional<std::string> text = options_.readFile ? options_.readFile(path) : readWholeFile(path);
   if (!text) {
     diags_.report(DiagCode::E1101, {}, fmt::format("cannot open file '{}'", path));
     return std::nullopt;

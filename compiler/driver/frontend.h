@@ -16,6 +16,8 @@
 
 namespace spire {
 
+class ModuleLoader;
+
 struct FrontEndOptions {
   std::vector<std::string> includeDirs;
   uint32_t errorLimit = 20;
@@ -57,8 +59,7 @@ class FrontEnd {
   SourceManager sources_;
   DiagnosticList diags_;
   ast::Program program_;
-  struct Loader;
-  std::unique_ptr<Loader> loader_;
+  std::unique_ptr<ModuleLoader> loader_;
   std::unique_ptr<sem::Model> model_;
 };
 

@@ -4,26 +4,15 @@
 
 #include <filesystem>
 #include <algorithm>
-#include <fstream>
-#include <iterator>
 #include <unordered_set>
 
+#include "support/file_io.h"
 #include "syntax/utf8.h"
 
 namespace spire {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::optional<std::string> readFromDisk(const std::string& path) {
-  std::error_code error;
-  if (fs::is_directory(path, error)) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) return std::nullopt;
-  return text;
-}
 
 // Identifies a file however it was reached (`a/../b.spire`, `./b.spire`):
 // absolute and lexically normalized, without touching the file system, so
@@ -112,7 +101,7 @@ struct ModuleLoader::Impl {
 
 ModuleLoader::ModuleLoader(SourceManager& sources, DiagnosticList& diags, LoadOptions options)
     : impl_(std::make_unique<Impl>(Impl{sources, diags, std::move(options), {}, {}})) {
-  if (!impl_->options.readFile) impl_->options.readFile = readFromDisk;
+  if (!impl_->options.readFile) impl_->options.readFile = readWholeFile;
 }
 
 ModuleLoader::~ModuleLoader() = default;

@@ -42,6 +42,24 @@ TEST(Spirec, BadUsageExitsWithTwo) {
   EXPECT_EQ(spirec({"--diagnostics-format=xml", "a.spire"}).exitCode, kExitUsageError);
 }
 
+TEST(Spirec, IncludeDirectoriesAreSearchedAfterTheIncludingFolder) {
+  const fs::path dir = fs::temp_directory_path() / "spirec_include_test";
+  fs::create_directories(dir);
+  const fs::path source = dir / "lit.spire";
+  std::ofstream(source) << "using \"engine.spire\";\n"
+                           "shader Lit using EnginePipeline {\n"
+                           "  @FrameUniform mat4 matMVP;\n"
+                           "  vec4 projPos = matMVP * vec4(vert_pos, 1.0);\n"
+                           "  vec4 output = vec4(vert_normal, 1.0);\n"
+                           "}\n";
+  const SpirecRun without = spirec({source.string()});
+  EXPECT_EQ(without.exitCode, kExitInputError);
+  EXPECT_NE(without.err.find("E1101"), std::string::npos) << without.err;
+  const SpirecRun with = spirec({source.string(), "-I", (sourceDir() / "pipelines").string(), "--choices"});
+  EXPECT_EQ(with.exitCode, kExitSuccess) << with.err;
+  fs::remove_all(dir);
+}
+
 TEST(Spirec, MissingInputFileIsAnInputError) {
   const SpirecRun run = spirec({"does/not/exist.spire"});
   EXPECT_EQ(run.exitCode, kExitInputError);

@@ -36,10 +36,8 @@ class BufferImport final : public Strategy {
       while (members[member].component != v.component) ++member;
       kernel.declareGlobal(v.type, v.glslName);
       kernel.addFetch(fmt::format("{} = {}[{}].{};", v.glslName, block.recordsName, index, members[member].glslName));
-      nlohmann::ordered_json entry = valueEntry(v, "bufferImport");
-      entry["from"] = from;
-      entry["set"] = KernelBuilder::kDescriptorSet;
-      entry["binding"] = block.binding;
+      nlohmann::ordered_json entry = importEntry(site, v, "bufferImport");
+      setBinding(entry, block.binding);
       entry["block"] = block.blockName;
       entry["offset"] = block.offsets[member];
       entry["index"] = index;

@@ -18,15 +18,13 @@ class StandardImport final : public Strategy {
                          "bufferImport",
                          kernel.world());
     }
-    const std::string& from = site.pipeline.worlds[site.import.from].name;
     for (const KernelValue& v : site.values) {
       if (auto problem = checkVarying(v, "standardImport")) return problem;
       const uint32_t location = site.producerLocation(v.component);
       const bool flat = kernel.stage() == ShaderStage::Fragment && needsFlat(v.type);
       kernel.declare(fmt::format("layout(location = {}) {}in {};", location, flat ? "flat " : "",
                                  kernel.declaration(v.type, v.glslName)));
-      nlohmann::ordered_json entry = valueEntry(v, "standardImport");
-      entry["from"] = from;
+      nlohmann::ordered_json entry = importEntry(site, v, "standardImport");
       entry["location"] = location;
       kernel.reflectInput(std::move(entry));
     }

@@ -18,6 +18,17 @@ nlohmann::ordered_json valueEntry(const KernelValue& value, std::string_view str
   return entry;
 }
 
+nlohmann::ordered_json importEntry(const ImportSite& site, const KernelValue& value, std::string_view strategy) {
+  nlohmann::ordered_json entry = valueEntry(value, strategy);
+  entry["from"] = site.pipeline.worlds[site.import.from].name;
+  return entry;
+}
+
+void setBinding(nlohmann::ordered_json& entry, uint32_t binding) {
+  entry["set"] = KernelBuilder::kDescriptorSet;
+  entry["binding"] = binding;
+}
+
 BlockDeclaration declareBlock(KernelBuilder& kernel, const std::string& hint, const std::vector<KernelValue>& values,
                               BlockLayout layout, std::string_view qualifier, std::string_view strategy) {
   BlockDeclaration block;

@@ -16,6 +16,10 @@ sem::StrategySignature makeSignature(std::string name, sem::StrategyRole role,
 
 // The reflection entry common to inputs and outputs.
 nlohmann::ordered_json valueEntry(const KernelValue& value, std::string_view strategy);
+// An input's entry: valueEntry plus the world it comes from.
+nlohmann::ordered_json importEntry(const ImportSite& site, const KernelValue& value, std::string_view strategy);
+// Records the descriptor a value is bound through.
+void setBinding(nlohmann::ordered_json& entry, uint32_t binding);
 
 // Declares `values` as members of one interface block and reflects its
 // layout; returns the block's binding. `qualifier` is `uniform`,

@@ -13,7 +13,6 @@ class TextureImport final : public Strategy {
 
   std::optional<std::string> emitImport(ImportSite& site) const override {
     KernelBuilder& kernel = site.consumer;
-    const std::string& from = site.pipeline.worlds[site.import.from].name;
     const std::string& uv = site.args.at(0);
     for (const KernelValue& v : site.values) {
       const sem::Type* t = v.type;
@@ -28,10 +27,8 @@ class TextureImport final : public Strategy {
                                  binding, sampler));
       kernel.declareGlobal(t, v.glslName);
       kernel.addFetch(fmt::format("{} = texture({}, {}){};", v.glslName, sampler, uv, kSwizzles[t->rows]));
-      nlohmann::ordered_json entry = valueEntry(v, "textureImport");
-      entry["from"] = from;
-      entry["set"] = KernelBuilder::kDescriptorSet;
-      entry["binding"] = binding;
+      nlohmann::ordered_json entry = importEntry(site, v, "textureImport");
+      setBinding(entry, binding);
       entry["sampler"] = sampler;
       entry["uv"] = uv;
       entry["channels"] = t->rows;

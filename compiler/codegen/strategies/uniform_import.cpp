@@ -23,19 +23,15 @@ class UniformImport final : public Strategy {
       const uint32_t binding = kernel.allocateBinding();
       kernel.declare(fmt::format("layout(set = {}, binding = {}) uniform {};", KernelBuilder::kDescriptorSet, binding,
                                  kernel.declaration(v.type, v.glslName)));
-      nlohmann::ordered_json entry = valueEntry(v, "uniformImport");
-      entry["from"] = from;
-      entry["set"] = KernelBuilder::kDescriptorSet;
-      entry["binding"] = binding;
+      nlohmann::ordered_json entry = importEntry(site, v, "uniformImport");
+      setBinding(entry, binding);
       kernel.reflectInput(std::move(entry));
     }
     if (plain.empty()) return std::nullopt;
     const BlockDeclaration block = declareBlock(kernel, from, plain, BlockLayout::Std140, "uniform", "uniformImport");
     for (size_t i = 0; i < plain.size(); ++i) {
-      nlohmann::ordered_json entry = valueEntry(plain[i], "uniformImport");
-      entry["from"] = from;
-      entry["set"] = KernelBuilder::kDescriptorSet;
-      entry["binding"] = block.binding;
+      nlohmann::ordered_json entry = importEntry(site, plain[i], "uniformImport");
+      setBinding(entry, block.binding);
       entry["block"] = block.blockName;
       entry["offset"] = block.offsets[i];
       kernel.reflectInput(std::move(entry));
