@@ -30,54 +30,64 @@ struct Options {
   uint32_t maxErrors = 20;
 };
 
-// Generates a variant's kernels and writes DIR/<Shader>/<World>.glsl|.spv and
-// reflection.json, each file atomically. SPIR-V is made (and validated) only
-// when asked for: glslang's start-up costs far more than the rest of spirec.
-// glslang rejecting generated code is a compiler bug: it is reported as an
-// internal error against the shader, with the kernel saved for inspection.
-void writeKernels(ShaderLibrary& library, const graph::Variant& variant, const std::string& outputDir,
-                  const std::string& emit, DiagnosticList& diags) {
+struct OutputFile {
+  std::filesystem::path path;
+  std::string contents;
+};
+
+// Generates a variant's kernels as the files DIR/<Shader>/<World>.glsl|.spv
+// and reflection.json; they are written only once every shader has
+// compiled, so a failing run leaves no partial output. SPIR-V is made (and
+// validated) only when asked for: glslang's start-up costs far more than the
+// rest of spirec. glslang rejecting generated code is a compiler bug: it is
+// reported as an internal error against the shader, and that kernel alone is
+// saved at once for inspection.
+void generateKernelFiles(ShaderLibrary& library, const graph::Variant& variant, const std::string& outputDir,
+                         const std::string& emit, DiagnosticList& diags, std::vector<OutputFile>& files) {
   const auto generated = codegen::generateKernels(library.model(), library.sources(), variant,
                                                   codegen::StrategyRegistry::builtin(), diags);
   if (!generated) return;
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::path(outputDir) / generated->directory;
-  const SourceRange shaderRange = variant.graph().shader().decl->nameRange;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) {
-    diags.report(DiagCode::E6003, {}, fmt::format("cannot create directory '{}': {}", dir.string(), ec.message()));
-    return;
-  }
-  auto write = [&](const fs::path& path, std::string_view contents) {
-    if (auto error = writeFileAtomically(path.string(), contents)) diags.report(DiagCode::E6003, {}, *error);
-  };
+  const std::filesystem::path dir = std::filesystem::path(outputDir) / generated->directory;
   const bool wantGlsl = emit != "spirv";
   const bool wantSpirv = emit != "glsl";
   for (const codegen::Kernel& kernel : generated->kernels) {
-    const fs::path glslPath = dir / (kernel.world + ".glsl");
-    if (!wantSpirv) {
-      write(glslPath, kernel.glsl);
-      continue;
-    }
+    const std::filesystem::path glslPath = dir / (kernel.world + ".glsl");
+    if (wantGlsl) files.push_back({glslPath, kernel.glsl});
+    if (!wantSpirv) continue;
     const codegen::SpirvResult spirv = codegen::compileGlslToSpirv(kernel.stage, kernel.glsl, glslPath.string());
-    std::optional<std::string> invalid = spirv.ok() ? codegen::validateSpirv(spirv.words) : std::nullopt;
+    const std::optional<std::string> invalid = spirv.ok() ? codegen::validateSpirv(spirv.words) : std::nullopt;
     if (!spirv.ok() || invalid) {
-      write(glslPath, kernel.glsl);
-      diags.report(DiagCode::E6002, shaderRange,
+      std::error_code ignored;
+      std::filesystem::create_directories(dir, ignored);
+      const auto saveError = writeFileAtomically(glslPath.string(), kernel.glsl);
+      diags.report(DiagCode::E6002, variant.graph().shader().decl->nameRange,
                    fmt::format("internal error: the generated {} kernel of '{}' was rejected; this is a spirec bug",
                                kernel.world, generated->shader))
           .note({}, spirv.ok() ? *invalid : spirv.log)
-          .note({}, fmt::format("the kernel is saved as '{}'", glslPath.string()));
+          .note({}, saveError ? *saveError : fmt::format("the kernel is saved as '{}'", glslPath.string()));
       continue;
     }
-    if (wantGlsl) write(glslPath, kernel.glsl);
-    if (wantSpirv) {
-      write(dir / (kernel.world + ".spv"),
-            std::string_view(reinterpret_cast<const char*>(spirv.words.data()), spirv.words.size() * sizeof(uint32_t)));
+    files.push_back({dir / (kernel.world + ".spv"),
+                     std::string(reinterpret_cast<const char*>(spirv.words.data()), spirv.words.size() * sizeof(uint32_t))});
+  }
+  files.push_back({dir / "reflection.json", generated->reflection(variant).dump(2) + "\n"});
+}
+
+// Writes each file atomically, creating folders as needed.
+void writeFiles(const std::vector<OutputFile>& files, DiagnosticList& diags) {
+  for (const OutputFile& file : files) {
+    std::error_code ec;
+    std::filesystem::create_directories(file.path.parent_path(), ec);
+    if (ec) {
+      diags.report(DiagCode::E6003, {},
+                   fmt::format("cannot create directory '{}': {}", file.path.parent_path().string(), ec.message()));
+      return;
+    }
+    if (auto error = writeFileAtomically(file.path.string(), file.contents)) {
+      diags.report(DiagCode::E6003, {}, *error);
+      return;
     }
   }
-  write(dir / "reflection.json", generated->reflection(variant).dump(2) + "\n");
 }
 
 }  // namespace
@@ -115,10 +125,6 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
     out << (app.get_option("--version")->count() ? std::string("spirec ") + SPIRE_VERSION + "\n" : app.help());
     return kExitSuccess;
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) {
-      out << app.help();
-      return kExitSuccess;
-    }
     err << fmt::format("spirec: error: {}\nRun 'spirec --help' for usage.\n", e.what());
     return kExitUsageError;
   }
@@ -150,6 +156,7 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
 
   std::string choicesText;
   std::string output;
+  std::vector<OutputFile> kernelFiles;
   if (!diags.hasErrors() && options.choices) {
     for (const graph::ChoiceSpace* space : spaces) choicesText += graph::writeChoiceFile(*space);
   }
@@ -169,12 +176,13 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
           output += fmt::format("// variant of {}\n{}", space->graph().shader().name, variant->describe());
         }
         if (variant && generate) {
-          writeKernels(library, *variant, options.outputDir, options.emit, diags);
+          generateKernelFiles(library, *variant, options.outputDir, options.emit, diags, kernelFiles);
         }
       }
     }
   }
 
+  if (!diags.hasErrors()) writeFiles(kernelFiles, diags);
   const std::string rendered = renderDiagnostics(library.sources(), diags, format);
   if (format == DiagnosticFormat::Json || !rendered.empty()) err << rendered;
   if (diags.hasErrors()) return kExitInputError;

@@ -60,6 +60,34 @@ TEST(Spirec, IncludeDirectoriesAreSearchedAfterTheIncludingFolder) {
   fs::remove_all(dir);
 }
 
+TEST(Spirec, KernelsAreWrittenOnlyWhenEveryShaderCompiles) {
+  const fs::path dir = fs::temp_directory_path() / "spirec_partial_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path source = dir / "two.spire";
+  std::ofstream(source) << "using \"" << (sourceDir() / "pipelines/engine.spire").string() << "\";\n"
+                        << "shader Good using EnginePipeline {\n"
+                           "  @FrameUniform mat4 matMVP;\n"
+                           "  vec4 projPos = matMVP * vec4(vert_pos, 1.0);\n"
+                           "  vec4 output = vec4(vert_normal, 1.0);\n"
+                           "}\n"
+                           "shader Bad using EnginePipeline {\n"
+                           "  @FrameUniform mat4 matMVP;\n"
+                           "  vec4 projPos = matMVP * vec4(vert_pos, 1.0);\n"
+                           "  @PrebakeTex int cell = int(vert_uv.x * 8.0);\n"
+                           "  vec4 output = vec4(float(cell));\n"
+                           "}\n";
+  const SpirecRun run = spirec({source.string(), "-o", (dir / "out").string(), "--emit=glsl"});
+  EXPECT_EQ(run.exitCode, kExitInputError);
+  EXPECT_NE(run.err.find("E6001"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir / "out")) << "a failed run wrote kernels";
+  const SpirecRun good = spirec({source.string(), "-o", (dir / "out").string(), "--shader", "Good"});
+  EXPECT_EQ(good.exitCode, kExitSuccess) << good.err;
+  EXPECT_TRUE(fs::exists(dir / "out/Good/Fragment.spv"));
+  EXPECT_TRUE(fs::exists(dir / "out/Good/reflection.json"));
+  fs::remove_all(dir);
+}
+
 TEST(Spirec, MissingInputFileIsAnInputError) {
   const SpirecRun run = spirec({"does/not/exist.spire"});
   EXPECT_EQ(run.exitCode, kExitInputError);
