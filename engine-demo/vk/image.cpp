@@ -155,6 +155,19 @@ Expected<void> Image::copyToBuffer(VkCommandBuffer cmd, const Buffer& dst) {
   return {};
 }
 
+Expected<void> Image::copyFromBuffer(VkCommandBuffer cmd, const Buffer& src) {
+  if (src.size() < byteSize()) {
+    return VkError{VK_ERROR_OUT_OF_DEVICE_MEMORY, "Image::copyFromBuffer",
+                   fmt::format("buffer holds {} bytes, image needs {}", src.size(), byteSize())};
+  }
+  transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {aspect(), 0, 0, 1};
+  region.imageExtent = {extent_.width, extent_.height, 1};
+  vkCmdCopyBufferToImage(cmd, src.handle(), image_.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+  return {};
+}
+
 Expected<Sampler> createSampler(const Context& ctx, const SamplerDesc& desc) {
   VkSamplerCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;

@@ -54,6 +54,10 @@ class Image {
   // into `dst` and makes the copy visible to the host. `dst` must hold
   // byteSize() bytes and have TRANSFER_DST usage.
   Expected<void> copyToBuffer(VkCommandBuffer cmd, const Buffer& dst);
+  // Transitions to TRANSFER_DST_OPTIMAL and copies
+  // byteSize() tightly packed bytes from `src` into the whole image. `src`
+  // must have TRANSFER_SRC usage.
+  Expected<void> copyFromBuffer(VkCommandBuffer cmd, const Buffer& src);
 
  private:
   Image() = default;

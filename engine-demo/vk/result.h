@@ -6,8 +6,8 @@
 #include <vulkan/vulkan.h>
 
 #include <string>
-#include <utility>
-#include <variant>
+
+#include "support/expected.h"
 
 namespace spire::vk {
 
@@ -26,46 +26,9 @@ struct VkError {
   std::string message() const;
 };
 
-// A value or a VkError (GCC 12 has no std::expected). Accessing the wrong
-// alternative is a programming error and throws std::bad_variant_access.
+// A value or a VkError: every fallible Vulkan-layer call returns one.
 template <class T>
-class [[nodiscard]] Expected {
- public:
-  Expected(T value) : state_(std::move(value)) {}  // NOLINT(google-explicit-constructor)
-  Expected(VkError error) : state_(std::move(error)) {}  // NOLINT(google-explicit-constructor)
-
-  bool ok() const { return state_.index() == 0; }
-  explicit operator bool() const { return ok(); }
-
-  T& value() & { return std::get<0>(state_); }
-  const T& value() const& { return std::get<0>(state_); }
-  T&& value() && { return std::get<0>(std::move(state_)); }
-  T* operator->() { return &value(); }
-  const T* operator->() const { return &value(); }
-  T& operator*() & { return value(); }
-  const T& operator*() const& { return value(); }
-
-  const VkError& error() const { return std::get<1>(state_); }
-
- private:
-  std::variant<T, VkError> state_;
-};
-
-// Success or a VkError, for operations without a result value.
-template <>
-class [[nodiscard]] Expected<void> {
- public:
-  Expected() = default;
-  Expected(VkError error) : error_(std::move(error)), ok_(false) {}  // NOLINT(google-explicit-constructor)
-
-  bool ok() const { return ok_; }
-  explicit operator bool() const { return ok_; }
-  const VkError& error() const { return error_; }
-
- private:
-  VkError error_;
-  bool ok_ = true;
-};
+using Expected = spire::Expected<T, VkError>;
 
 // Wraps a VkResult: success for VK_SUCCESS, otherwise VkError{result, what}.
 inline Expected<void> check(VkResult result, const char* what) {

@@ -1,0 +1,278 @@
+#include "demo/demo.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <optional>
+#include <ostream>
+
+#include "measure/comparison_image.h"
+#include "measure/image_metrics.h"
+#include "measure/report_table.h"
+#include "renderer/scene_renderer.h"
+#include "scene/texture.h"
+#include "support/diagnostic_renderer.h"
+#include "support/file_io.h"
+#include "vk/context.h"
+
+namespace spire::demo {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+enum ExitCode : int { kSuccess = 0, kInputError = 1, kUsageError = 2, kNoDevice = 3 };
+
+struct Options {
+  std::string scenePath;
+  std::vector<std::string> variants;
+  std::string outputDir = "out/demo";
+  std::optional<uint32_t> frames;
+  std::optional<uint32_t> warmup;
+  std::string device;
+  uint32_t bakeSize = 1024;
+  bool listDevices = false;
+  bool validation = false;
+};
+
+struct VariantRun {
+  std::string name;
+  std::optional<fs::path> decisions;
+};
+
+struct VariantResult {
+  std::string name;
+  engine::FrameStats stats;
+  std::vector<engine::BakeRecord> bakes;
+  std::vector<engine::Capture> views;
+  scene::Image image;  // view 0, 8 bits
+};
+
+// Renders problems the way the compiler does, so a scene error looks like a
+// source error: file:line:col, the line and a caret.
+class Reporter {
+ public:
+  Reporter(const SourceManager& sources, DiagnosticList& diags, std::ostream& err)
+      : sources_(sources), diags_(diags), err_(err) {}
+
+  void flush() {
+    for (size_t i = printed_; i < diags_.all().size(); ++i) err_ << renderDiagnostic(sources_, diags_.all()[i]);
+    printed_ = diags_.all().size();
+  }
+
+  int fail(const engine::Error& error) {
+    flush();
+    if (error.range.valid()) {
+      err_ << renderDiagnostic(sources_, Diagnostic{Severity::Error, DiagCode::E7105, error.range, error.message, {}});
+    } else {
+      err_ << fmt::format("spire-demo: error: {}\n", error.message);
+    }
+    err_ << error.details;
+    return kInputError;
+  }
+
+ private:
+  const SourceManager& sources_;
+  DiagnosticList& diags_;
+  std::ostream& err_;
+  size_t printed_ = 0;
+};
+
+double prebakeMs(const std::vector<engine::BakeRecord>& bakes) {
+  double total = 0.0;
+  for (const engine::BakeRecord& bake : bakes) total += bake.reused ? 0.0 : bake.milliseconds;
+  return total;
+}
+
+std::string bakeSummary(const std::vector<engine::BakeRecord>& bakes) {
+  if (bakes.empty()) return "none";
+  std::string text;
+  for (const engine::BakeRecord& bake : bakes) {
+    text += fmt::format("{}{} {:.1f} ms{}", text.empty() ? "" : ", ", bake.world, bake.milliseconds,
+                        bake.reused ? " (reused)" : "");
+  }
+  return text;
+}
+
+std::optional<std::string> writeText(const fs::path& path, const std::string& text) {
+  return writeFileAtomically(path.string(), text);
+}
+
+int listDevices(const Options& options, std::ostream& out, std::ostream& err) {
+  vk::ContextOptions contextOptions;
+  contextOptions.deviceFilter = options.device;
+  auto ctx = vk::Context::create(contextOptions);
+  if (!ctx) {
+    err << fmt::format("spire-demo: error: no usable Vulkan device: {}\n", ctx.error().message());
+    return kNoDevice;
+  }
+  for (const vk::PhysicalDeviceInfo& device : ctx->physicalDevices()) {
+    out << fmt::format("{} {} ({}){}\n", &device == &ctx->selectedDevice() ? "*" : " ", device.name,
+                       vk::deviceTypeName(device.type), &device == &ctx->selectedDevice() ? "  [selected]" : "");
+  }
+  return kSuccess;
+}
+
+}  // namespace
+
+int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  CLI::App app{"spire-demo: renders a scene's Spire shader variants on Vulkan and measures their speed/accuracy trade",
+               "spire-demo"};
+  Options options;
+  app.add_option("scene", options.scenePath, "Scene file (docs/scene.md)")->type_name("SCENE.json");
+  app.add_option("--variant", options.variants,
+                 "Render with decision file PATH applied to every instance (repeatable; replaces the scene's "
+                 "\"variants\"; the first is the reference)")
+      ->type_name("PATH");
+  app.add_option("-o,--output", options.outputDir, "Write PNGs, comparison.png and report.md to DIR")
+      ->type_name("DIR");
+  app.add_option("--frames", options.frames, "Measured frames per variant (default: the scene's)")->type_name("N");
+  app.add_option("--warmup", options.warmup, "Unmeasured frames first (default: the scene's; at least 1)")
+      ->type_name("N");
+  app.add_option("--device", options.device, "Use the Vulkan device whose name contains TEXT (default: llvmpipe)")
+      ->type_name("TEXT");
+  app.add_option("--bake-size", options.bakeSize, "PrebakeTex texture size without a TextureSize hint")
+      ->check(CLI::Range(1, 8192))
+      ->type_name("N");
+  app.add_flag("--list-devices", options.listDevices, "List the Vulkan devices and exit");
+  app.add_flag("--validation", options.validation,
+               "Enable VK_LAYER_KHRONOS_validation; any message makes the run fail");
+  std::vector<std::string> reversed(args.rbegin(), args.rend());
+  try {
+    app.parse(reversed);
+  } catch (const CLI::Success&) {
+    out << app.help();
+    return kSuccess;
+  } catch (const CLI::ParseError& e) {
+    err << fmt::format("spire-demo: error: {}\nRun 'spire-demo --help' for usage.\n", e.what());
+    return kUsageError;
+  }
+  if (options.listDevices) return listDevices(options, out, err);
+  if (options.scenePath.empty()) {
+    err << "spire-demo: error: a scene file is required\nRun 'spire-demo --help' for usage.\n";
+    return kUsageError;
+  }
+
+  SourceManager sources;
+  DiagnosticList diags;
+  Reporter reporter(sources, diags, err);
+  const auto scene = scene::loadSceneFile(options.scenePath, sources, diags);
+  if (!scene) {
+    reporter.flush();
+    return kInputError;
+  }
+  std::vector<VariantRun> runs;
+  for (const std::string& path : options.variants) runs.push_back({fs::path(path).stem().string(), fs::path(path)});
+  if (runs.empty()) {
+    for (const scene::VariantDesc& variant : scene->variants) runs.push_back({variant.name, variant.decisions});
+  }
+  if (runs.empty()) runs.push_back({"scene", std::nullopt});
+  const uint32_t warmup = std::max<uint32_t>(1, options.warmup.value_or(scene->warmupFrames));
+  const uint32_t frames = std::max<uint32_t>(1, options.frames.value_or(scene->frames));
+
+  vk::ContextOptions contextOptions;
+  contextOptions.validation = options.validation;
+  contextOptions.deviceFilter = options.device;
+  contextOptions.applicationName = "spire-demo";
+  auto ctx = vk::Context::create(contextOptions);
+  if (!ctx) {
+    err << fmt::format("spire-demo: error: no usable Vulkan device: {}\n", ctx.error().message());
+    return kNoDevice;
+  }
+  out << fmt::format("device: {} ({})\n", ctx->selectedDevice().name, vk::deviceTypeName(ctx->selectedDevice().type));
+
+  engine::TextureBakeOptions bakeOptions;
+  bakeOptions.defaultSize = options.bakeSize;
+  engine::SceneRenderer renderer(*ctx, *scene, diags, bakeOptions);
+  std::vector<VariantResult> results;
+  for (const VariantRun& run : runs) {
+    auto programs = renderer.compile(run.decisions);
+    if (!programs) return reporter.fail(programs.error());
+    err << renderer.compilerWarnings();
+    auto prepared = renderer.prepare(*programs);
+    reporter.flush();
+    if (!prepared) return reporter.fail(prepared.error());
+    auto stats = renderer.measure(*prepared, warmup, frames);
+    if (!stats) return reporter.fail(stats.error());
+    VariantResult result{run.name, *stats, prepared->bakes, {}, {}};
+    for (const scene::CameraView& view : scene->camera.views) {
+      auto capture = renderer.capture(*prepared, view);
+      if (!capture) return reporter.fail(capture.error());
+      result.views.push_back(std::move(capture).value());
+    }
+    result.image = measure::toRgba8(result.views.front().color);
+    out << fmt::format("{}: {:.3f} ms/frame (median of {}), first frame {:.1f} ms, bakes: {}\n", run.name,
+                       stats->medianGpuMs, frames, stats->firstFrameMs, bakeSummary(prepared->bakes));
+    results.push_back(std::move(result));
+  }
+
+  std::vector<measure::ReportRow> rows;
+  for (const VariantResult& result : results) {
+    measure::ErrorAccumulator accumulated;
+    for (size_t v = 0; v < result.views.size(); ++v) {
+      const engine::Capture& reference = results.front().views[v];
+      std::vector<uint8_t> coverage = reference.coverage;
+      for (size_t i = 0; i < coverage.size(); ++i) coverage[i] |= result.views[v].coverage[i];
+      auto error = measure::compareImages(reference.color, result.views[v].color, &coverage);
+      if (!error) return reporter.fail({error.error(), {}, {}});
+      accumulated.add(*error);
+    }
+    const measure::ImageError error = accumulated.total();
+    measure::ReportRow row;
+    row.variant = result.name;
+    row.frameMs = result.stats.medianGpuMs;
+    row.firstUseMs = result.stats.firstFrameMs;
+    row.prebakeMs = prebakeMs(result.bakes);
+    row.speedup = results.front().stats.medianGpuMs / std::max(result.stats.medianGpuMs, 1e-9);
+    row.rmse = error.rmse;
+    row.psnr = error.psnr;
+    row.maxError = error.maxError;
+    row.nanPixels = error.nanPixels + error.infPixels;
+    rows.push_back(row);
+    if (error.nanPixels + error.infPixels > 0) {
+      err << fmt::format("spire-demo: warning: variant '{}' produced {} NaN and {} Inf pixels; its error is infinite\n",
+                         result.name, error.nanPixels, error.infPixels);
+    }
+  }
+  out << measure::formatTextTable(rows);
+
+  std::error_code ec;
+  fs::create_directories(options.outputDir, ec);
+  if (ec) return reporter.fail({fmt::format("cannot create '{}': {}", options.outputDir, ec.message()), {}, {}});
+  std::vector<measure::Panel> panels;
+  for (size_t i = 0; i < results.size(); ++i) {
+    const fs::path png = fs::path(options.outputDir) / (results[i].name + ".png");
+    if (auto written = scene::writePng(png, results[i].image); !written) {
+      return reporter.fail({written.error(), {}, {}});
+    }
+    panels.push_back({results[i].image, fmt::format("{} {:.2f}X RMSE {:.4f}", results[i].name, rows[i].speedup,
+                                                    rows[i].rmse)});
+  }
+  auto comparison = measure::makeComparisonImage(panels);
+  if (!comparison) return reporter.fail({comparison.error(), {}, {}});
+  if (auto written = scene::writePng(fs::path(options.outputDir) / "comparison.png", *comparison); !written) {
+    return reporter.fail({written.error(), {}, {}});
+  }
+  std::string report = fmt::format(
+      "# spire-demo report\n\nScene `{}` on {}, {}x{}, {} measured frames after {} warm-up, error over {} camera "
+      "view(s) against `{}`.\n\n{}\n| variant | bakes |\n| --- | --- |\n",
+      options.scenePath, ctx->selectedDevice().name, scene->width, scene->height, frames, warmup,
+      scene->camera.views.size(), results.front().name, measure::formatMarkdownTable(rows));
+  for (const VariantResult& result : results) report += fmt::format("| {} | {} |\n", result.name, bakeSummary(result.bakes));
+  if (auto error = writeText(fs::path(options.outputDir) / "report.md", report)) {
+    return reporter.fail({*error, {}, {}});
+  }
+  out << fmt::format("wrote {}/{{{}}}.png, comparison.png, report.md\n", options.outputDir,
+                     [&] {
+                       std::string names;
+                       for (const VariantResult& r : results) names += (names.empty() ? "" : ",") + r.name;
+                       return names;
+                     }());
+
+  const std::vector<std::string> messages = ctx->validationMessages();
+  for (const std::string& message : messages) err << "validation: " << message << "\n";
+  return messages.empty() ? kSuccess : kInputError;
+}
+
+}  // namespace spire::demo

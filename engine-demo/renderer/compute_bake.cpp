@@ -1,0 +1,97 @@
+#include "renderer/compute_bake.h"
+
+#include <fmt/format.h>
+
+#include "vk/timer.h"
+
+namespace spire::engine {
+
+namespace {
+
+// bufferExport kernels use 64 invocations per workgroup (docs/reflection.md).
+constexpr uint32_t kWorkgroupSize = 64;
+
+struct ComputeOutput {
+  BoundKernel bound;
+  const Block* layout = nullptr;
+  vk::Buffer* records = nullptr;
+};
+
+Expected<ComputeOutput> dispatch(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
+                                 const BindingSources& sources, BakeTiming& timing) {
+  timing.world = kernel.world;
+  auto bound = bindKernel(ctx, kernel, sources);
+  if (!bound) return bound.error();
+  if (bound->outputs.size() != 1) {
+    return Error{fmt::format("the {} kernel must write exactly one record buffer (bufferExport), it writes {}",
+                             kernel.world, bound->outputs.size()),
+                 {},
+                 {}};
+  }
+  const auto [binding, records] = *bound->outputs.begin();
+  const Block* layout = kernel.block(binding);
+  const BoundKernel* kernels[] = {&*bound};
+  auto descriptors = createDescriptors(ctx, kernels);
+  if (!descriptors) return descriptors.error();
+  auto module = modules.get(ctx, kernel.hash, kernel.spirv);
+  if (!module) return module.error();
+  const VkDescriptorSetLayout setLayout = descriptors->layout.get();
+  auto pipeline = vk::createComputePipeline(ctx, *module, std::span(&setLayout, 1));
+  if (!pipeline) return Error::fromVk(pipeline.error());
+
+  const uint32_t groups = (sources.mesh->vertexCount() + kWorkgroupSize - 1) / kWorkgroupSize;
+  const vk::HostTimer timer;
+  auto submitted = ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline->pipeline.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline->layout.get(), 0, 1, &descriptors->set, 0,
+                            nullptr);
+    vkCmdDispatch(cmd, groups, 1, 1);
+    VkMemoryBarrier toHost{};
+    toHost.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    toHost.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0,
+                         nullptr, 0, nullptr);
+  });
+  timing.milliseconds = timer.elapsedMs();
+  if (!submitted) return Error::fromVk(submitted.error());
+  return ComputeOutput{std::move(bound).value(), layout, records};
+}
+
+}  // namespace
+
+Expected<UniformBakeResult> runUniformBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
+                                           const BindingSources& sources, BakeTiming& timing) {
+  auto output = dispatch(ctx, modules, kernel, sources, timing);
+  if (!output) return output.error();
+  const uint32_t count = sources.mesh->vertexCount();
+  const Block& layout = *output->layout;
+  const std::span<const std::byte> memory(static_cast<const std::byte*>(output->records->mapped()),
+                                          static_cast<size_t>(output->records->size()));
+  UniformBakeResult result;
+  for (const BlockMember& member : layout.members) {
+    const auto type = parseValueType(member.type);
+    if (!type) return Error{fmt::format("cannot average '{}' of type {} over vertices", member.component, member.type), {}, {}};
+    std::vector<double> sum(type->componentCount(), 0.0);
+    for (uint32_t i = 0; i < count; ++i) {
+      const auto values = readValue(memory.subspan(size_t{i} * layout.recordStride, layout.recordStride), member, *type);
+      for (size_t c = 0; c < values.size(); ++c) sum[c] += values[c];
+    }
+    for (double& s : sum) s /= count;
+    result.values[member.component] = std::move(sum);
+  }
+  return result;
+}
+
+Expected<VertexBakeResult> runVertexBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
+                                         const BindingSources& sources, BakeTiming& timing) {
+  auto output = dispatch(ctx, modules, kernel, sources, timing);
+  if (!output) return output.error();
+  // Keep the record buffer; the rest of the kernel's bindings die here.
+  for (auto& buffer : output->bound.buffers) {
+    if (buffer.get() == output->records) return VertexBakeResult{std::move(buffer), *output->layout};
+  }
+  return Error{fmt::format("the {} kernel's record buffer was lost", kernel.world), {}, {}};
+}
+
+}  // namespace spire::engine

@@ -1,0 +1,103 @@
+#include "renderer/draw_item.h"
+
+#include <fmt/format.h>
+
+#include "renderer/world_roles.h"
+
+namespace spire::engine {
+
+namespace {
+
+const KernelProgram* kernelWithRole(const VariantProgram& program, WorldRole role) {
+  for (const KernelProgram& kernel : program.kernels) {
+    const WorldPass* pass = findWorldPass(kernel.world);
+    if (pass && pass->role == role) return &kernel;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+Expected<std::vector<std::string>> fragmentOutputs(const KernelProgram& fragment) {
+  std::vector<std::string> outputs;
+  for (const KernelOutput& output : fragment.outputs) {
+    if (output.kind != OutputKind::Varying) continue;
+    if (output.location >= outputs.size()) outputs.resize(output.location + 1);
+    outputs[output.location] = output.component;
+  }
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    if (outputs[i].empty()) {
+      return Error{fmt::format("the {} kernel writes no color at location {}", fragment.world, i), {}, {}};
+    }
+  }
+  if (outputs.empty()) return Error{fmt::format("the {} kernel writes no color", fragment.world), {}, {}};
+  return outputs;
+}
+
+Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
+                                  const BindingSources& sources, const glm::mat4& model, const TargetFormats& formats) {
+  const KernelProgram* vertex = kernelWithRole(program, WorldRole::VertexStage);
+  const KernelProgram* fragment = kernelWithRole(program, WorldRole::FragmentStage);
+  if (!vertex || !fragment) {
+    return Error{fmt::format("'{}' has no {} kernel to draw with", program.shader, vertex ? "fragment" : "vertex"), {}, {}};
+  }
+  auto outputs = fragmentOutputs(*fragment);
+  if (!outputs) return outputs.error();
+  if (outputs->size() != formats.colors.size()) {
+    return Error{fmt::format("'{}' writes {} colors, but the frame has {} color targets", program.shader,
+                             outputs->size(), formats.colors.size()),
+                 {},
+                 {}};
+  }
+
+  DrawItem item;
+  item.mesh = sources.mesh;
+  item.model = model;
+  for (const KernelProgram* kernel : {vertex, fragment}) {
+    auto bound = bindKernel(ctx, *kernel, sources);
+    if (!bound) return bound.error();
+    item.kernels.push_back(std::move(bound).value());
+  }
+  const BoundKernel* kernels[] = {&item.kernels[0], &item.kernels[1]};
+  auto descriptors = createDescriptors(ctx, kernels);
+  if (!descriptors) return descriptors.error();
+  item.descriptors = std::move(descriptors).value();
+
+  auto vertexModule = modules.get(ctx, vertex->hash, vertex->spirv);
+  if (!vertexModule) return vertexModule.error();
+  auto fragmentModule = modules.get(ctx, fragment->hash, fragment->spirv);
+  if (!fragmentModule) return fragmentModule.error();
+  vk::GraphicsPipelineBuilder builder;
+  builder.vertexShader(*vertexModule).fragmentShader(*fragmentModule).vertexBinding(0, sizeof(scene::Vertex));
+  for (const KernelInput& input : vertex->inputs) {
+    if (input.kind != InputKind::Varying) continue;
+    const MeshAttribute* attribute = findMeshAttribute(input.component);
+    if (!attribute) {
+      return Error{fmt::format("the {} kernel reads '{}', which is not a mesh attribute", vertex->world, input.component), {}, {}};
+    }
+    builder.vertexAttribute(input.location, 0, attribute->format, attribute->offset);
+  }
+  for (VkFormat format : formats.colors) builder.colorFormat(format);
+  builder.depthFormat(formats.depth).descriptorSetLayout(item.descriptors.layout.get());
+  auto pipeline = builder.build(ctx);
+  if (!pipeline) return Error::fromVk(pipeline.error());
+  item.pipeline = std::move(pipeline).value();
+  return item;
+}
+
+void updateFrameValues(const DrawItem& item, const FrameState& frame) {
+  for (const BoundKernel& kernel : item.kernels) writeFrameValues(kernel, frame, item.model);
+}
+
+void recordDraw(VkCommandBuffer cmd, const DrawItem& item) {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, item.pipeline.pipeline.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, item.pipeline.layout.get(), 0, 1,
+                          &item.descriptors.set, 0, nullptr);
+  const VkBuffer vertexBuffer = item.mesh->vertices.handle();
+  const VkDeviceSize offset = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
+  vkCmdBindIndexBuffer(cmd, item.mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+  vkCmdDrawIndexed(cmd, item.mesh->indexCount(), 1, 0, 0, 0);
+}
+
+}  // namespace spire::engine

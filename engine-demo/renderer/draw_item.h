@@ -1,0 +1,38 @@
+// One mesh instance ready to draw every frame: the variant's Vertex and
+// Fragment kernels as a graphics pipeline, their descriptor set, and the
+// buffers behind it (per-frame values are rewritten before each frame).
+#pragma once
+
+#include <glm/mat4x4.hpp>
+
+#include "renderer/kernel_bindings.h"
+#include "renderer/module_cache.h"
+#include "vk/pipeline.h"
+
+namespace spire::engine {
+
+// Formats of the frame's render target, which every pipeline must match.
+struct TargetFormats {
+  std::vector<VkFormat> colors;  // by Fragment output location
+  VkFormat depth = VK_FORMAT_D32_SFLOAT;
+};
+
+struct DrawItem {
+  const GpuMesh* mesh = nullptr;
+  glm::mat4 model{1.0F};
+  std::vector<BoundKernel> kernels;
+  DescriptorBundle descriptors;
+  vk::Pipeline pipeline;
+};
+
+// The Fragment kernel's color outputs by location (location 0 is the image
+// the demo measures), or an error when they are not 0..n-1.
+Expected<std::vector<std::string>> fragmentOutputs(const KernelProgram& fragment);
+
+Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
+                                  const BindingSources& sources, const glm::mat4& model, const TargetFormats& formats);
+
+void updateFrameValues(const DrawItem& item, const FrameState& frame);
+void recordDraw(VkCommandBuffer cmd, const DrawItem& item);
+
+}  // namespace spire::engine

@@ -1,0 +1,230 @@
+#include "renderer/kernel_bindings.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "renderer/world_roles.h"
+
+namespace spire::engine {
+
+namespace {
+
+VkShaderStageFlags stageFlags(codegen::ShaderStage stage) {
+  switch (stage) {
+    case codegen::ShaderStage::Vertex: return VK_SHADER_STAGE_VERTEX_BIT;
+    case codegen::ShaderStage::Fragment: return VK_SHADER_STAGE_FRAGMENT_BIT;
+    case codegen::ShaderStage::Compute: return VK_SHADER_STAGE_COMPUTE_BIT;
+  }
+  return VK_SHADER_STAGE_ALL;
+}
+
+std::span<std::byte> bytesOf(const vk::Buffer& buffer) {
+  return {static_cast<std::byte*>(buffer.mapped()), static_cast<size_t>(buffer.size())};
+}
+
+Error missing(const KernelProgram& kernel, const KernelInput& input, std::string_view what) {
+  return Error{fmt::format("the {} kernel's input '{}' ({} from {}) has no value: {}", kernel.world, input.component,
+                           input.type, input.from, what),
+               {},
+               {}};
+}
+
+WorldRole roleOf(const KernelInput& input) {
+  const WorldPass* pass = findWorldPass(input.from);
+  // resolveMaterial rejected unknown worlds before any kernel is bound.
+  return pass ? pass->role : WorldRole::MaterialParameters;
+}
+
+class KernelBinder {
+ public:
+  KernelBinder(const vk::Context& ctx, const KernelProgram& kernel, const BindingSources& sources)
+      : ctx_(ctx), kernel_(kernel), sources_(sources) {
+    bound_.stage = stageFlags(kernel.stage);
+  }
+
+  Expected<BoundKernel> bind() {
+    for (const Block& block : kernel_.blocks) {
+      auto result = block.storage ? bindStorage(block) : bindUniform(block);
+      if (!result) return result.error();
+    }
+    for (const KernelInput& input : kernel_.inputs) {
+      if (input.kind != InputKind::Sampler && input.kind != InputKind::Texture) continue;
+      auto result = bindImage(input);
+      if (!result) return result.error();
+    }
+    return std::move(bound_);
+  }
+
+ private:
+  Expected<vk::Buffer*> newBuffer(VkDeviceSize size, VkBufferUsageFlags usage) {
+    auto buffer = vk::Buffer::create(ctx_, std::max<VkDeviceSize>(size, 16), usage);
+    if (!buffer) return Error::fromVk(buffer.error());
+    std::memset(buffer->mapped(), 0, static_cast<size_t>(buffer->size()));
+    bound_.buffers.push_back(std::make_unique<vk::Buffer>(std::move(buffer).value()));
+    return bound_.buffers.back().get();
+  }
+
+  Expected<void> bindUniform(const Block& block) {
+    auto buffer = newBuffer(block.size, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    if (!buffer) return buffer.error();
+    for (const KernelInput& input : kernel_.inputs) {
+      if (input.kind != InputKind::UniformMember || input.binding != block.binding) continue;
+      const BlockMember* member = block.member(input.component);
+      const auto type = parseValueType(input.type);
+      if (!member || !type) return missing(kernel_, input, "its block member or type is not in the reflection");
+      const MaterialValue* bound = materialValue(input.component);
+      const WorldRole role = roleOf(input);
+      if (role == WorldRole::FrameParameters && !bound) {
+        bound_.frameWrites.push_back({*buffer, *member, *type, input.component});
+        continue;
+      }
+      if (role == WorldRole::UniformBake) {
+        const std::vector<double>* baked = bakedUniform(input.component);
+        if (!baked) return missing(kernel_, input, "the uniform bake did not produce it");
+        writeValue(bytesOf(**buffer), *member, *type, *baked);
+        continue;
+      }
+      if (!bound) return missing(kernel_, input, "not bound in the material");
+      writeValue(bytesOf(**buffer), *member, *type, bound->numbers);
+    }
+    bound_.bindings.emplace_back(block.binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+    bound_.writes.buffer(block.binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, (*buffer)->handle());
+    return {};
+  }
+
+  const std::vector<double>* bakedUniform(const std::string& component) const {
+    if (!sources_.uniformBake) return nullptr;
+    const auto it = sources_.uniformBake->values.find(component);
+    return it == sources_.uniformBake->values.end() ? nullptr : &it->second;
+  }
+
+  const MaterialValue* materialValue(const std::string& component) const {
+    if (!sources_.material) return nullptr;
+    const auto it = sources_.material->find(component);
+    return it == sources_.material->end() ? nullptr : &it->second;
+  }
+
+  Expected<void> bindStorage(const Block& block) {
+    if (!sources_.mesh) return Error{fmt::format("the {} kernel reads vertex records but has no mesh", kernel_.world), {}, {}};
+    const uint32_t records = sources_.mesh->vertexCount();
+    const bool written = std::any_of(kernel_.outputs.begin(), kernel_.outputs.end(), [&](const KernelOutput& o) {
+      return o.kind == OutputKind::BufferMember && o.binding == block.binding;
+    });
+    auto buffer = newBuffer(VkDeviceSize{records} * block.recordStride, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!buffer) return buffer.error();
+    if (written) {
+      bound_.outputs[block.binding] = *buffer;
+    } else {
+      for (const KernelInput& input : kernel_.inputs) {
+        if (input.kind != InputKind::BufferMember || input.binding != block.binding) continue;
+        auto filled = fillRecords(**buffer, block, input, records);
+        if (!filled) return filled.error();
+      }
+    }
+    bound_.bindings.emplace_back(block.binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    bound_.writes.buffer(block.binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, (*buffer)->handle());
+    return {};
+  }
+
+  // Records are laid out per consumer (docs/reflection.md, known
+  // limitations), so vertex-bake results are repacked member by member
+  // rather than bound as the producer wrote them.
+  Expected<void> fillRecords(vk::Buffer& buffer, const Block& block, const KernelInput& input, uint32_t records) {
+    const BlockMember* member = block.member(input.component);
+    const auto type = parseValueType(input.type);
+    if (!member || !type) return missing(kernel_, input, "its record member or type is not in the reflection");
+    const std::span<std::byte> memory = bytesOf(buffer);
+    const WorldRole role = roleOf(input);
+    if (role == WorldRole::MeshAttributes) {
+      const MeshAttribute* attribute = findMeshAttribute(input.component);
+      if (!attribute) return missing(kernel_, input, "the engine supplies no such mesh attribute");
+      for (uint32_t i = 0; i < records; ++i) {
+        writeValue(memory.subspan(size_t{i} * block.recordStride, block.recordStride), *member, *type,
+                   attributeValue(sources_.mesh->mesh.vertices[i], *attribute));
+      }
+      return {};
+    }
+    if (role == WorldRole::VertexBake && sources_.vertexBake) {
+      const BlockMember* produced = sources_.vertexBake->layout.member(input.component);
+      if (!produced) return missing(kernel_, input, "the vertex bake did not produce it");
+      const std::span<const std::byte> source = bytesOf(*sources_.vertexBake->buffer);
+      const uint32_t stride = sources_.vertexBake->layout.recordStride;
+      for (uint32_t i = 0; i < records; ++i) {
+        const auto values = readValue(source.subspan(size_t{i} * stride, stride), *produced, *type);
+        writeValue(memory.subspan(size_t{i} * block.recordStride, block.recordStride), *member, *type, values);
+      }
+      return {};
+    }
+    return missing(kernel_, input, "no engine pass provides per-vertex records from that world");
+  }
+
+  Expected<void> bindImage(const KernelInput& input) {
+    VkImageView view = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;
+    if (input.kind == InputKind::Texture) {
+      if (!sources_.textureBake) return missing(kernel_, input, "no texture bake ran");
+      const auto it = sources_.textureBake->textures.find(input.component);
+      if (it == sources_.textureBake->textures.end()) return missing(kernel_, input, "the texture bake did not produce it");
+      view = it->second.image.view();
+      sampler = it->second.sampler.get();
+    } else {
+      const MaterialValue* bound = materialValue(input.component);
+      if (!bound || !bound->texture) return missing(kernel_, input, "no texture is bound to it in the material");
+      view = bound->texture->image.view();
+      sampler = bound->texture->sampler.get();
+    }
+    bound_.bindings.emplace_back(input.binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    bound_.writes.image(input.binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, view, sampler,
+                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    return {};
+  }
+
+  const vk::Context& ctx_;
+  const KernelProgram& kernel_;
+  const BindingSources& sources_;
+  BoundKernel bound_;
+};
+
+}  // namespace
+
+Expected<BoundKernel> bindKernel(const vk::Context& ctx, const KernelProgram& kernel, const BindingSources& sources) {
+  return KernelBinder(ctx, kernel, sources).bind();
+}
+
+void writeFrameValues(const BoundKernel& kernel, const FrameState& frame, const glm::mat4& model) {
+  for (const FrameWrite& write : kernel.frameWrites) {
+    if (const auto value = frameValue(write.component, frame, model)) {
+      writeValue(bytesOf(*write.buffer), write.member, write.type, value->numbers);
+    }
+  }
+}
+
+Expected<DescriptorBundle> createDescriptors(const vk::Context& ctx, std::span<const BoundKernel* const> kernels) {
+  vk::DescriptorSetLayoutBuilder layoutBuilder;
+  std::map<VkDescriptorType, uint32_t> counts;
+  for (const BoundKernel* kernel : kernels) {
+    for (const auto& [binding, type] : kernel->bindings) {
+      layoutBuilder.binding(binding, type, kernel->stage);
+      ++counts[type];
+    }
+  }
+  DescriptorBundle bundle;
+  auto layout = layoutBuilder.build(ctx);
+  if (!layout) return Error::fromVk(layout.error());
+  bundle.layout = std::move(layout).value();
+  std::vector<VkDescriptorPoolSize> sizes;
+  for (const auto& [type, count] : counts) sizes.push_back({type, count});
+  if (sizes.empty()) sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1});
+  auto pool = vk::createDescriptorPool(ctx, 1, sizes);
+  if (!pool) return Error::fromVk(pool.error());
+  bundle.pool = std::move(pool).value();
+  auto set = vk::allocateDescriptorSet(ctx, bundle.pool.get(), bundle.layout.get());
+  if (!set) return Error::fromVk(set.error());
+  bundle.set = *set;
+  for (const BoundKernel* kernel : kernels) kernel->writes.update(ctx, bundle.set);
+  return bundle;
+}
+
+}  // namespace spire::engine

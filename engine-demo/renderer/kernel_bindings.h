@@ -1,0 +1,90 @@
+// Feeding one kernel: every descriptor binding its reflection names, filled
+// from where the value's world says it comes from (world_roles.h): material
+// values, per-frame values, mesh vertices as storage records, and the results
+// of the bakes that ran before it. The same code binds bake kernels and the
+// kernels of each frame's draw.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "renderer/gpu_resources.h"
+#include "renderer/supplied_values.h"
+#include "renderer/value_layout.h"
+#include "renderer/variant_program.h"
+#include "vk/pipeline.h"
+
+namespace spire::engine {
+
+// The value an input of MaterialUniform (or an overridden FrameUniform) gets.
+struct MaterialValue {
+  std::vector<double> numbers;
+  const GpuTexture* texture = nullptr;
+  std::string identity;  // stable text naming the value, for bake cache keys
+};
+using MaterialValues = std::map<std::string, MaterialValue, std::less<>>;
+
+struct BakedTexture {
+  vk::Image image;
+  vk::Sampler sampler;
+};
+
+struct UniformBakeResult {
+  std::map<std::string, std::vector<double>, std::less<>> values;  // component -> average over the vertices
+};
+
+struct VertexBakeResult {
+  std::unique_ptr<vk::Buffer> buffer;  // one record per vertex
+  Block layout;                        // the producer's record layout
+};
+
+struct TextureBakeResult {
+  std::map<std::string, BakedTexture, std::less<>> textures;  // component -> its texture
+};
+
+struct BindingSources {
+  const GpuMesh* mesh = nullptr;
+  const MaterialValues* material = nullptr;
+  const UniformBakeResult* uniformBake = nullptr;
+  const VertexBakeResult* vertexBake = nullptr;
+  const TextureBakeResult* textureBake = nullptr;
+};
+
+// A uniform-block member refreshed every frame from FrameState.
+struct FrameWrite {
+  vk::Buffer* buffer = nullptr;
+  BlockMember member;
+  ValueType type;
+  std::string component;
+};
+
+struct BoundKernel {
+  VkShaderStageFlags stage = 0;
+  std::vector<std::pair<uint32_t, VkDescriptorType>> bindings;
+  vk::DescriptorWriter writes;
+  std::vector<std::unique_ptr<vk::Buffer>> buffers;
+  std::vector<FrameWrite> frameWrites;
+  std::map<uint32_t, vk::Buffer*> outputs;  // storage blocks the kernel writes, by binding
+};
+
+// Creates and fills the buffers of `kernel`'s bindings. Values are assumed
+// resolved (resolveMaterial checked them); a missing one is still an error,
+// not a crash.
+Expected<BoundKernel> bindKernel(const vk::Context& ctx, const KernelProgram& kernel, const BindingSources& sources);
+
+// Writes this frame's values into the kernel's per-frame uniform members.
+void writeFrameValues(const BoundKernel& kernel, const FrameState& frame, const glm::mat4& model);
+
+// One descriptor set for the kernels of one pipeline (bindings are unique
+// across a variant, so the kernels' bindings never collide).
+struct DescriptorBundle {
+  vk::DescriptorSetLayout layout;
+  vk::DescriptorPool pool;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+};
+Expected<DescriptorBundle> createDescriptors(const vk::Context& ctx, std::span<const BoundKernel* const> kernels);
+
+}  // namespace spire::engine

@@ -1,0 +1,189 @@
+#include "renderer/material.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <set>
+
+#include "renderer/supplied_values.h"
+#include "renderer/value_layout.h"
+#include "renderer/world_roles.h"
+
+namespace spire::engine {
+
+namespace {
+
+bool isSampler(std::string_view type) { return type.starts_with("sampler"); }
+
+std::string supportedNames() {
+  std::string names;
+  for (const FrameValueInfo& v : frameValues()) names += fmt::format("{}{}", names.empty() ? "" : ", ", v.component);
+  return names;
+}
+
+class MaterialResolver {
+ public:
+  MaterialResolver(const VariantProgram& program, const scene::InstanceDesc& instance, const TextureLookup& textureFor,
+                   DiagnosticList& diags)
+      : program_(program), instance_(instance), textureFor_(textureFor), diags_(diags) {}
+
+  std::optional<MaterialValues> resolve() {
+    const size_t errorsBefore = diags_.errorCount();
+    for (const KernelProgram& kernel : program_.kernels) {
+      checkKernelWorld(kernel);
+      for (const KernelInput& input : kernel.inputs) checkInput(kernel, input);
+    }
+    for (const scene::MaterialBinding& binding : instance_.material) {
+      if (!used_.contains(binding.component)) {
+        diags_.reportOnce(DiagCode::W7101, binding.keyRange,
+                      fmt::format("'{}' is not an input of this variant of '{}'; the value is ignored",
+                                  binding.component, program_.shader));
+      }
+    }
+    if (diags_.errorCount() != errorsBefore) return std::nullopt;
+    return std::move(values_);
+  }
+
+ private:
+  SourceRange shaderRange() const { return instance_.kernels ? instance_.kernelsRange : instance_.shaderRange; }
+
+  void checkKernelWorld(const KernelProgram& kernel) {
+    const WorldPass* pass = findWorldPass(kernel.world);
+    if (!pass || !pass->stage) {
+      diags_.reportOnce(DiagCode::E7104, shaderRange(),
+                        fmt::format("'{}' has a kernel for world '{}', which this engine does not implement",
+                                    program_.shader, kernel.world));
+    } else if (*pass->stage != kernel.stage) {
+      diags_.reportOnce(DiagCode::E7104, shaderRange(),
+                        fmt::format("the engine runs world '{}' as a {} kernel, but '{}' compiles it as {}",
+                                    kernel.world, codegen::stageName(*pass->stage), program_.shader,
+                                    codegen::stageName(kernel.stage)));
+    }
+  }
+
+  void checkInput(const KernelProgram& kernel, const KernelInput& input) {
+    const WorldPass* pass = findWorldPass(input.from);
+    if (!pass) {
+      diags_.reportOnce(DiagCode::E7104, shaderRange(),
+                        fmt::format("'{}' imports '{}' from world '{}', which this engine does not implement",
+                                    program_.shader, input.component, input.from));
+      return;
+    }
+    switch (pass->role) {
+      case WorldRole::MaterialParameters: bindMaterial(input, /*engineValue=*/false); break;
+      case WorldRole::FrameParameters: bindMaterial(input, /*engineValue=*/true); break;
+      case WorldRole::MeshAttributes: checkMeshAttribute(kernel, input); break;
+      default: break;  // produced by a bake of this variant
+    }
+  }
+
+  void checkMeshAttribute(const KernelProgram& kernel, const KernelInput& input) {
+    const MeshAttribute* attribute = findMeshAttribute(input.component);
+    if (!attribute) {
+      diags_.reportOnce(DiagCode::E7102, shaderRange(),
+                        fmt::format("the {} kernel reads mesh attribute '{}', which meshes do not have "
+                                    "(they have vert_pos, vert_uv, vert_normal and vert_tangent)",
+                                    kernel.world, input.component));
+    } else if (attribute->type != input.type) {
+      diags_.reportOnce(DiagCode::E7103, shaderRange(),
+                        fmt::format("mesh attribute '{}' is a {}, but '{}' declares it as {}", input.component,
+                                    attribute->type, program_.shader, input.type));
+    }
+  }
+
+  void bindMaterial(const KernelInput& input, bool engineValue) {
+    const scene::MaterialBinding* binding = findBinding(input.component);
+    if (binding) {
+      used_.insert(input.component);
+      if (!values_.contains(input.component)) resolveBinding(input, *binding);
+      return;
+    }
+    if (!engineValue) {
+      diags_.reportOnce(DiagCode::E7102, instance_.materialRange,
+                        fmt::format("input '{}' ({} from {}) of '{}' is not bound; add it to the instance's "
+                                    "\"material\"",
+                                    input.component, input.type, input.from, program_.shader));
+      return;
+    }
+    const auto supplied = frameValue(input.component, FrameState{}, glm::mat4(1.0F));
+    if (!supplied) {
+      diags_.reportOnce(DiagCode::E7102, instance_.materialRange,
+                        fmt::format("input '{}' ({} from {}) of '{}' is not bound and is not a per-frame engine value "
+                                    "({}); bind it in the instance's \"material\"",
+                                    input.component, input.type, input.from, program_.shader, supportedNames()));
+    } else if (supplied->type != input.type) {
+      diags_.reportOnce(DiagCode::E7103, shaderRange(),
+                        fmt::format("the engine supplies '{}' as {}, but '{}' declares it as {}", input.component,
+                                    supplied->type, program_.shader, input.type));
+    }
+  }
+
+  const scene::MaterialBinding* findBinding(const std::string& component) const {
+    for (const scene::MaterialBinding& binding : instance_.material) {
+      if (binding.component == component) return &binding;
+    }
+    return nullptr;
+  }
+
+  void resolveBinding(const KernelInput& input, const scene::MaterialBinding& binding) {
+    if (isSampler(input.type)) {
+      if (!binding.texture) {
+        diags_.report(DiagCode::E7103, binding.valueRange,
+                      fmt::format("'{}' is a {}: bind it to a texture name, not numbers", input.component,
+                                  input.type));
+        return;
+      }
+      if (const GpuTexture* texture = textureFor_(*binding.texture, binding.valueRange)) {
+        values_[input.component] = MaterialValue{{}, texture, "texture:" + *binding.texture};
+      }
+      return;
+    }
+    const auto type = parseValueType(input.type);
+    if (!type) {
+      diags_.report(DiagCode::E7103, binding.valueRange,
+                    fmt::format("'{}' has type {}, which a scene file cannot supply", input.component, input.type));
+      return;
+    }
+    if (binding.texture) {
+      diags_.report(DiagCode::E7103, binding.valueRange,
+                    fmt::format("'{}' is a {}: bind it to {} number{}, not a texture", input.component, input.type,
+                                type->componentCount(), type->componentCount() == 1 ? "" : "s"));
+      return;
+    }
+    if (binding.numbers.size() != type->componentCount()) {
+      diags_.report(DiagCode::E7103, binding.valueRange,
+                    fmt::format("'{}' is a {} and needs {} number{}, but the value has {}", input.component,
+                                input.type, type->componentCount(), type->componentCount() == 1 ? "" : "s",
+                                binding.numbers.size()));
+      return;
+    }
+    if (type->scalar != ValueType::Scalar::Float) {
+      for (double n : binding.numbers) {
+        if (n != std::floor(n) || (type->scalar == ValueType::Scalar::Uint && n < 0)) {
+          diags_.report(DiagCode::E7103, binding.valueRange,
+                        fmt::format("'{}' is a {}: {} is not a valid component", input.component, input.type, n));
+          return;
+        }
+      }
+    }
+    std::string identity = "numbers:";
+    for (double n : binding.numbers) identity += fmt::format("{},", n);
+    values_[input.component] = MaterialValue{binding.numbers, nullptr, std::move(identity)};
+  }
+
+  const VariantProgram& program_;
+  const scene::InstanceDesc& instance_;
+  const TextureLookup& textureFor_;
+  DiagnosticList& diags_;
+  MaterialValues values_;
+  std::set<std::string, std::less<>> used_;
+};
+
+}  // namespace
+
+std::optional<MaterialValues> resolveMaterial(const VariantProgram& program, const scene::InstanceDesc& instance,
+                                              const TextureLookup& textureFor, DiagnosticList& diags) {
+  return MaterialResolver(program, instance, textureFor, diags).resolve();
+}
+
+}  // namespace spire::engine

@@ -1,0 +1,274 @@
+#include "renderer/scene_renderer.h"
+
+#include <fmt/format.h>
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+
+#include "codegen/kernel_generator.h"
+#include "graph/decision_file.h"
+#include "renderer/material.h"
+#include "renderer/world_roles.h"
+#include "scene/scene_resources.h"
+#include "support/diagnostic_renderer.h"
+#include "support/spelling.h"
+#include "vk/timer.h"
+
+namespace spire::engine {
+
+namespace {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t mid = values.size() / 2;
+  return values.size() % 2 == 1 ? values[mid] : (values[mid - 1] + values[mid]) / 2.0;
+}
+
+std::string renderAll(const SourceManager& sources, const std::vector<Diagnostic>& diagnostics) {
+  std::string text;
+  for (const Diagnostic& d : diagnostics) text += renderDiagnostic(sources, d);
+  return text;
+}
+
+}  // namespace
+
+SceneRenderer::SceneRenderer(const vk::Context& ctx, const scene::SceneFile& scene, DiagnosticList& diags,
+                             TextureBakeOptions bakeOptions)
+    : ctx_(ctx), scene_(scene), diags_(diags), bakes_(bakeOptions) {}
+
+Expected<ShaderLibrary*> SceneRenderer::libraryFor(const scene::InstanceDesc& instance) {
+  const std::string key = instance.source.string();
+  if (const auto it = libraries_.find(key); it != libraries_.end()) return it->second.get();
+  FrontEndOptions options;
+  for (const auto& dir : scene_.includePaths) options.includeDirs.push_back(dir.string());
+  auto library = std::make_unique<ShaderLibrary>(options);
+  if (!library->addFile(key)) {
+    return Error{fmt::format("cannot read Spire source '{}'", key), instance.sourceRange, {}};
+  }
+  if (!library->compile()) {
+    return Error{fmt::format("'{}' does not compile", key), instance.sourceRange,
+                 renderDiagnostics(library->sources(), library->diagnostics(), DiagnosticFormat::Text)};
+  }
+  return libraries_.emplace(key, std::move(library)).first->second.get();
+}
+
+Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDesc& instance,
+                                                        const std::optional<std::filesystem::path>& decisions) {
+  if (instance.kernels) {
+    if (decisions) {
+      return Error{"this instance uses precompiled kernels, so a scene variant cannot recompile it; give it "
+                   "\"source\" and \"shader\" instead",
+                   instance.kernelsRange, {}};
+    }
+    auto program = loadProgram(*instance.kernels);
+    if (!program) return Error{program.error().message, instance.kernelsRange, {}};
+    return program;
+  }
+  const std::optional<std::filesystem::path> decisionPath = decisions ? decisions : instance.decisions;
+  const std::string key = fmt::format("{}|{}|{}", instance.source.string(), instance.shader,
+                                      decisionPath ? decisionPath->string() : "");
+  if (const auto it = programs_.find(key); it != programs_.end()) return it->second;
+
+  auto library = libraryFor(instance);
+  if (!library) return library.error();
+  ShaderLibrary& lib = **library;
+  const graph::ChoiceSpace* space = lib.choiceSpace(instance.shader);
+  if (!space) {
+    const std::vector<std::string> names = lib.shaderNames();
+    const std::vector<std::string_view> candidates(names.begin(), names.end());
+    const auto suggestion = closestSpelling(instance.shader, candidates);
+    return Error{fmt::format("'{}' has no concrete shader named '{}'{}", instance.source.string(), instance.shader,
+                             suggestion ? fmt::format("; did you mean '{}'?", *suggestion) : ""),
+                 instance.shaderRange, {}};
+  }
+  DiagnosticList& diags = lib.diagnostics();
+  const size_t mark = diags.size();
+  graph::DecisionFile decisionFile;
+  if (decisionPath) {
+    if (const auto id = lib.frontEnd().loadAuxiliaryFile(decisionPath->string())) {
+      decisionFile = graph::parseDecisionFile(lib.sources(), *id, diags);
+      graph::checkDecisionPrefixes(decisionFile, lib.model(), diags);
+    }
+  }
+  std::optional<graph::Variant> variant;
+  std::optional<codegen::GeneratedShader> generated;
+  if (!diags.hasErrors()) variant = graph::applyDecisions(decisionFile, *space, diags);
+  if (variant && !diags.hasErrors()) {
+    generated = codegen::generateKernels(lib.model(), lib.sources(), *variant, codegen::StrategyRegistry::builtin(), diags);
+  }
+  const bool failed = diags.hasErrors() || !generated;
+  const std::vector<Diagnostic> reported = diags.takeSince(mark);
+  if (failed) {
+    return Error{fmt::format("cannot build the variant of '{}'", instance.shader),
+                 decisions || !instance.decisions ? instance.shaderRange : instance.decisionsRange,
+                 renderAll(lib.sources(), reported)};
+  }
+  compilerWarnings_ += renderAll(lib.sources(), reported);
+  auto program = compileProgram(*generated, *variant);
+  if (!program) return Error{program.error().message, instance.shaderRange, program.error().details};
+  return programs_.emplace(key, std::move(program).value()).first->second;
+}
+
+Expected<std::vector<VariantProgram>> SceneRenderer::compile(const std::optional<std::filesystem::path>& decisions) {
+  std::vector<VariantProgram> programs;
+  for (const scene::InstanceDesc& instance : scene_.instances) {
+    auto program = compileInstance(instance, decisions);
+    if (!program) return program.error();
+    programs.push_back(std::move(program).value());
+  }
+  return programs;
+}
+
+const GpuMesh* SceneRenderer::meshFor(const std::string& name, SourceRange range) {
+  if (const auto it = meshes_.find(name); it != meshes_.end()) return it->second.get();
+  const scene::MeshDesc* desc = scene_.findMesh(name);
+  if (!desc) {
+    diags_.report(DiagCode::E7006, range, fmt::format("no mesh named '{}'", name));
+    return nullptr;
+  }
+  auto mesh = scene::buildMesh(*desc);
+  if (!mesh) {
+    diags_.report(DiagCode::E7101, desc->range, fmt::format("mesh '{}': {}", name, mesh.error()));
+    return nullptr;
+  }
+  auto uploaded = uploadMesh(ctx_, std::move(mesh).value());
+  if (!uploaded) {
+    diags_.report(DiagCode::E7101, desc->range, fmt::format("mesh '{}': {}", name, uploaded.error().message));
+    return nullptr;
+  }
+  return meshes_.emplace(name, std::move(uploaded).value()).first->second.get();
+}
+
+const GpuTexture* SceneRenderer::textureFor(const std::string& name, SourceRange range) {
+  if (const auto it = textures_.find(name); it != textures_.end()) return it->second.get();
+  const scene::TextureDesc* desc = scene_.findTexture(name);
+  if (!desc) {
+    diags_.report(DiagCode::E7006, range, fmt::format("no texture named '{}'", name));
+    return nullptr;
+  }
+  auto image = scene::buildTexture(*desc);
+  if (!image) {
+    diags_.report(DiagCode::E7101, desc->range, fmt::format("texture '{}': {}", name, image.error()));
+    return nullptr;
+  }
+  auto uploaded = uploadTexture(ctx_, *image, desc->clamp);
+  if (!uploaded) {
+    diags_.report(DiagCode::E7101, desc->range, fmt::format("texture '{}': {}", name, uploaded.error().message));
+    return nullptr;
+  }
+  return textures_.emplace(name, std::move(uploaded).value()).first->second.get();
+}
+
+Expected<RenderTarget*> SceneRenderer::targetFor(size_t colorTargets) {
+  if (target_ && target_->formats().colors.size() == colorTargets) return &*target_;
+  target_.reset();
+  auto target = RenderTarget::create(ctx_, scene_.width, scene_.height, colorTargets);
+  if (!target) return target.error();
+  target_ = std::move(target).value();
+  return &*target_;
+}
+
+Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>& programs) {
+  PreparedScene prepared;
+  std::vector<const GpuMesh*> meshes;
+  const size_t errorsBefore = diags_.errorCount();
+  for (size_t i = 0; i < programs.size(); ++i) {
+    const scene::InstanceDesc& instance = scene_.instances[i];
+    meshes.push_back(meshFor(instance.mesh, instance.meshRange));
+    const TextureLookup lookup = [this](const std::string& name, SourceRange range) { return textureFor(name, range); };
+    auto material = resolveMaterial(programs[i], instance, lookup, diags_);
+    prepared.materials.push_back(material ? std::move(*material) : MaterialValues{});
+  }
+  if (diags_.errorCount() != errorsBefore) return Error{"the scene's instances do not match their shaders", {}, {}};
+
+  size_t colorTargets = 0;
+  for (const VariantProgram& program : programs) {
+    const KernelProgram* fragment = nullptr;
+    for (const KernelProgram& kernel : program.kernels) {
+      if (const WorldPass* pass = findWorldPass(kernel.world); pass && pass->role == WorldRole::FragmentStage) fragment = &kernel;
+    }
+    if (!fragment) return Error{fmt::format("'{}' has no fragment kernel", program.shader), {}, {}};
+    auto outputs = fragmentOutputs(*fragment);
+    if (!outputs) return outputs.error();
+    colorTargets = std::max(colorTargets, outputs->size());
+  }
+  auto target = targetFor(colorTargets);
+  if (!target) return target.error();
+
+  for (size_t i = 0; i < programs.size(); ++i) {
+    const scene::InstanceDesc& instance = scene_.instances[i];
+    auto baked = bakes_.bake(ctx_, modules_, programs[i], *meshes[i], instance.mesh, prepared.materials[i]);
+    if (!baked) return Error{baked.error().message, instance.range, baked.error().details};
+    prepared.bakes.insert(prepared.bakes.end(), baked->records.begin(), baked->records.end());
+    BindingSources sources;
+    sources.mesh = meshes[i];
+    sources.material = &prepared.materials[i];
+    sources.uniformBake = baked->uniform;
+    sources.vertexBake = baked->vertex;
+    sources.textureBake = baked->texture;
+    auto item = createDrawItem(ctx_, modules_, programs[i], sources, instance.transform, (*target)->formats());
+    if (!item) return Error{item.error().message, instance.range, item.error().details};
+    prepared.items.push_back(std::move(item).value());
+    prepared.fingerprints.push_back(programs[i].fingerprint());
+  }
+  return prepared;
+}
+
+FrameState SceneRenderer::frameState(const scene::CameraView& view, float time) const {
+  FrameState frame;
+  frame.view = glm::lookAt(view.position, view.target, scene_.camera.up);
+  frame.projection = glm::perspectiveRH_ZO(glm::radians(scene_.camera.fovYDegrees),
+                                           static_cast<float>(scene_.width) / static_cast<float>(scene_.height),
+                                           scene_.camera.nearPlane, scene_.camera.farPlane);
+  frame.projection[1][1] *= -1.0F;  // Vulkan's clip space has y pointing down
+  frame.cameraPosition = view.position;
+  frame.lightDirection = scene_.light.direction;
+  frame.lightColor = scene_.light.color;
+  frame.time = time;
+  frame.resolution = {static_cast<float>(scene_.width), static_cast<float>(scene_.height)};
+  return frame;
+}
+
+Expected<std::vector<const DrawItem*>> SceneRenderer::drawList(const PreparedScene& prepared) {
+  if (!target_) return Error{"prepare() must run before rendering", {}, {}};
+  std::vector<const DrawItem*> items;
+  for (const DrawItem& item : prepared.items) items.push_back(&item);
+  return items;
+}
+
+Expected<FrameStats> SceneRenderer::measure(const PreparedScene& prepared, uint32_t warmup, uint32_t frames) {
+  auto items = drawList(prepared);
+  if (!items) return items.error();
+  constexpr float kFrameSeconds = 1.0F / 60.0F;
+  FrameStats stats;
+  std::vector<double> hostMs;
+  for (uint32_t f = 0; f < warmup + frames; ++f) {
+    const FrameState frame = frameState(scene_.camera.views.front(), static_cast<float>(f) * kFrameSeconds);
+    auto timing = target_->render(ctx_, *items, frame, scene_.clearColor);
+    if (!timing) return timing.error();
+    if (f == 0) stats.firstFrameMs = timing->hostMs;
+    if (f < warmup) continue;
+    stats.gpuMs.push_back(timing->gpuMs);
+    hostMs.push_back(timing->hostMs);
+  }
+  stats.medianGpuMs = median(stats.gpuMs);
+  stats.medianHostMs = median(hostMs);
+  return stats;
+}
+
+Expected<Capture> SceneRenderer::capture(const PreparedScene& prepared, const scene::CameraView& view) {
+  auto items = drawList(prepared);
+  if (!items) return items.error();
+  auto timing = target_->render(ctx_, *items, frameState(view, 0.0F), scene_.clearColor);
+  if (!timing) return timing.error();
+  auto color = target_->readColor(ctx_);
+  if (!color) return color.error();
+  auto coverage = target_->readCoverage(ctx_);
+  if (!coverage) return coverage.error();
+  return Capture{std::move(color).value(), std::move(coverage).value()};
+}
+
+}  // namespace spire::engine

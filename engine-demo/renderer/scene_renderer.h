@@ -1,0 +1,94 @@
+// The engine's top level for one scene file: compiles each instance's
+// variant (in process through the compiler library, or from a spirec output
+// directory), loads only the meshes and textures the variants use, runs the
+// bakes they need, and renders and times frames. The demo and the tuner both
+// drive it; neither knows about any particular shader.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "driver/shader_library.h"
+#include "renderer/bake_cache.h"
+#include "renderer/render_target.h"
+#include "scene/scene_file.h"
+
+namespace spire::engine {
+
+struct PreparedScene {
+  std::vector<MaterialValues> materials;  // per instance
+  std::vector<DrawItem> items;            // per instance
+  std::vector<BakeRecord> bakes;          // every bake world the variants use, run or reused
+  std::vector<std::string> fingerprints;  // per instance: its kernels' hashes
+};
+
+struct FrameStats {
+  double firstFrameMs = 0.0;     // host time of the first frame: lavapipe compiles shaders at first draw
+  double medianGpuMs = 0.0;      // over the measured frames, from timestamps
+  double medianHostMs = 0.0;     // over the measured frames, submit to fence
+  std::vector<double> gpuMs;     // every measured frame
+};
+
+struct Capture {
+  measure::FloatImage color;
+  std::vector<uint8_t> coverage;
+};
+
+class SceneRenderer {
+ public:
+  // `sceneSources` holds the scene file, `diags` receives every problem with
+  // the scene's values (with their file:line:col).
+  SceneRenderer(const vk::Context& ctx, const scene::SceneFile& scene, DiagnosticList& diags,
+                TextureBakeOptions bakeOptions = {});
+
+  // The variant of every instance: its own decisions, or `decisions` (a
+  // scene variant) for all of them. Compiler diagnostics come back as the
+  // error's details; warnings accumulate in compilerWarnings().
+  Expected<std::vector<VariantProgram>> compile(const std::optional<std::filesystem::path>& decisions);
+
+  // Resolves materials (reporting problems to `diags`), runs the bakes the
+  // programs need and builds their draws.
+  Expected<PreparedScene> prepare(const std::vector<VariantProgram>& programs);
+
+  // Renders `warmup` frames (the first one timed separately), then `frames`
+  // measured ones, from camera view 0.
+  Expected<FrameStats> measure(const PreparedScene& prepared, uint32_t warmup, uint32_t frames);
+  // One frame from `view`, read back.
+  Expected<Capture> capture(const PreparedScene& prepared, const scene::CameraView& view);
+
+  const std::string& compilerWarnings() const { return compilerWarnings_; }
+  const vk::Context& context() const { return ctx_; }
+  const scene::SceneFile& scene() const { return scene_; }
+  size_t shaderModuleCount() const { return modules_.size(); }
+  size_t bakeCount() const { return bakes_.size(); }
+
+  // The frame state for `view` at `time` seconds.
+  FrameState frameState(const scene::CameraView& view, float time) const;
+
+ private:
+  Expected<VariantProgram> compileInstance(const scene::InstanceDesc& instance,
+                                           const std::optional<std::filesystem::path>& decisions);
+  Expected<ShaderLibrary*> libraryFor(const scene::InstanceDesc& instance);
+  const GpuMesh* meshFor(const std::string& name, SourceRange range);
+  const GpuTexture* textureFor(const std::string& name, SourceRange range);
+  Expected<RenderTarget*> targetFor(size_t colorTargets);
+  Expected<std::vector<const DrawItem*>> drawList(const PreparedScene& prepared);
+
+  const vk::Context& ctx_;
+  const scene::SceneFile& scene_;
+  DiagnosticList& diags_;
+  ModuleCache modules_;
+  BakeCache bakes_;
+  std::map<std::string, std::unique_ptr<ShaderLibrary>> libraries_;
+  std::map<std::string, VariantProgram> programs_;
+  std::map<std::string, std::unique_ptr<GpuMesh>> meshes_;
+  std::map<std::string, std::unique_ptr<GpuTexture>> textures_;
+  std::optional<RenderTarget> target_;
+  std::string compilerWarnings_;
+};
+
+}  // namespace spire::engine

@@ -1,0 +1,28 @@
+// The PrebakeTex bake, run once at load: the mesh is rasterized in UV space
+// (each vertex at clip position uv * 2 - 1) with the kernel as fragment
+// shader, one render target per exported component. Texels no triangle covers
+// are then filled from covered neighbours (dilation), so bilinear lookups at
+// chart borders do not blend in the clear color.
+#pragma once
+
+#include "renderer/compute_bake.h"
+#include "renderer/kernel_bindings.h"
+#include "renderer/module_cache.h"
+
+namespace spire::engine {
+
+struct TextureBakeOptions {
+  uint32_t defaultSize = 1024;  // when an output has no TextureSize hint
+  VkFormat defaultFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // when it has no Format hint
+  uint32_t dilationTexels = 4;
+};
+
+// The Vulkan format of a `Format` hint ("RGBA8", "RGBA16F", "RGBA32F",
+// "R32F"); nullopt for names the engine does not support.
+std::optional<VkFormat> bakeFormat(std::string_view hint);
+
+Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
+                                           const BindingSources& sources, const TextureBakeOptions& options,
+                                           BakeTiming& timing);
+
+}  // namespace spire::engine

@@ -1,0 +1,189 @@
+#include "renderer/variant_program.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "codegen/spirv_compiler.h"
+#include "support/file_io.h"
+
+namespace spire::engine {
+
+using Json = nlohmann::ordered_json;
+
+const BlockMember* Block::member(std::string_view component) const {
+  const auto it = std::find_if(members.begin(), members.end(),
+                               [&](const BlockMember& m) { return m.component == component; });
+  return it == members.end() ? nullptr : &*it;
+}
+
+const Block* KernelProgram::block(uint32_t binding) const {
+  const auto it = std::find_if(blocks.begin(), blocks.end(), [&](const Block& b) { return b.binding == binding; });
+  return it == blocks.end() ? nullptr : &*it;
+}
+
+const KernelProgram* VariantProgram::kernel(std::string_view world) const {
+  const auto it = std::find_if(kernels.begin(), kernels.end(), [&](const KernelProgram& k) { return k.world == world; });
+  return it == kernels.end() ? nullptr : &*it;
+}
+
+std::string VariantProgram::fingerprint() const {
+  std::string key;
+  for (const KernelProgram& k : kernels) key += fmt::format("{}={};", k.world, k.hash);
+  return key;
+}
+
+namespace {
+
+std::optional<codegen::ShaderStage> parseStage(const std::string& name) {
+  if (name == "vertex") return codegen::ShaderStage::Vertex;
+  if (name == "fragment") return codegen::ShaderStage::Fragment;
+  if (name == "compute") return codegen::ShaderStage::Compute;
+  return std::nullopt;
+}
+
+Block parseBlock(const Json& json) {
+  Block block;
+  block.name = json.at("name").get<std::string>();
+  block.storage = json.at("kind").get<std::string>() == "storage";
+  block.binding = json.at("binding").get<uint32_t>();
+  block.size = json.value("size", 0U);
+  block.recordStride = json.value("recordStride", 0U);
+  for (const Json& m : json.at("members")) {
+    BlockMember member;
+    member.component = m.at("component").get<std::string>();
+    member.type = m.at("type").get<std::string>();
+    member.offset = m.at("offset").get<uint32_t>();
+    member.size = m.at("size").get<uint32_t>();
+    member.arrayStride = m.value("arrayStride", 0U);
+    member.matrixStride = m.value("matrixStride", 0U);
+    block.members.push_back(std::move(member));
+  }
+  return block;
+}
+
+// The kind of an input follows from its fields (docs/reflection.md, Inputs).
+KernelInput parseInput(const Json& json) {
+  KernelInput input;
+  input.component = json.at("component").get<std::string>();
+  input.type = json.at("type").get<std::string>();
+  input.from = json.at("from").get<std::string>();
+  if (json.contains("location")) {
+    input.kind = InputKind::Varying;
+    input.location = json.at("location").get<uint32_t>();
+    return input;
+  }
+  input.binding = json.at("binding").get<uint32_t>();
+  if (json.contains("sampler")) {
+    input.kind = InputKind::Texture;
+    input.channels = json.at("channels").get<uint32_t>();
+  } else if (json.contains("index")) {
+    input.kind = InputKind::BufferMember;
+  } else if (json.contains("block")) {
+    input.kind = InputKind::UniformMember;
+  } else {
+    input.kind = InputKind::Sampler;
+  }
+  return input;
+}
+
+KernelOutput parseOutput(const Json& json) {
+  KernelOutput output;
+  if (json.contains("builtin")) {
+    output.kind = OutputKind::BuiltIn;
+    output.component = json.at("builtin").get<std::string>();
+    return output;
+  }
+  output.component = json.at("component").get<std::string>();
+  output.type = json.at("type").get<std::string>();
+  if (json.contains("location")) {
+    output.kind = OutputKind::Varying;
+    output.location = json.at("location").get<uint32_t>();
+  } else {
+    output.kind = OutputKind::BufferMember;
+    output.binding = json.at("binding").get<uint32_t>();
+  }
+  if (json.contains("hints")) {
+    for (const auto& [key, value] : json.at("hints").items()) output.hints[key] = value.get<std::string>();
+  }
+  return output;
+}
+
+}  // namespace
+
+Expected<VariantProgram> parseReflection(const Json& reflection,
+                                         const std::map<std::string, std::vector<uint32_t>>& spirv) {
+  // nlohmann reports a missing field or a wrong type by exception; every such
+  // problem is the same user-facing error, so it is caught once here.
+  try {
+    if (reflection.at("format").get<std::string>() != "spire-reflection" || reflection.at("version").get<int>() != 1) {
+      return Error{"not a version 1 spire-reflection document", {}};
+    }
+    VariantProgram program;
+    program.shader = reflection.at("shader").get<std::string>();
+    program.pipeline = reflection.at("pipeline").get<std::string>();
+    for (const Json& k : reflection.at("kernels")) {
+      KernelProgram kernel;
+      kernel.world = k.at("world").get<std::string>();
+      const auto stage = parseStage(k.at("stage").get<std::string>());
+      if (!stage) return Error{fmt::format("kernel '{}' has an unknown stage", kernel.world), {}};
+      kernel.stage = *stage;
+      kernel.hash = k.at("hash").get<std::string>();
+      const auto words = spirv.find(kernel.world);
+      if (words == spirv.end() || words->second.empty()) {
+        return Error{fmt::format("no SPIR-V for kernel '{}'", kernel.world), {}};
+      }
+      kernel.spirv = words->second;
+      for (const Json& input : k.at("inputs")) kernel.inputs.push_back(parseInput(input));
+      for (const Json& output : k.at("outputs")) kernel.outputs.push_back(parseOutput(output));
+      for (const Json& block : k.at("blocks")) kernel.blocks.push_back(parseBlock(block));
+      program.kernels.push_back(std::move(kernel));
+    }
+    return program;
+  } catch (const nlohmann::json::exception& e) {
+    return Error{fmt::format("malformed reflection: {}", e.what()), {}};
+  }
+}
+
+Expected<VariantProgram> loadProgram(const std::filesystem::path& directory) {
+  const std::filesystem::path reflectionPath = directory / "reflection.json";
+  const auto text = readWholeFile(reflectionPath.string());
+  if (!text) return Error{fmt::format("cannot read '{}'", reflectionPath.string()), {}};
+  Json reflection = Json::parse(*text, nullptr, /*allow_exceptions=*/false);
+  if (reflection.is_discarded()) return Error{fmt::format("'{}' is not valid JSON", reflectionPath.string()), {}};
+  std::map<std::string, std::vector<uint32_t>> spirv;
+  if (reflection.contains("kernels") && reflection["kernels"].is_array()) {
+    for (const Json& k : reflection["kernels"]) {
+      if (!k.contains("world") || !k.contains("spirv") || !k["spirv"].is_string()) continue;
+      const std::filesystem::path file = directory / k["spirv"].get<std::string>();
+      const auto bytes = readWholeFile(file.string());
+      if (!bytes || bytes->empty() || bytes->size() % 4 != 0) {
+        return Error{fmt::format("cannot read SPIR-V '{}' (missing, or not a whole number of words)", file.string()),
+                     {}};
+      }
+      std::vector<uint32_t> words(bytes->size() / 4);
+      std::memcpy(words.data(), bytes->data(), bytes->size());
+      spirv[k["world"].get<std::string>()] = std::move(words);
+    }
+  }
+  auto program = parseReflection(reflection, spirv);
+  if (!program) return Error{fmt::format("{}: {}", reflectionPath.string(), program.error().message), {}};
+  return program;
+}
+
+Expected<VariantProgram> compileProgram(const codegen::GeneratedShader& shader, const graph::Variant& variant) {
+  std::map<std::string, std::vector<uint32_t>> spirv;
+  for (const codegen::Kernel& kernel : shader.kernels) {
+    codegen::SpirvResult result = codegen::compileGlslToSpirv(kernel.stage, kernel.glsl, kernel.world + ".glsl");
+    if (!result.ok()) {
+      return Error{fmt::format("glslang rejected the {} kernel of '{}' (a spirec bug):\n{}", kernel.world,
+                               shader.shader, result.log),
+                   {}};
+    }
+    spirv[kernel.world] = std::move(result.words);
+  }
+  return parseReflection(shader.reflection(variant), spirv);
+}
+
+}  // namespace spire::engine
