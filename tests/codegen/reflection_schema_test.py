@@ -5,7 +5,11 @@ Usage: reflection_schema_test.py SPIREC REPO_ROOT SCRATCH_DIR
 
 Runs SPIREC (from REPO_ROOT, with relative paths) over examples/terrain.spire
 without decisions and with every examples/decisions/*.decisions file, over
-examples/lod_library.spire, and over a small pipeline written into SCRATCH_DIR
+examples/terrain_five_world.spire without decisions and with every
+examples/decisions/five_world/*.decisions file, over
+examples/lod_library.spire, over the engine's test shaders
+tests/data/engine/NAME.spire without decisions and with every
+tests/data/engine/NAME_*.decisions file, and over a small pipeline written into SCRATCH_DIR
 that exercises what the examples do not (bufferImport, bufferExport, hints,
 array and matrix strides, a [Stage] attribute). Every reflection.json written
 is validated against the schema (JSON Schema draft 2020-12) and checked for
@@ -214,13 +218,32 @@ def main(argv):
     with open(synthetic_decisions, "w", encoding="utf-8") as f:
         f.write(SYNTHETIC_DECISIONS)
 
-    runs = [("terrain", ["examples/terrain.spire"])]
-    decisions_dir = os.path.join(root, "examples", "decisions")
-    for name in sorted(os.listdir(decisions_dir)):
-        if name.endswith(".decisions"):
-            runs.append((f"terrain-{name[:-len('.decisions')]}",
-                         ["examples/terrain.spire", "--decisions", f"examples/decisions/{name}"]))
+    def decision_files(directory):
+        """The .decisions files directly in REPO_ROOT/directory, by name."""
+        return sorted(name[:-len(".decisions")] for name in os.listdir(os.path.join(root, directory))
+                      if name.endswith(".decisions"))
+
+    runs = []
+    for case, source, decisions_dir in (("terrain", "examples/terrain.spire", "examples/decisions"),
+                                        ("terrain_five_world", "examples/terrain_five_world.spire",
+                                         "examples/decisions/five_world")):
+        runs.append((case, [source]))
+        for name in decision_files(decisions_dir):
+            runs.append((f"{case}-{name}", [source, "--decisions", f"{decisions_dir}/{name}.decisions"]))
     runs.append(("lod_library", ["examples/lod_library.spire"]))
+    # The engine's test shaders: NAME.spire with each NAME_*.decisions.
+    engine_dir = "tests/data/engine"
+    engine_sources = sorted(name[:-len(".spire")] for name in os.listdir(os.path.join(root, engine_dir))
+                            if name.endswith(".spire"))
+    for source in engine_sources:
+        runs.append((f"engine-{source}", [f"{engine_dir}/{source}.spire"]))
+    for name in decision_files(engine_dir):
+        owners = [source for source in engine_sources if name.startswith(source + "_")]
+        if not owners:
+            print(f"FAIL {engine_dir}/{name}.decisions: no {engine_dir}/NAME.spire for it (NAME_*.decisions)")
+            return 1
+        source = max(owners, key=len)
+        runs.append((f"engine-{name}", [f"{engine_dir}/{source}.spire", "--decisions", f"{engine_dir}/{name}.decisions"]))
     runs.append(("synthetic", [synthetic_spire, "--decisions", synthetic_decisions]))
 
     failures = 0
