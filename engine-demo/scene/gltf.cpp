@@ -2,15 +2,23 @@
 
 #include <tiny_gltf.h>
 
+#include <stb/stb_image.h>
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
+#include <cerrno>
+#include <climits>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <optional>
+#include <stdexcept>
+#include <system_error>
+#include <tuple>
 #include <utility>
 
 namespace spire::scene {
@@ -258,27 +266,74 @@ struct Walker {
   }
 };
 
-}  // namespace
+// tinygltf's image callback. Decoding is deferred to loadGltfImage so that
+// loading meshes decodes no images at all, and because tinygltf hands over a
+// bufferView image without checking the view against its buffer: those bytes
+// are only read later, after that check. Data URIs and external files arrive
+// in correctly sized vectors, so their encoded bytes are kept as they are.
+bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && size > 0) image->image.assign(bytes, bytes + size);
+  return true;
+}
 
-Expected<std::vector<Mesh>> loadGltf(const std::filesystem::path& path) {
-  std::string prefix = "cannot load glTF '" + path.string() + "': ";
+// Parses the file; `prefix` starts every error message.
+Expected<tinygltf::Model> parseModel(const std::filesystem::path& path, const std::string& prefix) {
   // The GLB magic decides the parser, so a binary file with a .gltf
   // extension (or the reverse) still loads.
   char magic[4] = {};
   {
+    errno = 0;
     std::ifstream file(path, std::ios::binary);
-    if (!file) return Error{prefix + "file cannot be opened"};
+    if (!file) return Error{prefix + (errno != 0 ? std::strerror(errno) : "file cannot be opened")};
     file.read(magic, sizeof magic);
   }
   bool binary = std::memcmp(magic, "glTF", 4) == 0;
 
   tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(keepEncodedImage, nullptr);
   tinygltf::Model model;
   std::string error;
   std::string warning;
-  bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path.string())
-                   : loader.LoadASCIIFromFile(&model, &error, &warning, path.string());
-  if (!ok) return Error{prefix + (error.empty() ? "parse failed" : error)};
+  bool ok = false;
+  // tinygltf reports most problems through `error`, but some inputs reach
+  // throwing standard-library calls inside it (vector::at, allocation).
+  try {
+    ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path.string())
+                : loader.LoadASCIIFromFile(&model, &error, &warning, path.string());
+  } catch (const std::exception& exception) {
+    return Error{prefix + exception.what()};
+  }
+  // tinygltf explains some failures (an unreadable external image) only as a warning.
+  if (!ok) return Error{prefix + (!error.empty() ? error : !warning.empty() ? warning : "parse failed")};
+  return model;
+}
+
+// The encoded bytes of a bufferView image, or an error when the view does not
+// lie inside its buffer.
+Expected<std::pair<const unsigned char*, size_t>> bufferViewBytes(const tinygltf::Model& model, int viewIndex) {
+  if (viewIndex < 0 || static_cast<size_t>(viewIndex) >= model.bufferViews.size()) {
+    return Error{"bufferView " + std::to_string(viewIndex) + " is out of range"};
+  }
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(viewIndex)];
+  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model.buffers.size()) {
+    return Error{"bufferView " + std::to_string(viewIndex) + " refers to a missing buffer"};
+  }
+  const std::vector<unsigned char>& data = model.buffers[static_cast<size_t>(view.buffer)].data;
+  // Written so that a huge offset or length cannot wrap around.
+  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) {
+    return Error{"bufferView " + std::to_string(viewIndex) + " reads past the end of its buffer"};
+  }
+  return std::pair{data.data() + view.byteOffset, static_cast<size_t>(view.byteLength)};
+}
+
+}  // namespace
+
+Expected<std::vector<Mesh>> loadGltf(const std::filesystem::path& path) {
+  std::string prefix = "cannot load glTF '" + path.string() + "': ";
+  auto parsed = parseModel(path, prefix);
+  if (!parsed) return Error{parsed.error()};
+  const tinygltf::Model& model = *parsed;
 
   Walker walker{model, {}};
   glm::mat4 identity(1.0f);
@@ -303,6 +358,47 @@ Expected<std::vector<Mesh>> loadGltf(const std::filesystem::path& path) {
   }
   if (walkError) return Error{prefix + *walkError};
   return std::move(walker.meshes);
+}
+
+Expected<Image> loadGltfImage(const std::filesystem::path& path, uint32_t index) {
+  std::string prefix = "cannot load image " + std::to_string(index) + " of glTF '" + path.string() + "': ";
+  auto parsed = parseModel(path, prefix);
+  if (!parsed) return Error{parsed.error()};
+  const tinygltf::Model& model = *parsed;
+  if (index >= model.images.size()) {
+    return Error{prefix + "the file has " + std::to_string(model.images.size()) + " image(s)"};
+  }
+  const tinygltf::Image& source = model.images[index];
+  const unsigned char* bytes = source.image.data();
+  size_t size = source.image.size();
+  if (source.bufferView >= 0) {
+    auto view = bufferViewBytes(model, source.bufferView);
+    if (!view) return Error{prefix + view.error()};
+    std::tie(bytes, size) = *view;
+  } else if (source.image.empty()) {
+    // tinygltf keeps only the URI of an external image it could not read.
+    std::filesystem::path external = path.parent_path() / source.uri;
+    std::error_code ec;
+    std::string reason = std::filesystem::exists(external, ec)
+                             ? "cannot be read"
+                             : std::make_error_code(std::errc::no_such_file_or_directory).message();
+    return Error{prefix + "external image '" + external.string() + "': " + reason};
+  }
+  if (size == 0 || size > static_cast<size_t>(INT_MAX)) {
+    return Error{prefix + "encoded image size " + std::to_string(size) + " is out of range"};
+  }
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+      stbi_load_from_memory(bytes, static_cast<int>(size), &width, &height, &channels, STBI_rgb_alpha),
+      stbi_image_free);
+  if (!pixels) return Error{prefix + "cannot decode: " + stbi_failure_reason()};
+  Image image;
+  image.width = static_cast<uint32_t>(width);
+  image.height = static_cast<uint32_t>(height);
+  image.rgba8.assign(pixels.get(), pixels.get() + static_cast<size_t>(width) * static_cast<size_t>(height) * 4);
+  return image;
 }
 
 }  // namespace spire::scene

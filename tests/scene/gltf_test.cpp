@@ -1,5 +1,6 @@
 #include "scene/gltf.h"
 
+#include "gltf_test_model.h"
 #include "temp_dir.h"
 
 #include <gtest/gtest.h>
@@ -10,111 +11,22 @@
 
 #include <cstring>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 namespace spire::scene {
 namespace {
 
+using testing::addBufferViewImage;
+using testing::addPixelImage;
+using testing::encodePng;
+using testing::makeQuadModel;
+using testing::makeTestPixels;
+using testing::QuadOptions;
 using testing::TempDir;
+using testing::writeModel;
 
 constexpr float kEps = 1e-5f;
-
-struct QuadOptions {
-  bool tangents = false;
-  bool normals = true;
-  int indexType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;  // or -1 for none
-  std::vector<double> translation = {};
-  std::vector<double> rotation = {};  // quaternion x, y, z, w
-  std::vector<double> scale = {};
-};
-
-template <typename T>
-void appendView(tinygltf::Model& model, const std::vector<T>& values, int componentType, int type,
-                size_t count) {
-  tinygltf::Buffer& buffer = model.buffers[0];
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = buffer.data.size();
-  view.byteLength = values.size() * sizeof(T);
-  const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
-  buffer.data.insert(buffer.data.end(), bytes, bytes + view.byteLength);
-  // Keep every following view 4-byte aligned, as glTF requires for floats.
-  buffer.data.resize((buffer.data.size() + 3) / 4 * 4);
-  model.bufferViews.push_back(view);
-  tinygltf::Accessor accessor;
-  accessor.bufferView = static_cast<int>(model.bufferViews.size() - 1);
-  accessor.componentType = componentType;
-  accessor.type = type;
-  accessor.count = count;
-  model.accessors.push_back(accessor);
-}
-
-// The unit quad in the XY plane facing +Z with u along +X and v along +Y, so
-// computed tangents must be +X with handedness +1.
-tinygltf::Model makeQuadModel(const QuadOptions& options, const std::string& bufferUri) {
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.buffers.resize(1);
-  model.buffers[0].uri = bufferUri;
-  tinygltf::Primitive primitive;
-  primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  auto lastAccessor = [&] { return static_cast<int>(model.accessors.size() - 1); };
-
-  appendView(model, std::vector<float>{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, TINYGLTF_COMPONENT_TYPE_FLOAT,
-             TINYGLTF_TYPE_VEC3, 4);
-  model.accessors.back().minValues = {0, 0, 0};  // required for POSITION
-  model.accessors.back().maxValues = {1, 1, 0};
-  primitive.attributes["POSITION"] = lastAccessor();
-  if (options.normals) {
-    appendView(model, std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, TINYGLTF_COMPONENT_TYPE_FLOAT,
-               TINYGLTF_TYPE_VEC3, 4);
-    primitive.attributes["NORMAL"] = lastAccessor();
-  }
-  appendView(model, std::vector<float>{0, 0, 1, 0, 1, 1, 0, 1}, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, 4);
-  primitive.attributes["TEXCOORD_0"] = lastAccessor();
-  if (options.tangents) {
-    // Deliberately -1 handedness: proves the file's tangents are used as-is.
-    appendView(model, std::vector<float>{1, 0, 0, -1, 1, 0, 0, -1, 1, 0, 0, -1, 1, 0, 0, -1},
-               TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, 4);
-    primitive.attributes["TANGENT"] = lastAccessor();
-  }
-  switch (options.indexType) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      appendView(model, std::vector<uint8_t>{0, 1, 2, 0, 2, 3}, options.indexType, TINYGLTF_TYPE_SCALAR, 6);
-      break;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      appendView(model, std::vector<uint16_t>{0, 1, 2, 0, 2, 3}, options.indexType, TINYGLTF_TYPE_SCALAR, 6);
-      break;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-      appendView(model, std::vector<uint32_t>{0, 1, 2, 0, 2, 3}, options.indexType, TINYGLTF_TYPE_SCALAR, 6);
-      break;
-    default:
-      break;
-  }
-  if (options.indexType != -1) primitive.indices = lastAccessor();
-  model.buffers[0].data.shrink_to_fit();
-
-  tinygltf::Mesh mesh;
-  mesh.name = "quad";
-  mesh.primitives.push_back(primitive);
-  model.meshes.push_back(mesh);
-  tinygltf::Node node;
-  node.mesh = 0;
-  node.translation = options.translation;
-  node.rotation = options.rotation;
-  node.scale = options.scale;
-  model.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes = {0};
-  model.scenes.push_back(scene);
-  model.defaultScene = 0;
-  return model;
-}
-
-std::filesystem::path writeModel(const tinygltf::Model& model, const std::filesystem::path& path, bool binary) {
-  tinygltf::TinyGLTF writer;
-  EXPECT_TRUE(writer.WriteGltfSceneToFile(&model, path.string(), false, false, true, binary));
-  return path;
-}
 
 void expectQuad(const Mesh& mesh, glm::vec3 offset = glm::vec3(0.0f)) {
   ASSERT_EQ(mesh.vertices.size(), 4u);
@@ -260,6 +172,127 @@ TEST(GltfTest, OutOfRangeIndexIsAnError) {
   auto meshes = loadGltf(path);
   ASSERT_FALSE(meshes);
   EXPECT_NE(meshes.error().find("out of range"), std::string::npos) << meshes.error();
+}
+
+void expectContains(const std::string& text, const std::string& part) {
+  EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
+}
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(GltfImageTest, BufferViewImagesInGlbByIndex) {
+  TempDir dir;
+  tinygltf::Model model = makeQuadModel({}, "");
+  Image second = makeChecker(4, 2, Rgba8(1, 2, 3, 4), Rgba8(250, 251, 252, 253));
+  addBufferViewImage(model, encodePng(makeTestPixels()));
+  addBufferViewImage(model, encodePng(second));
+  auto path = writeModel(model, dir.path() / "textured.glb", true);
+  auto first = loadGltfImage(path, 0);
+  ASSERT_TRUE(first) << first.error();
+  EXPECT_EQ(first->width, 3u);
+  EXPECT_EQ(first->height, 2u);
+  EXPECT_EQ(first->rgba8, makeTestPixels().rgba8);
+  auto other = loadGltfImage(path, 1);
+  ASSERT_TRUE(other) << other.error();
+  EXPECT_EQ(other->rgba8, second.rgba8);
+  // Images do not get in the way of the meshes.
+  auto meshes = loadGltf(path);
+  ASSERT_TRUE(meshes) << meshes.error();
+  expectQuad(meshes->front());
+}
+
+TEST(GltfImageTest, DataUriImage) {
+  TempDir dir;
+  tinygltf::Model model = makeQuadModel({}, "quad.bin");
+  addPixelImage(model, "pixels", makeTestPixels());
+  auto path = writeModel(model, dir.path() / "quad.gltf", false, true);
+  ASSERT_FALSE(std::filesystem::exists(dir.path() / "pixels.png"));
+  expectContains(readText(path), "data:image/png;base64,");
+  auto image = loadGltfImage(path, 0);
+  ASSERT_TRUE(image) << image.error();
+  EXPECT_EQ(image->width, 3u);
+  EXPECT_EQ(image->rgba8, makeTestPixels().rgba8);
+}
+
+TEST(GltfImageTest, ExternalImage) {
+  TempDir dir;
+  tinygltf::Model model = makeQuadModel({}, "quad.bin");
+  addPixelImage(model, "pixels", makeTestPixels());
+  auto path = writeModel(model, dir.path() / "quad.gltf", false, false);
+  ASSERT_TRUE(std::filesystem::exists(dir.path() / "pixels.png"));
+  auto image = loadGltfImage(path, 0);
+  ASSERT_TRUE(image) << image.error();
+  EXPECT_EQ(image->rgba8, makeTestPixels().rgba8);
+}
+
+TEST(GltfImageTest, MissingExternalImageNamesItsPath) {
+  TempDir dir;
+  tinygltf::Model model = makeQuadModel({}, "quad.bin");
+  addPixelImage(model, "pixels", makeTestPixels());
+  auto path = writeModel(model, dir.path() / "quad.gltf", false, false);
+  std::filesystem::remove(dir.path() / "pixels.png");
+  auto image = loadGltfImage(path, 0);
+  ASSERT_FALSE(image);
+  expectContains(image.error(), (dir.path() / "pixels.png").string());
+  expectContains(image.error(), "No such file or directory");
+  // The meshes of the same file still load.
+  EXPECT_TRUE(loadGltf(path));
+}
+
+TEST(GltfImageTest, MissingFileNamesPathAndReason) {
+  TempDir dir;
+  auto path = dir.path() / "missing.glb";
+  auto image = loadGltfImage(path, 0);
+  ASSERT_FALSE(image);
+  expectContains(image.error(), path.string());
+  expectContains(image.error(), "No such file or directory");
+}
+
+TEST(GltfImageTest, IndexPastTheImagesIsAnError) {
+  TempDir dir;
+  tinygltf::Model model = makeQuadModel({}, "");
+  addBufferViewImage(model, encodePng(makeTestPixels()));
+  auto path = writeModel(model, dir.path() / "textured.glb", true);
+  auto image = loadGltfImage(path, 1);
+  ASSERT_FALSE(image);
+  expectContains(image.error(), path.string());
+  expectContains(image.error(), "has 1 image");
+}
+
+TEST(GltfImageTest, CorruptImageDataIsAnErrorButMeshesLoad) {
+  TempDir dir;
+  tinygltf::Model model = makeQuadModel({}, "");
+  addBufferViewImage(model, {0x89, 'P', 'N', 'G', 1, 2, 3, 4, 5});
+  auto path = writeModel(model, dir.path() / "textured.glb", true);
+  auto image = loadGltfImage(path, 0);
+  ASSERT_FALSE(image);
+  expectContains(image.error(), path.string());
+  expectContains(image.error(), "cannot decode");
+  EXPECT_TRUE(loadGltf(path));
+}
+
+TEST(GltfImageTest, BufferViewPastItsBufferIsAnError) {
+  TempDir dir;
+  auto path = dir.path() / "short.gltf";
+  std::ofstream(path) << R"({"asset": {"version": "2.0"},
+    "buffers": [{"byteLength": 4, "uri": "data:application/octet-stream;base64,AAAAAA=="}],
+    "bufferViews": [{"buffer": 0, "byteLength": 1000000}],
+    "images": [{"bufferView": 0, "mimeType": "image/png"}]})";
+  auto image = loadGltfImage(path, 0);
+  ASSERT_FALSE(image);
+  expectContains(image.error(), "reads past the end");
+}
+
+TEST(GltfImageTest, CorruptFileNamesPath) {
+  TempDir dir;
+  auto path = dir.path() / "corrupt.gltf";
+  std::ofstream(path) << "{ \"images\": [";
+  auto image = loadGltfImage(path, 0);
+  ASSERT_FALSE(image);
+  expectContains(image.error(), path.string());
 }
 
 }  // namespace

@@ -1,0 +1,142 @@
+#include "scene/scene_resources.h"
+
+#include "scene/gltf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+
+namespace spire::scene {
+namespace {
+
+// Generated meshes and textures are bounded so that a mistyped number in a
+// scene file gives an error instead of exhausting memory: 2^24 vertices keep
+// every index well inside uint32_t, and 16384 texels per side is the largest
+// image dimension lavapipe (and most desktop GPUs) accept.
+constexpr uint64_t kMaxGeneratedVertices = uint64_t{1} << 24;
+constexpr uint32_t kMaxTextureSize = 16384;
+// Octave k has 8 * 2^k noise cells across the texture: from octave 12 on they
+// are finer than the texels of the largest texture, so more than 16 octaves
+// only cost time.
+constexpr uint32_t kMaxOctaves = 16;
+
+uint8_t toUnorm8(float value) {
+  if (!(value > 0.0F)) return 0;  // also maps NaN to 0
+  return static_cast<uint8_t>(std::lround(std::min(value, 1.0F) * 255.0F));
+}
+
+Rgba8 toColor8(const glm::vec4& color) {
+  return {toUnorm8(color.r), toUnorm8(color.g), toUnorm8(color.b), toUnorm8(color.a)};
+}
+
+std::string meshPrefix(const MeshDesc& desc) { return "mesh '" + desc.name + "': "; }
+
+std::optional<std::string> checkGrid(const MeshDesc& desc, uint64_t vertices) {
+  if (!std::isfinite(desc.size) || desc.size <= 0.0F) return "size must be a positive finite number";
+  if (vertices > kMaxGeneratedVertices) {
+    return "resolution " + std::to_string(desc.resolution) + " gives more than " +
+           std::to_string(kMaxGeneratedVertices) + " vertices";
+  }
+  return std::nullopt;
+}
+
+// All primitives of the file in one mesh, their indices rebased onto the
+// concatenated vertex array.
+Expected<Mesh> mergeGltf(const MeshDesc& desc) {
+  auto parts = loadGltf(desc.file);
+  if (!parts) return Error{parts.error()};
+  if (parts->empty()) return Error{"glTF '" + desc.file.string() + "' has no triangle meshes in its scene"};
+  Mesh merged;
+  merged.name = desc.name;
+  for (Mesh& part : *parts) {
+    size_t base = merged.vertices.size();
+    if (part.vertices.size() > std::numeric_limits<uint32_t>::max() - base) {
+      return Error{"glTF '" + desc.file.string() + "' has more vertices than 32-bit indices can address"};
+    }
+    merged.vertices.insert(merged.vertices.end(), part.vertices.begin(), part.vertices.end());
+    for (uint32_t index : part.indices) merged.indices.push_back(index + static_cast<uint32_t>(base));
+  }
+  return merged;
+}
+
+std::optional<std::string> checkProcedural(const TextureDesc& desc) {
+  if (desc.size == 0 || desc.size > kMaxTextureSize) {
+    return "size " + std::to_string(desc.size) + " is outside [1, " + std::to_string(kMaxTextureSize) + "]";
+  }
+  if (desc.kind == TextureKind::Noise && desc.octaves > kMaxOctaves) {
+    return "octaves " + std::to_string(desc.octaves) + " is more than " + std::to_string(kMaxOctaves);
+  }
+  if (desc.kind == TextureKind::NormalMap && !std::isfinite(desc.strength)) {
+    return std::string("strength must be a finite number");
+  }
+  return std::nullopt;
+}
+
+Image colorizeNoise(Image noise, const glm::vec4& color, const glm::vec4& color2) {
+  for (size_t texel = 0; texel < noise.rgba8.size(); texel += 4) {
+    float v = static_cast<float>(noise.rgba8[texel]) / 255.0F;
+    glm::vec4 mixed = color2 + (color - color2) * v;
+    Rgba8 out = toColor8(mixed);
+    for (size_t c = 0; c < 4; ++c) noise.rgba8[texel + c] = out[static_cast<glm::length_t>(c)];
+  }
+  return noise;
+}
+
+}  // namespace
+
+Expected<Mesh> buildMesh(const MeshDesc& desc) {
+  Mesh mesh;
+  uint64_t gridVertices = (uint64_t{desc.resolution} + 1) * (uint64_t{desc.resolution} + 1);
+  switch (desc.kind) {
+    case MeshKind::Terrain:
+      if (auto error = checkGrid(desc, gridVertices)) return Error{meshPrefix(desc) + *error};
+      if (!std::isfinite(desc.height)) return Error{meshPrefix(desc) + "height must be a finite number"};
+      mesh = makeTerrain(desc.size, desc.resolution, desc.height, desc.seed);
+      break;
+    case MeshKind::Plane:
+      if (auto error = checkGrid(desc, gridVertices)) return Error{meshPrefix(desc) + *error};
+      mesh = makePlane(desc.size, desc.resolution);
+      break;
+    case MeshKind::Sphere: {
+      if (!std::isfinite(desc.radius) || desc.radius <= 0.0F) {
+        return Error{meshPrefix(desc) + "radius must be a positive finite number"};
+      }
+      uint64_t vertices = (uint64_t{desc.rings} + 1) * (uint64_t{desc.segments} + 1);
+      if (vertices > kMaxGeneratedVertices) {
+        return Error{meshPrefix(desc) + "rings x segments gives more than " + std::to_string(kMaxGeneratedVertices) +
+                     " vertices"};
+      }
+      mesh = makeSphere(desc.radius, desc.rings, desc.segments);
+      break;
+    }
+    case MeshKind::Gltf:
+      return mergeGltf(desc);
+  }
+  mesh.name = desc.name;
+  return mesh;
+}
+
+Expected<Image> buildTexture(const TextureDesc& desc) {
+  if (desc.kind != TextureKind::File && desc.kind != TextureKind::Gltf) {
+    if (auto error = checkProcedural(desc)) return Error{"texture '" + desc.name + "': " + *error};
+  }
+  switch (desc.kind) {
+    case TextureKind::File:
+      return loadImage(desc.file);
+    case TextureKind::Gltf:
+      return loadGltfImage(desc.file, desc.image);
+    case TextureKind::Noise:
+      return colorizeNoise(makeNoise(desc.size, desc.seed, desc.octaves), desc.color, desc.color2);
+    case TextureKind::Checker:
+      return makeChecker(desc.size, desc.cells, toColor8(desc.color), toColor8(desc.color2));
+    case TextureKind::NormalMap:
+      return makeNormalMap(desc.size, desc.seed, desc.strength);
+    case TextureKind::Solid:
+      return makeSolid(desc.size, toColor8(desc.color));
+  }
+  return Error{"texture '" + desc.name + "': unknown kind"};
+}
+
+}  // namespace spire::scene

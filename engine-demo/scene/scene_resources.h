@@ -1,0 +1,27 @@
+#pragma once
+
+// Turns the scene file's mesh and texture descriptions into CPU-side data,
+// ready for upload. Errors name the file (or the description) and the reason;
+// the caller reports them at the description's source range.
+
+#include "scene/expected.h"
+#include "scene/mesh.h"
+#include "scene/scene_file.h"
+#include "scene/texture.h"
+
+namespace spire::scene {
+
+// Terrain, sphere and plane come from the procedural generators. A glTF file
+// becomes a single Mesh holding every primitive of its scene (node transforms
+// applied, tangents as loadGltf computes them): an instance in this engine has
+// one shader and one material, so per-primitive materials of the file are not
+// kept apart. The mesh is named after the description.
+Expected<Mesh> buildMesh(const MeshDesc& desc);
+
+// File: loadImage. Gltf: image `desc.image` of the file. Noise: makeNoise,
+// each texel's value v in [0, 1] then becomes mix(color2, color, v) in every
+// channel, alpha included. Checker, NormalMap, Solid: their generators with
+// the description's colors. Colors are rounded to the nearest 8-bit value.
+Expected<Image> buildTexture(const TextureDesc& desc);
+
+}  // namespace spire::scene

@@ -1,0 +1,255 @@
+#include "scene/scene_resources.h"
+
+#include "gltf_test_model.h"
+#include "temp_dir.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <string>
+
+namespace spire::scene {
+namespace {
+
+using testing::addBufferViewImage;
+using testing::encodePng;
+using testing::makeQuadModel;
+using testing::makeTestPixels;
+using testing::TempDir;
+using testing::writeModel;
+
+void expectContains(const std::string& text, const std::string& part) {
+  EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
+}
+
+void expectSameMesh(const Mesh& a, const Mesh& b) {
+  ASSERT_EQ(a.vertices.size(), b.vertices.size());
+  EXPECT_EQ(a.indices, b.indices);
+  for (size_t i = 0; i < a.vertices.size(); ++i) {
+    EXPECT_EQ(a.vertices[i].position, b.vertices[i].position) << i;
+    EXPECT_EQ(a.vertices[i].normal, b.vertices[i].normal) << i;
+    EXPECT_EQ(a.vertices[i].uv, b.vertices[i].uv) << i;
+    EXPECT_EQ(a.vertices[i].tangent, b.vertices[i].tangent) << i;
+  }
+}
+
+MeshDesc meshDesc(MeshKind kind) {
+  MeshDesc desc;
+  desc.name = "ground";
+  desc.kind = kind;
+  desc.size = 4.0F;
+  desc.resolution = 8;
+  desc.height = 0.5F;
+  desc.seed = 7;
+  desc.radius = 2.0F;
+  desc.rings = 6;
+  desc.segments = 9;
+  return desc;
+}
+
+TextureDesc textureDesc(TextureKind kind) {
+  TextureDesc desc;
+  desc.name = "albedo";
+  desc.kind = kind;
+  desc.size = 16;
+  desc.seed = 3;
+  desc.octaves = 4;
+  desc.cells = 4;
+  desc.strength = 1.5F;
+  desc.color = glm::vec4(1.0F, 0.0F, 0.5F, 1.0F);
+  desc.color2 = glm::vec4(0.0F, 1.0F, 0.0F, 0.5F);
+  return desc;
+}
+
+Image build(const TextureDesc& desc) {
+  auto image = buildTexture(desc);
+  EXPECT_TRUE(image) << image.error();
+  return image ? std::move(image).value() : Image{};
+}
+
+TEST(SceneResourcesTest, ProceduralMeshesComeFromTheGenerators) {
+  auto terrain = buildMesh(meshDesc(MeshKind::Terrain));
+  ASSERT_TRUE(terrain) << terrain.error();
+  EXPECT_EQ(terrain->name, "ground");
+  expectSameMesh(*terrain, makeTerrain(4.0F, 8, 0.5F, 7));
+
+  auto plane = buildMesh(meshDesc(MeshKind::Plane));
+  ASSERT_TRUE(plane) << plane.error();
+  expectSameMesh(*plane, makePlane(4.0F, 8));
+
+  auto sphere = buildMesh(meshDesc(MeshKind::Sphere));
+  ASSERT_TRUE(sphere) << sphere.error();
+  expectSameMesh(*sphere, makeSphere(2.0F, 6, 9));
+}
+
+TEST(SceneResourcesTest, TerrainIsDeterministicPerSeed) {
+  MeshDesc desc = meshDesc(MeshKind::Terrain);
+  auto first = buildMesh(desc);
+  auto second = buildMesh(desc);
+  ASSERT_TRUE(first && second);
+  expectSameMesh(*first, *second);
+  desc.seed = 8;
+  auto reseeded = buildMesh(desc);
+  ASSERT_TRUE(reseeded);
+  EXPECT_NE(reseeded->vertices[10].position, first->vertices[10].position);
+}
+
+TEST(SceneResourcesTest, GltfPrimitivesAreMergedIntoOneMesh) {
+  TempDir dir;
+  tinygltf::Model model = makeQuadModel({}, "");
+  // A second instance of the quad, moved along +Z.
+  tinygltf::Node moved;
+  moved.mesh = 0;
+  moved.translation = {0, 0, 2};
+  model.nodes.push_back(moved);
+  model.scenes[0].nodes.push_back(1);
+  MeshDesc desc = meshDesc(MeshKind::Gltf);
+  desc.file = writeModel(model, dir.path() / "quads.glb", true);
+
+  auto mesh = buildMesh(desc);
+  ASSERT_TRUE(mesh) << mesh.error();
+  EXPECT_EQ(mesh->name, "ground");
+  ASSERT_EQ(mesh->vertices.size(), 8u);
+  EXPECT_EQ(mesh->indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7}));
+  EXPECT_EQ(mesh->vertices[6].position, glm::vec3(1, 1, 2));
+  for (const Vertex& v : mesh->vertices) {
+    // Tangents computed by loadGltf: the quad's u runs along +X.
+    EXPECT_NEAR(glm::distance(glm::vec3(v.tangent), glm::vec3(1, 0, 0)), 0.0F, 1e-5F);
+  }
+}
+
+TEST(SceneResourcesTest, MeshErrors) {
+  TempDir dir;
+  MeshDesc gltf = meshDesc(MeshKind::Gltf);
+  gltf.file = dir.path() / "missing.glb";
+  auto missing = buildMesh(gltf);
+  ASSERT_FALSE(missing);
+  expectContains(missing.error(), gltf.file.string());
+  expectContains(missing.error(), "No such file or directory");
+
+  tinygltf::Model empty;
+  empty.asset.version = "2.0";
+  gltf.file = writeModel(empty, dir.path() / "empty.gltf", false);
+  auto noMeshes = buildMesh(gltf);
+  ASSERT_FALSE(noMeshes);
+  expectContains(noMeshes.error(), "no triangle meshes");
+
+  MeshDesc huge = meshDesc(MeshKind::Terrain);
+  huge.resolution = 100000;
+  auto tooBig = buildMesh(huge);
+  ASSERT_FALSE(tooBig);
+  expectContains(tooBig.error(), "mesh 'ground': resolution 100000");
+
+  MeshDesc sphere = meshDesc(MeshKind::Sphere);
+  sphere.radius = -1.0F;
+  auto negative = buildMesh(sphere);
+  ASSERT_FALSE(negative);
+  expectContains(negative.error(), "radius");
+
+  MeshDesc plane = meshDesc(MeshKind::Plane);
+  plane.size = std::nanf("");
+  EXPECT_FALSE(buildMesh(plane));
+}
+
+TEST(SceneResourcesTest, SolidCheckerAndNormalMapUseTheirGenerators) {
+  TextureDesc solid = textureDesc(TextureKind::Solid);
+  // 0.5 * 255 = 127.5 rounds up; out-of-range components clamp.
+  solid.color = glm::vec4(0.5F, 0.25F, 2.0F, -1.0F);
+  EXPECT_EQ(build(solid).rgba8, makeSolid(16, Rgba8(128, 64, 255, 0)).rgba8);
+
+  EXPECT_EQ(build(textureDesc(TextureKind::Checker)).rgba8,
+            makeChecker(16, 4, Rgba8(255, 0, 128, 255), Rgba8(0, 255, 0, 128)).rgba8);
+  EXPECT_EQ(build(textureDesc(TextureKind::NormalMap)).rgba8, makeNormalMap(16, 3, 1.5F).rgba8);
+}
+
+TEST(SceneResourcesTest, NoiseMixesTheTwoColors) {
+  TextureDesc desc = textureDesc(TextureKind::Noise);
+  Image colored = build(desc);
+  Image grey = makeNoise(16, 3, 4);
+  ASSERT_EQ(colored.rgba8.size(), grey.rgba8.size());
+  for (size_t texel = 0; texel < grey.rgba8.size(); texel += 4) {
+    int v = grey.rgba8[texel];
+    // mix(color2, color, v): red follows v, green its complement; blue runs
+    // from 0 to 0.5 and alpha from 0.5 to 1, rounded to the nearest step (ties
+    // either way, as float arithmetic lands them).
+    EXPECT_EQ(colored.rgba8[texel], v);
+    EXPECT_EQ(colored.rgba8[texel + 1], 255 - v);
+    EXPECT_LE(std::abs(colored.rgba8[texel + 2] - v * 0.5), 0.5);
+    EXPECT_LE(std::abs(colored.rgba8[texel + 3] - (127.5 + v * 0.5)), 0.5);
+  }
+  // The default colors (white over opaque black) leave the grey noise as it is.
+  TextureDesc plain = desc;
+  plain.color = TextureDesc{}.color;
+  plain.color2 = TextureDesc{}.color2;
+  EXPECT_EQ(build(plain).rgba8, grey.rgba8);
+}
+
+TEST(SceneResourcesTest, ProceduralTexturesAreDeterministic) {
+  for (TextureKind kind : {TextureKind::Noise, TextureKind::Checker, TextureKind::NormalMap, TextureKind::Solid}) {
+    TextureDesc desc = textureDesc(kind);
+    Image first = build(desc);
+    EXPECT_EQ(first.width, 16u);
+    EXPECT_EQ(first.height, 16u);
+    EXPECT_EQ(build(desc).rgba8, first.rgba8);
+  }
+  TextureDesc reseeded = textureDesc(TextureKind::Noise);
+  reseeded.seed = 4;
+  EXPECT_NE(build(reseeded).rgba8, build(textureDesc(TextureKind::Noise)).rgba8);
+}
+
+TEST(SceneResourcesTest, FileAndGltfTextures) {
+  TempDir dir;
+  TextureDesc file = textureDesc(TextureKind::File);
+  file.file = dir.path() / "pixels.png";
+  ASSERT_TRUE(writePng(file.file, makeTestPixels()));
+  EXPECT_EQ(build(file).rgba8, makeTestPixels().rgba8);
+
+  tinygltf::Model model = makeQuadModel({}, "");
+  addBufferViewImage(model, encodePng(makeSolid(2, Rgba8(9, 8, 7, 6))));
+  addBufferViewImage(model, encodePng(makeTestPixels()));
+  TextureDesc gltf = textureDesc(TextureKind::Gltf);
+  gltf.file = writeModel(model, dir.path() / "textured.glb", true);
+  gltf.image = 1;
+  Image image = build(gltf);
+  EXPECT_EQ(image.width, 3u);
+  EXPECT_EQ(image.rgba8, makeTestPixels().rgba8);
+}
+
+TEST(SceneResourcesTest, TextureErrors) {
+  TempDir dir;
+  TextureDesc file = textureDesc(TextureKind::File);
+  file.file = dir.path() / "missing.png";
+  auto missing = buildTexture(file);
+  ASSERT_FALSE(missing);
+  expectContains(missing.error(), file.file.string());
+
+  TextureDesc gltf = textureDesc(TextureKind::Gltf);
+  gltf.file = dir.path() / "missing.gltf";
+  auto noFile = buildTexture(gltf);
+  ASSERT_FALSE(noFile);
+  expectContains(noFile.error(), gltf.file.string());
+
+  gltf.file = writeModel(makeQuadModel({}, ""), dir.path() / "untextured.glb", true);
+  auto noImage = buildTexture(gltf);
+  ASSERT_FALSE(noImage);
+  expectContains(noImage.error(), "has 0 image");
+
+  TextureDesc empty = textureDesc(TextureKind::Checker);
+  empty.size = 0;
+  auto zero = buildTexture(empty);
+  ASSERT_FALSE(zero);
+  expectContains(zero.error(), "texture 'albedo': size 0");
+
+  TextureDesc octaves = textureDesc(TextureKind::Noise);
+  octaves.octaves = 1000;
+  EXPECT_FALSE(buildTexture(octaves));
+
+  TextureDesc strength = textureDesc(TextureKind::NormalMap);
+  strength.strength = INFINITY;
+  EXPECT_FALSE(buildTexture(strength));
+}
+
+}  // namespace
+}  // namespace spire::scene
