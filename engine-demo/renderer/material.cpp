@@ -64,6 +64,7 @@ class MaterialResolver {
   void checkInput(const KernelProgram& kernel, const KernelInput& input) {
     const WorldPass* pass = findWorldPass(input.from);
     if (!pass) {
+      used_.insert(input.component);  // the binding is fine; the world is the problem
       diags_.reportOnce(DiagCode::E7104, shaderRange(),
                         fmt::format("'{}' imports '{}' from world '{}', which this engine does not implement",
                                     program_.shader, input.component, input.from));

@@ -182,7 +182,7 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
     auto material = resolveMaterial(programs[i], instance, lookup, diags_);
     prepared.materials.push_back(material ? std::move(*material) : MaterialValues{});
   }
-  if (diags_.errorCount() != errorsBefore) return Error{"the scene's instances do not match their shaders", {}, {}};
+  if (diags_.errorCount() != errorsBefore) return Error{"nothing was rendered: the scene has errors", {}, {}};
 
   size_t colorTargets = 0;
   for (const VariantProgram& program : programs) {

@@ -4,11 +4,6 @@
 // warning or error. Without a usable Vulkan driver they skip with the reason.
 #include <gtest/gtest.h>
 
-#if defined(__SANITIZE_ADDRESS__)
-#include <dlfcn.h>
-#include <link.h>
-#endif
-
 #include <algorithm>
 #include <array>
 #include <cstring>
@@ -17,6 +12,7 @@
 #include <vector>
 
 #include "codegen/spirv_compiler.h"
+#include "engine/device_fixture.h"
 #include "vk/buffer.h"
 #include "vk/context.h"
 #include "vk/handle.h"
@@ -110,65 +106,9 @@ ContextOptions options(bool validation, std::string deviceFilter = {}) {
   return result;
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-// The loader dlcloses the driver (lavapipe, with LLVM) in vkDestroyInstance.
-// Heap blocks the driver keeps in its globals then look unreferenced, and
-// LeakSanitizer reports them at exit from "<unknown module>". Pinning every
-// loaded library (RTLD_NODELETE) keeps those globals mapped and visible.
-void pinLoadedLibraries() {
-  std::vector<std::string> names;
-  dl_iterate_phdr(
-      [](dl_phdr_info* info, size_t /*size*/, void* out) {
-        if (info->dlpi_name != nullptr && info->dlpi_name[0] != '\0') {
-          static_cast<std::vector<std::string>*>(out)->push_back(info->dlpi_name);
-        }
-        return 0;
-      },
-      &names);
-  // dlopen outside the iteration, which holds the loader's lock.
-  for (const std::string& name : names) dlopen(name.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
-}
-#endif
+using DeviceTest = testing::DeviceTest;
 
-// Failures that mean "no usable Vulkan here" rather than a bug in the library.
-bool vulkanUnavailable(const VkError& error) {
-  return error.result == VK_ERROR_INCOMPATIBLE_DRIVER || error.result == VK_ERROR_INITIALIZATION_FAILED ||
-         error.result == VK_ERROR_LAYER_NOT_PRESENT;
-}
-
-class VkDeviceTest : public ::testing::Test {
- protected:
-  // One context for the suite: instance and device creation with validation
-  // dominate the run time on lavapipe.
-  static void SetUpTestSuite() {
-    context_.emplace(Context::create(options(true)));
-#if defined(__SANITIZE_ADDRESS__)
-    pinLoadedLibraries();
-#endif
-  }
-  static void TearDownTestSuite() { context_.reset(); }
-
-  void SetUp() override {
-    if (!context_->ok()) {
-      if (vulkanUnavailable(context_->error())) GTEST_SKIP() << "no Vulkan: " << context_->error().message();
-      FAIL() << context_->error().message();
-    }
-    ctx().clearValidationMessages();
-  }
-
-  void TearDown() override {
-    if (!context_->ok()) return;
-    for (const std::string& message : ctx().validationMessages()) ADD_FAILURE() << message;
-  }
-
-  static Context& ctx() { return context_->value(); }
-
-  static std::optional<Expected<Context>> context_;
-};
-
-std::optional<Expected<Context>> VkDeviceTest::context_;
-
-TEST_F(VkDeviceTest, CreatesContextOnASupportedDevice) {
+TEST_F(DeviceTest, CreatesContextOnASupportedDevice) {
   ASSERT_FALSE(ctx().physicalDevices().empty());
   const PhysicalDeviceInfo& device = ctx().selectedDevice();
   EXPECT_FALSE(device.name.empty());
@@ -187,7 +127,7 @@ TEST_F(VkDeviceTest, CreatesContextOnASupportedDevice) {
 
 // Guards the "no validation message" checks against a silent messenger: a
 // known-invalid call must be recorded.
-TEST_F(VkDeviceTest, RecordsValidationErrors) {
+TEST_F(DeviceTest, RecordsValidationErrors) {
   VkSamplerCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
   info.anisotropyEnable = VK_TRUE;  // the samplerAnisotropy feature is not enabled
@@ -202,14 +142,14 @@ TEST_F(VkDeviceTest, RecordsValidationErrors) {
   ctx().clearValidationMessages();
 }
 
-TEST_F(VkDeviceTest, UnknownDeviceFilterIsAnError) {
+TEST_F(DeviceTest, UnknownDeviceFilterIsAnError) {
   auto other = Context::create(options(false, "no-such-device"));
   ASSERT_FALSE(other.ok());
   EXPECT_NE(other.error().message().find("no device matches 'no-such-device'"), std::string::npos)
       << other.error().message();
 }
 
-TEST_F(VkDeviceTest, RejectsBadInputWithoutCrashing) {
+TEST_F(DeviceTest, RejectsBadInputWithoutCrashing) {
   auto buffer = Buffer::create(ctx(), 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   ASSERT_TRUE(buffer.ok()) << buffer.error().message();
   const std::array<uint32_t, 8> words{};
@@ -220,7 +160,7 @@ TEST_F(VkDeviceTest, RejectsBadInputWithoutCrashing) {
   EXPECT_FALSE(Buffer::create(ctx(), 0, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT).ok());
 }
 
-TEST_F(VkDeviceTest, RendersTriangleWithDepthIntoOffscreenImage) {
+TEST_F(DeviceTest, RendersTriangleWithDepthIntoOffscreenImage) {
   constexpr uint32_t kSize = 64;
   const auto vsWords = compile(ShaderStage::Vertex, R"(#version 450
 layout(location = 0) in vec2 inPosition;
@@ -301,7 +241,7 @@ void main() { outColor = pc.color; }
   EXPECT_GE(*elapsed, 0.0);
 }
 
-TEST_F(VkDeviceTest, ComputeWritesStorageBuffer) {
+TEST_F(DeviceTest, ComputeWritesStorageBuffer) {
   constexpr uint32_t kCount = 256;
   const auto words = compile(ShaderStage::Compute, R"(#version 450
 layout(local_size_x = 64) in;
@@ -356,7 +296,7 @@ void main() {
 
 // Clears every color format the engine uses and reads the texel back, which
 // checks the texel sizes and the transfer path per format.
-TEST_F(VkDeviceTest, ClearsAndReadsBackEveryColorFormat) {
+TEST_F(DeviceTest, ClearsAndReadsBackEveryColorFormat) {
   const VkClearColorValue clear{{0.25F, 0.5F, 0.75F, 1.0F}};
   struct Case {
     VkFormat format;

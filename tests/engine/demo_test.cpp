@@ -1,0 +1,84 @@
+// spire-demo run in-process, as a user runs it: golden diagnostics for scenes
+// that do not fit their shaders (tests/golden/demo/NAME.json against
+// NAME.expected, the exact stderr; SPIRE_UPDATE_GOLDENS=1 rewrites them), and
+// the main job's outputs on a small terrain scene.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "demo/demo.h"
+#include "engine/device_fixture.h"
+#include "scene/texture.h"
+
+namespace spire::demo {
+namespace {
+
+namespace fs = std::filesystem;
+
+class DemoTest : public vk::testing::DeviceTest {
+ protected:
+  fs::path outputDir() const {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    return fs::temp_directory_path() / (std::string("spire_demo_") + info->name() + "_" + std::to_string(::getpid()));
+  }
+};
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST_F(DemoTest, SceneErrorsMatchGoldenDiagnostics) {
+  std::vector<fs::path> scenes;
+  for (const auto& entry : fs::directory_iterator("tests/golden/demo")) {
+    if (entry.path().extension() == ".json") scenes.push_back(entry.path());
+  }
+  std::sort(scenes.begin(), scenes.end());
+  ASSERT_GE(scenes.size(), 5U);
+  for (const fs::path& scene : scenes) {
+    SCOPED_TRACE(scene.string());
+    std::ostringstream out;
+    std::ostringstream err;
+    const fs::path dir = outputDir();
+    EXPECT_EQ(runDemo({scene.string(), "--validation", "-o", dir.string()}, out, err), 1);
+    EXPECT_FALSE(fs::exists(dir)) << "a failed run must not write outputs";
+    const fs::path expected = fs::path(scene).replace_extension(".expected");
+    if (std::getenv("SPIRE_UPDATE_GOLDENS")) {
+      std::ofstream(expected, std::ios::binary) << err.str();
+      continue;
+    }
+    EXPECT_EQ(err.str(), readFile(expected));
+  }
+}
+
+TEST_F(DemoTest, MainJobWritesImagesReportAndTheTrade) {
+  const fs::path dir = outputDir();
+  std::ostringstream out;
+  std::ostringstream err;
+  // The terrain scene at a small size: the same variants, worlds and bakes.
+  ASSERT_EQ(runDemo({"examples/scenes/terrain.json", "--validation", "--frames", "2", "--warmup", "1", "--bake-size",
+                     "256", "-o", dir.string()},
+                    out, err),
+            0)
+      << err.str();
+  for (const char* name : {"full_quality", "baked_albedo", "baked_vertex_normal", "comparison"}) {
+    auto image = scene::loadImage(dir / (std::string(name) + ".png"));
+    ASSERT_TRUE(image) << name;
+    EXPECT_GT(image->width, 0U);
+  }
+  const std::string report = readFile(dir / "report.md");
+  EXPECT_NE(report.find("| baked_vertex_normal |"), std::string::npos) << report;
+  const std::string table = out.str();
+  EXPECT_NE(table.find("baked_albedo"), std::string::npos) << table;
+  EXPECT_NE(table.find("PrebakeTex"), std::string::npos) << table;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace spire::demo

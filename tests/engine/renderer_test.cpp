@@ -1,0 +1,276 @@
+// End-to-end tests of the renderer (engine-demo/renderer) on the device the
+// loader finds (lavapipe on CI) with validation on: scenes the tests write
+// themselves, rendered through every world the engine implements. Each image
+// test checks its content independently (a flat color's exact value, a bake
+// against the unbaked variant) as well as against a golden PNG, so neither a
+// black image nor a drifting golden can pass.
+//
+// Goldens live in tests/golden/images; after an intended change run with
+// SPIRE_UPDATE_GOLDENS=1 and review the new PNGs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include "driver/spirec.h"
+#include "engine/device_fixture.h"
+#include "measure/image_metrics.h"
+#include "renderer/scene_renderer.h"
+#include "scene/texture.h"
+#include "support/diagnostic_renderer.h"
+
+namespace spire::engine {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kDataDir = fs::path(SPIRE_SOURCE_DIR) / "tests/data/engine";
+
+// A 96x64 view straight down onto a 2x2 plane at the origin, which then
+// covers the middle of the image.
+std::string planeScene(const std::string& source, const std::string& shader, const std::string& material,
+                       const std::string& extra = "") {
+  return R"({
+  "resolution": [96, 64], "frames": 2, "warmupFrames": 1,
+  "clearColor": [0, 0, 0, 1],
+  "camera": {"fovY": 60, "views": [{"position": [0, 2.2, 0.01], "target": [0, 0, 0]}]},
+  "meshes": {"plane": {"type": "plane", "size": 2, "resolution": 4},
+             "ball": {"type": "sphere", "radius": 0.9, "rings": 12, "segments": 24}},
+  "textures": {"noise": {"type": "noise", "size": 32, "seed": 9, "octaves": 3},
+               "checker": {"type": "checker", "size": 64, "cells": 4, "color": [0.9, 0.2, 0.1], "color2": [0.1, 0.3, 0.8]}},
+  "instances": [{"mesh": "plane", "source": ")" +
+         source + R"(", "shader": ")" + shader + R"(", "material": )" + material + "}]" + extra + "\n}\n";
+}
+
+class RendererTest : public vk::testing::DeviceTest {
+ protected:
+  struct Rendered {
+    Capture capture;
+    PreparedScene prepared;
+    std::string diagnostics;
+  };
+
+  // Loads `json` as if it were a file in tests/data/engine and renders view 0
+  // with `decisions` applied to every instance.
+  std::optional<Rendered> render(const std::string& json, const std::optional<fs::path>& decisions,
+                                 TextureBakeOptions bakeOptions = {}) {
+    sources_ = std::make_unique<SourceManager>();
+    diags_ = std::make_unique<DiagnosticList>();
+    scene_ = scene::parseSceneFile("test_scene.json", json, kDataDir, *sources_, *diags_);
+    if (!scene_) {
+      ADD_FAILURE() << renderDiagnostics(*sources_, *diags_, DiagnosticFormat::Text);
+      return std::nullopt;
+    }
+    renderer_ = std::make_unique<SceneRenderer>(ctx(), *scene_, *diags_, bakeOptions);
+    auto programs = renderer_->compile(decisions ? std::optional(kDataDir / *decisions) : std::nullopt);
+    if (!programs) {
+      ADD_FAILURE() << programs.error().message << "\n" << programs.error().details;
+      return std::nullopt;
+    }
+    auto prepared = renderer_->prepare(*programs);
+    const std::string diagnostics = renderDiagnostics(*sources_, *diags_, DiagnosticFormat::Text);
+    if (!prepared) {
+      ADD_FAILURE() << prepared.error().message << "\n" << diagnostics;
+      return std::nullopt;
+    }
+    auto capture = renderer_->capture(*prepared, scene_->camera.views.front());
+    if (!capture) {
+      ADD_FAILURE() << capture.error().message;
+      return std::nullopt;
+    }
+    return Rendered{std::move(capture).value(), std::move(prepared).value(), diagnostics};
+  }
+
+  // The error of `test` against `reference` over pixels either covers.
+  static measure::ImageError compare(const Capture& reference, const Capture& test) {
+    std::vector<uint8_t> coverage = reference.coverage;
+    for (size_t i = 0; i < coverage.size(); ++i) coverage[i] |= test.coverage[i];
+    auto error = measure::compareImages(reference.color, test.color, &coverage);
+    EXPECT_TRUE(error) << error.error();
+    return error ? *error : measure::ImageError{};
+  }
+
+  static double coveredFraction(const Capture& capture) {
+    size_t covered = 0;
+    for (uint8_t c : capture.coverage) covered += c;
+    return static_cast<double>(covered) / static_cast<double>(capture.coverage.size());
+  }
+
+  // Mean RGBA over covered pixels.
+  static std::array<double, 4> coveredMean(const Capture& capture) {
+    std::array<double, 4> sum{};
+    size_t count = 0;
+    for (size_t i = 0; i < capture.coverage.size(); ++i) {
+      if (!capture.coverage[i]) continue;
+      for (size_t c = 0; c < 4; ++c) sum[c] += capture.color.rgba[i * 4 + c];
+      ++count;
+    }
+    for (double& s : sum) s /= static_cast<double>(std::max<size_t>(count, 1));
+    return sum;
+  }
+
+  // Compares the 8-bit rendering with tests/golden/images/NAME.png, allowing
+  // `tolerance` (in 8-bit steps) per channel for rasterizer differences.
+  static void expectGolden(const Capture& capture, const std::string& name, int tolerance = 2) {
+    const scene::Image image = measure::toRgba8(capture.color);
+    const fs::path golden = fs::path(SPIRE_SOURCE_DIR) / "tests/golden/images" / (name + ".png");
+    if (std::getenv("SPIRE_UPDATE_GOLDENS")) {
+      ASSERT_TRUE(scene::writePng(golden, image));
+      return;
+    }
+    auto expected = scene::loadImage(golden);
+    ASSERT_TRUE(expected) << expected.error() << "; run with SPIRE_UPDATE_GOLDENS=1";
+    ASSERT_EQ(expected->width, image.width);
+    ASSERT_EQ(expected->height, image.height);
+    size_t differing = 0;
+    for (size_t i = 0; i < image.rgba8.size(); ++i) {
+      if (std::abs(int{image.rgba8[i]} - int{expected->rgba8[i]}) > tolerance) ++differing;
+    }
+    EXPECT_EQ(differing, 0U) << name << ": " << differing << " channels differ by more than " << tolerance;
+  }
+
+  std::unique_ptr<SourceManager> sources_;
+  std::unique_ptr<DiagnosticList> diags_;
+  std::optional<scene::SceneFile> scene_;
+  std::unique_ptr<SceneRenderer> renderer_;
+};
+
+TEST_F(RendererTest, FlatPlaneHasExactlyItsMaterialColor) {
+  const auto rendered = render(planeScene("flat_plane.spire", "FlatPlane", R"({"color": [0.2, 0.4, 0.6, 1.0]})"),
+                               std::nullopt);
+  ASSERT_TRUE(rendered);
+  const double fraction = coveredFraction(rendered->capture);
+  EXPECT_GT(fraction, 0.3);
+  EXPECT_LT(fraction, 0.9);  // the black background is visible around the plane
+  const auto mean = coveredMean(rendered->capture);
+  EXPECT_NEAR(mean[0], 0.2, 1e-6);
+  EXPECT_NEAR(mean[1], 0.4, 1e-6);
+  EXPECT_NEAR(mean[2], 0.6, 1e-6);
+  EXPECT_NEAR(mean[3], 1.0, 1e-6);
+  expectGolden(rendered->capture, "flat_plane");
+  EXPECT_TRUE(rendered->prepared.bakes.empty());
+}
+
+// The baked texture is sampled where the Fragment variant samples the source
+// texture directly, so the two differ by resampling: the error must shrink as
+// the bake resolution grows and stay within a bound proportional to the
+// bake's texel size.
+TEST_F(RendererTest, PrebakeTexMatchesFragmentWithinTexelTolerance) {
+  const std::string scene = planeScene("tex_bake.spire", "TexBake", R"({"colorMap": "noise"})");
+  const auto reference = render(scene, "tex_bake_fragment.decisions");
+  ASSERT_TRUE(reference);
+  EXPECT_TRUE(reference->prepared.bakes.empty());
+  expectGolden(reference->capture, "tex_bake_fragment");
+  double previous = std::numeric_limits<double>::infinity();
+  for (const uint32_t size : {16U, 64U, 256U}) {
+    TextureBakeOptions options;
+    options.defaultSize = size;
+    const auto baked = render(scene, "tex_bake_prebake.decisions", options);
+    ASSERT_TRUE(baked);
+    ASSERT_EQ(baked->prepared.bakes.size(), 1U);
+    EXPECT_EQ(baked->prepared.bakes[0].world, "PrebakeTex");
+    const measure::ImageError error = compare(reference->capture, baked->capture);
+    EXPECT_EQ(error.nanPixels + error.infPixels, 0U);
+    // The noise texture has 32 texels; a bake of `size` texels moves each
+    // lookup by at most half a bake texel, and the texture's value changes by
+    // well under 1 per source texel.
+    EXPECT_LT(error.rmse, 8.0 / size) << "bake size " << size;
+    EXPECT_LT(error.rmse, previous) << "bake size " << size;
+    previous = error.rmse;
+  }
+}
+
+TEST_F(RendererTest, PrebakeUniformEqualsFragmentForAConstantInput) {
+  const std::string scene = planeScene("uniform_bake.spire", "UniformBake", R"({"baseColor": [0.3, 0.5, 0.7, 1.0]})");
+  const auto fragment = render(scene, "uniform_bake_fragment.decisions");
+  ASSERT_TRUE(fragment);
+  const auto prebaked = render(scene, "uniform_bake_prebake.decisions");
+  ASSERT_TRUE(prebaked);
+  ASSERT_EQ(prebaked->prepared.bakes.size(), 1U);
+  EXPECT_EQ(prebaked->prepared.bakes[0].world, "PrebakeUniform");
+  const measure::ImageError error = compare(fragment->capture, prebaked->capture);
+  EXPECT_LT(error.maxError, 1e-6);
+  const auto mean = coveredMean(prebaked->capture);
+  EXPECT_NEAR(mean[0], 0.3 * 0.5 + 0.25, 1e-6);
+  EXPECT_NEAR(mean[1], 0.5 * 0.5 + 0.25, 1e-6);
+  EXPECT_NEAR(mean[2], 0.7 * 0.5 + 0.25, 1e-6);
+  expectGolden(prebaked->capture, "uniform_bake");
+}
+
+// A per-vertex value computed in a compute bake and read back as vertex data
+// interpolates exactly like the same value computed in the vertex shader.
+TEST_F(RendererTest, PrebakeVertexEqualsVertex) {
+  std::string scene = planeScene("vertex_bake.spire", "VertexBake", "{}");
+  scene.replace(scene.find("\"mesh\": \"plane\""), 15, "\"mesh\": \"ball\"");
+  const auto vertex = render(scene, "vertex_bake_vertex.decisions");
+  ASSERT_TRUE(vertex);
+  const auto prebaked = render(scene, "vertex_bake_prebake.decisions");
+  ASSERT_TRUE(prebaked);
+  ASSERT_EQ(prebaked->prepared.bakes.size(), 1U);
+  EXPECT_EQ(prebaked->prepared.bakes[0].world, "PrebakeVertex");
+  EXPECT_GT(coveredFraction(prebaked->capture), 0.2);
+  const measure::ImageError error = compare(vertex->capture, prebaked->capture);
+  EXPECT_LT(error.maxError, 1e-5);
+  expectGolden(prebaked->capture, "vertex_bake");
+}
+
+// Two instances with the same mesh, material and kernel share one bake.
+TEST_F(RendererTest, IdenticalBakesRunOnce) {
+  std::string scene = planeScene("tex_bake.spire", "TexBake", R"({"colorMap": "checker"})");
+  const std::string instance = R"({"mesh": "plane", "source": "tex_bake.spire", "shader": "TexBake",
+    "transform": {"translate": [0.5, 0, 0]}, "material": {"colorMap": "checker"}})";
+  scene.replace(scene.rfind("}]"), 2, "}, " + instance + "]");
+  TextureBakeOptions options;
+  options.defaultSize = 64;
+  const auto rendered = render(scene, "tex_bake_prebake.decisions", options);
+  ASSERT_TRUE(rendered);
+  ASSERT_EQ(rendered->prepared.bakes.size(), 2U);
+  EXPECT_FALSE(rendered->prepared.bakes[0].reused);
+  EXPECT_TRUE(rendered->prepared.bakes[1].reused);
+  EXPECT_EQ(renderer_->bakeCount(), 1U);
+}
+
+// spirec's output directory (the file path) renders exactly what the
+// in-process compiler library (the library path) renders.
+TEST_F(RendererTest, FilePathMatchesLibraryPath) {
+  const fs::path out = fs::temp_directory_path() / ("spire_renderer_file_path_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  std::ostringstream spirecOut;
+  std::ostringstream spirecErr;
+  ASSERT_EQ(runSpirec({(kDataDir / "tex_bake.spire").string(), "--decisions",
+                       (kDataDir / "tex_bake_prebake.decisions").string(), "-o", out.string()},
+                      spirecOut, spirecErr),
+            0)
+      << spirecErr.str();
+  const std::string material = R"({"colorMap": "noise"})";
+  const auto library = render(planeScene("tex_bake.spire", "TexBake", material), "tex_bake_prebake.decisions");
+  ASSERT_TRUE(library);
+  std::string fileScene = planeScene("tex_bake.spire", "TexBake", material);
+  fileScene.replace(fileScene.find(R"("source": "tex_bake.spire", "shader": "TexBake")"),
+                    std::string(R"("source": "tex_bake.spire", "shader": "TexBake")").size(),
+                    "\"kernels\": \"" + (out / "TexBake").string() + "\"");
+  const auto files = render(fileScene, std::nullopt);
+  fs::remove_all(out);
+  ASSERT_TRUE(files);
+  EXPECT_EQ(files->capture.color.rgba, library->capture.color.rgba);
+}
+
+TEST_F(RendererTest, NonFiniteOutputIsCountedNotAveraged) {
+  const std::string material = R"({"color": [0.2, 0.4, 0.6, 1.0]})";
+  const auto reference = render(planeScene("flat_plane.spire", "FlatPlane", material), std::nullopt);
+  ASSERT_TRUE(reference);
+  const auto hazard = render(planeScene("nan_output.spire", "NanOutput", material), std::nullopt);
+  ASSERT_TRUE(hazard);
+  const measure::ImageError error = compare(reference->capture, hazard->capture);
+  size_t covered = 0;
+  for (uint8_t c : hazard->capture.coverage) covered += c;
+  EXPECT_EQ(error.nanPixels, covered);
+  EXPECT_TRUE(std::isinf(error.rmse));
+  EXPECT_TRUE(std::isinf(error.maxError));
+  EXPECT_EQ(error.psnr, 0.0);
+}
+
+}  // namespace
+}  // namespace spire::engine
