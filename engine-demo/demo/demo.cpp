@@ -10,6 +10,8 @@
 #include "measure/comparison_image.h"
 #include "measure/image_metrics.h"
 #include "measure/report_table.h"
+#include "renderer/error_report.h"
+#include "renderer/host_allocator.h"
 #include "renderer/scene_renderer.h"
 #include "scene/texture.h"
 #include "support/diagnostic_renderer.h"
@@ -47,36 +49,6 @@ struct VariantResult {
   std::vector<engine::BakeRecord> bakes;
   std::vector<engine::Capture> views;
   scene::Image image;  // view 0, 8 bits
-};
-
-// Renders problems the way the compiler does, so a scene error looks like a
-// source error: file:line:col, the line and a caret.
-class Reporter {
- public:
-  Reporter(const SourceManager& sources, DiagnosticList& diags, std::ostream& err)
-      : sources_(sources), diags_(diags), err_(err) {}
-
-  void flush() {
-    for (size_t i = printed_; i < diags_.all().size(); ++i) err_ << renderDiagnostic(sources_, diags_.all()[i]);
-    printed_ = diags_.all().size();
-  }
-
-  int fail(const engine::Error& error) {
-    flush();
-    if (error.range.valid()) {
-      err_ << renderDiagnostic(sources_, Diagnostic{Severity::Error, DiagCode::E7105, error.range, error.message, {}});
-    } else {
-      err_ << fmt::format("spire-demo: error: {}\n", error.message);
-    }
-    err_ << error.details;
-    return kInputError;
-  }
-
- private:
-  const SourceManager& sources_;
-  DiagnosticList& diags_;
-  std::ostream& err_;
-  size_t printed_ = 0;
 };
 
 double prebakeMs(const std::vector<engine::BakeRecord>& bakes) {
@@ -149,6 +121,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     return kUsageError;
   }
   if (options.listDevices) return listDevices(options, out, err);
+  engine::stabilizeHostAllocator();
   if (options.scenePath.empty()) {
     err << "spire-demo: error: a scene file is required\nRun 'spire-demo --help' for usage.\n";
     return kUsageError;
@@ -156,7 +129,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
 
   SourceManager sources;
   DiagnosticList diags;
-  Reporter reporter(sources, diags, err);
+  engine::ErrorReporter reporter(sources, diags, err, "spire-demo");
   const auto scene = scene::loadSceneFile(options.scenePath, sources, diags);
   if (!scene) {
     reporter.flush();
@@ -185,26 +158,42 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   engine::TextureBakeOptions bakeOptions;
   bakeOptions.defaultSize = options.bakeSize;
   engine::SceneRenderer renderer(*ctx, *scene, diags, bakeOptions);
+  // Every variant is compiled, baked and warmed up before any is timed, and
+  // the measured frames then alternate between variants, so that no variant
+  // is timed under different conditions (a cold renderer, load-time work)
+  // than the others and the ratios come from one interleaved run.
+  std::vector<engine::PreparedScene> prepared;
   std::vector<VariantResult> results;
+  std::vector<std::vector<engine::FrameTiming>> timings(runs.size());
   for (const VariantRun& run : runs) {
     auto programs = renderer.compile(run.decisions);
     if (!programs) return reporter.fail(programs.error());
     err << renderer.compilerWarnings();
-    auto prepared = renderer.prepare(*programs);
+    auto scenePrepared = renderer.prepare(*programs);
     reporter.flush();
-    if (!prepared) return reporter.fail(prepared.error());
-    auto stats = renderer.measure(*prepared, warmup, frames);
-    if (!stats) return reporter.fail(stats.error());
-    VariantResult result{run.name, *stats, prepared->bakes, {}, {}};
+    if (!scenePrepared) return reporter.fail(scenePrepared.error());
+    results.push_back({run.name, {}, scenePrepared->bakes, {}, {}});
+    prepared.push_back(std::move(scenePrepared).value());
+  }
+  for (uint32_t f = 0; f < warmup + frames; ++f) {
+    for (size_t v = 0; v < runs.size(); ++v) {
+      auto timing = renderer.renderFrame(prepared[v], f);
+      if (!timing) return reporter.fail(timing.error());
+      if (f == 0) results[v].stats.firstFrameMs = timing->hostMs;
+      if (f >= warmup) timings[v].push_back(*timing);
+    }
+  }
+  for (size_t v = 0; v < runs.size(); ++v) {
+    VariantResult& result = results[v];
+    result.stats = engine::summarizeFrames(result.stats.firstFrameMs, timings[v]);
     for (const scene::CameraView& view : scene->camera.views) {
-      auto capture = renderer.capture(*prepared, view);
+      auto capture = renderer.capture(prepared[v], view);
       if (!capture) return reporter.fail(capture.error());
       result.views.push_back(std::move(capture).value());
     }
     result.image = measure::toRgba8(result.views.front().color);
-    out << fmt::format("{}: {:.3f} ms/frame (median of {}), first frame {:.1f} ms, bakes: {}\n", run.name,
-                       stats->medianGpuMs, frames, stats->firstFrameMs, bakeSummary(prepared->bakes));
-    results.push_back(std::move(result));
+    out << fmt::format("{}: {:.3f} ms/frame (median of {}), first frame {:.1f} ms, bakes: {}\n", result.name,
+                       result.stats.medianGpuMs, frames, result.stats.firstFrameMs, bakeSummary(result.bakes));
   }
 
   std::vector<measure::ReportRow> rows;

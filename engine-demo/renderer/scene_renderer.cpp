@@ -112,6 +112,27 @@ Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDes
   return programs_.emplace(key, std::move(program).value()).first->second;
 }
 
+Expected<VariantProgram> SceneRenderer::compileVariant(size_t index, const std::map<std::string, std::string>& decisions,
+                                                       std::vector<std::string>* skipped) {
+  const scene::InstanceDesc& instance = scene_.instances.at(index);
+  auto library = libraryFor(instance);
+  if (!library) return library.error();
+  ShaderLibrary& lib = **library;
+  const auto variant = lib.buildVariant(instance.shader, decisions, skipped);
+  if (!variant) return Error{fmt::format("'{}' has no valid variant for these decisions", instance.shader), instance.shaderRange, {}};
+  DiagnosticList& diags = lib.diagnostics();
+  const size_t mark = diags.size();
+  auto generated = codegen::generateKernels(lib.model(), lib.sources(), *variant, codegen::StrategyRegistry::builtin(), diags);
+  const std::vector<Diagnostic> reported = diags.takeSince(mark);
+  if (!generated) {
+    return Error{fmt::format("cannot generate the kernels of this variant of '{}'", instance.shader), instance.shaderRange,
+                 renderAll(lib.sources(), reported)};
+  }
+  auto program = compileProgram(*generated, *variant);
+  if (!program) return Error{program.error().message, instance.shaderRange, program.error().details};
+  return program;
+}
+
 Expected<std::vector<VariantProgram>> SceneRenderer::compile(const std::optional<std::filesystem::path>& decisions) {
   std::vector<VariantProgram> programs;
   for (const scene::InstanceDesc& instance : scene_.instances) {
@@ -239,20 +260,33 @@ Expected<std::vector<const DrawItem*>> SceneRenderer::drawList(const PreparedSce
   return items;
 }
 
-Expected<FrameStats> SceneRenderer::measure(const PreparedScene& prepared, uint32_t warmup, uint32_t frames) {
+Expected<FrameTiming> SceneRenderer::renderFrame(const PreparedScene& prepared, uint32_t frame) {
   auto items = drawList(prepared);
   if (!items) return items.error();
   constexpr float kFrameSeconds = 1.0F / 60.0F;
-  FrameStats stats;
-  std::vector<double> hostMs;
+  return target_->render(ctx_, *items, frameState(scene_.camera.views.front(), static_cast<float>(frame) * kFrameSeconds),
+                         scene_.clearColor);
+}
+
+Expected<FrameStats> SceneRenderer::measure(const PreparedScene& prepared, uint32_t warmup, uint32_t frames) {
+  double firstFrameMs = 0.0;
+  std::vector<FrameTiming> measured;
   for (uint32_t f = 0; f < warmup + frames; ++f) {
-    const FrameState frame = frameState(scene_.camera.views.front(), static_cast<float>(f) * kFrameSeconds);
-    auto timing = target_->render(ctx_, *items, frame, scene_.clearColor);
+    auto timing = renderFrame(prepared, f);
     if (!timing) return timing.error();
-    if (f == 0) stats.firstFrameMs = timing->hostMs;
-    if (f < warmup) continue;
-    stats.gpuMs.push_back(timing->gpuMs);
-    hostMs.push_back(timing->hostMs);
+    if (f == 0) firstFrameMs = timing->hostMs;
+    if (f >= warmup) measured.push_back(*timing);
+  }
+  return summarizeFrames(firstFrameMs, measured);
+}
+
+FrameStats summarizeFrames(double firstFrameMs, const std::vector<FrameTiming>& measured) {
+  FrameStats stats;
+  stats.firstFrameMs = firstFrameMs;
+  std::vector<double> hostMs;
+  for (const FrameTiming& t : measured) {
+    stats.gpuMs.push_back(t.gpuMs);
+    hostMs.push_back(t.hostMs);
   }
   stats.medianGpuMs = median(stats.gpuMs);
   stats.medianHostMs = median(hostMs);

@@ -33,6 +33,9 @@ struct FrameStats {
   std::vector<double> gpuMs;     // every measured frame
 };
 
+// Frame statistics from the first frame's host time and measured frames.
+FrameStats summarizeFrames(double firstFrameMs, const std::vector<FrameTiming>& measured);
+
 struct Capture {
   measure::FloatImage color;
   std::vector<uint8_t> coverage;
@@ -50,6 +53,15 @@ class SceneRenderer {
   // error's details; warnings accumulate in compilerWarnings().
   Expected<std::vector<VariantProgram>> compile(const std::optional<std::filesystem::path>& decisions);
 
+  // The tuner's path: instance `index` built from in-memory decisions
+  // (component -> "World[:variation]") through the compiler library, without
+  // re-parsing. `skipped` receives decisions that were not applied
+  // (infeasible together with the others).
+  Expected<VariantProgram> compileVariant(size_t index, const std::map<std::string, std::string>& decisions,
+                                          std::vector<std::string>* skipped = nullptr);
+  // The library compiled for instance `index` (compiling it on first use).
+  Expected<ShaderLibrary*> library(size_t index) { return libraryFor(scene_.instances.at(index)); }
+
   // Resolves materials (reporting problems to `diags`), runs the bakes the
   // programs need and builds their draws.
   Expected<PreparedScene> prepare(const std::vector<VariantProgram>& programs);
@@ -57,6 +69,8 @@ class SceneRenderer {
   // Renders `warmup` frames (the first one timed separately), then `frames`
   // measured ones, from camera view 0.
   Expected<FrameStats> measure(const PreparedScene& prepared, uint32_t warmup, uint32_t frames);
+  // One frame from camera view 0 at frame number `frame` (its time), not read back.
+  Expected<FrameTiming> renderFrame(const PreparedScene& prepared, uint32_t frame);
   // One frame from `view`, read back.
   Expected<Capture> capture(const PreparedScene& prepared, const scene::CameraView& view);
 

@@ -123,6 +123,9 @@ Expected<VariantProgram> parseReflection(const Json& reflection,
     VariantProgram program;
     program.shader = reflection.at("shader").get<std::string>();
     program.pipeline = reflection.at("pipeline").get<std::string>();
+    for (const auto& [component, world] : reflection.at("placement").items()) {
+      program.placement.emplace_back(component, world.get<std::string>());
+    }
     for (const Json& k : reflection.at("kernels")) {
       KernelProgram kernel;
       kernel.world = k.at("world").get<std::string>();

@@ -79,6 +79,9 @@ struct VariantProgram {
   std::string shader;
   std::string pipeline;
   std::vector<KernelProgram> kernels;  // producers before consumers
+  // Every live, non-input component -> "World" or "World:variation", in
+  // reflection order: the variant as a decision file would state it.
+  std::vector<std::pair<std::string, std::string>> placement;
 
   const KernelProgram* kernel(std::string_view world) const;
   // Hashes of every kernel, joined: equal for variants with identical code.

@@ -1,0 +1,141 @@
+#include "tune/results_csv.h"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace spire::tune {
+
+namespace {
+
+constexpr const char* kTrailing[] = {"status",  "frame_ms",   "first_frame_ms", "prebake_ms", "rmse", "psnr",
+                                     "max_error", "nan_pixels", "inf_pixels",     "same_as",    "kernels"};
+
+std::string quote(const std::string& field) {
+  if (field.find_first_of(",\"\n") == std::string::npos) return field;
+  std::string quoted = "\"";
+  for (char c : field) quoted += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
+  return quoted + "\"";
+}
+
+std::string number(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  return fmt::format("{:.9g}", value);
+}
+
+std::optional<double> parseNumber(const std::string& text) {
+  if (text == "nan") return std::nan("");
+  if (text == "inf") return std::numeric_limits<double>::infinity();
+  if (text == "-inf") return -std::numeric_limits<double>::infinity();
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc{} || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+std::optional<uint64_t> parseCount(const std::string& text) {
+  uint64_t value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc{} || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        fields.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        fields.back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+}  // namespace
+
+std::string csvHeader(const std::vector<std::string>& components) {
+  std::string header = "index";
+  for (const std::string& c : components) header += "," + quote(c);
+  for (const char* column : kTrailing) header += std::string(",") + column;
+  return header + "\n";
+}
+
+std::string csvRow(const VariantResult& r) {
+  std::string row = std::to_string(r.index);
+  for (const std::string& p : r.placements) row += "," + quote(p);
+  row += fmt::format(",{},{},{},{},{},{},{},{},{},{},{}\n", quote(r.status), number(r.frameMs), number(r.firstFrameMs),
+                     number(r.prebakeMs), number(r.rmse), number(r.psnr), number(r.maxError), r.nanPixels, r.infPixels,
+                     r.sameAs ? std::to_string(*r.sameAs) : "", quote(r.kernels));
+  return row;
+}
+
+std::optional<std::vector<VariantResult>> readResults(const std::filesystem::path& path,
+                                                      const std::vector<std::string>& components, std::string& error) {
+  std::ifstream in(path);
+  std::vector<VariantResult> results;
+  if (!in) return results;
+  std::string line;
+  if (!std::getline(in, line)) return results;
+  if (line + "\n" != csvHeader(components)) {
+    error = fmt::format("{}: written by a run over other components; remove it or choose another output directory",
+                        path.string());
+    return std::nullopt;
+  }
+  const size_t expected = 1 + components.size() + std::size(kTrailing);
+  for (size_t lineNumber = 2; std::getline(in, line); ++lineNumber) {
+    if (line.empty()) continue;
+    const std::vector<std::string> f = splitCsv(line);
+    // A row cut short by an interruption is dropped: its variant runs again.
+    if (f.size() != expected) continue;
+    VariantResult r;
+    const auto index = parseCount(f[0]);
+    size_t i = 1 + components.size();
+    const auto frame = parseNumber(f[i + 1]);
+    const auto first = parseNumber(f[i + 2]);
+    const auto prebake = parseNumber(f[i + 3]);
+    const auto rmse = parseNumber(f[i + 4]);
+    const auto psnr = parseNumber(f[i + 5]);
+    const auto maxError = parseNumber(f[i + 6]);
+    const auto nan = parseCount(f[i + 7]);
+    const auto inf = parseCount(f[i + 8]);
+    if (!index || !frame || !first || !prebake || !rmse || !psnr || !maxError || !nan || !inf) {
+      error = fmt::format("{}:{}: malformed row", path.string(), lineNumber);
+      return std::nullopt;
+    }
+    r.index = *index;
+    r.placements.assign(f.begin() + 1, f.begin() + 1 + static_cast<std::ptrdiff_t>(components.size()));
+    r.status = f[i];
+    r.frameMs = *frame;
+    r.firstFrameMs = *first;
+    r.prebakeMs = *prebake;
+    r.rmse = *rmse;
+    r.psnr = *psnr;
+    r.maxError = *maxError;
+    r.nanPixels = *nan;
+    r.infPixels = *inf;
+    if (!f[i + 9].empty()) r.sameAs = parseCount(f[i + 9]);
+    r.kernels = f[i + 10];
+    results.push_back(std::move(r));
+  }
+  return results;
+}
+
+}  // namespace spire::tune

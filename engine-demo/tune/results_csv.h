@@ -1,0 +1,43 @@
+// The tuner's table of measured variants, as CSV: one row per variant with
+// its decisions (a column per explored component), error, time, hazards and
+// kernel hashes. It is also the tuner's journal: rows are appended as
+// variants finish, and an interrupted run resumes by reading them back.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace spire::tune {
+
+struct VariantResult {
+  uint64_t index = 0;
+  std::vector<std::string> placements;  // one per explored component, in axis order
+  std::string status = "ok";            // "ok", "infeasible" or "failed: why"
+  double frameMs = 0.0;                 // median GPU time of the measured frames
+  double firstFrameMs = 0.0;            // host time of the first frame (shader compilation)
+  double prebakeMs = 0.0;               // bakes this variant ran (reused ones count 0)
+  double rmse = 0.0;
+  double psnr = std::numeric_limits<double>::infinity();
+  double maxError = 0.0;
+  uint64_t nanPixels = 0;
+  uint64_t infPixels = 0;
+  std::optional<uint64_t> sameAs;  // measured once: the variant whose kernels are identical
+  std::string kernels;             // "World=hash;..." of every kernel
+
+  bool ok() const { return status == "ok"; }
+};
+
+std::string csvHeader(const std::vector<std::string>& components);
+std::string csvRow(const VariantResult& result);
+
+// Reads rows written with the same components; rows of another run (a
+// different header) are an error, as is a malformed row.
+std::optional<std::vector<VariantResult>> readResults(const std::filesystem::path& path,
+                                                      const std::vector<std::string>& components, std::string& error);
+
+}  // namespace spire::tune

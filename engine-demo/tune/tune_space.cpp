@@ -1,0 +1,82 @@
+#include "tune/tune_space.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+
+namespace spire::tune {
+
+namespace {
+
+// "Terrain.albedo" -> "albedo".
+std::string componentOf(const std::string& key) {
+  const size_t dot = key.rfind('.');
+  return dot == std::string::npos ? key : key.substr(dot + 1);
+}
+
+bool kept(const std::string& placement, const std::vector<std::string>& only) {
+  if (only.empty()) return true;
+  const size_t colon = placement.find(':');
+  const std::string world = placement.substr(0, colon);
+  const std::string variation = colon == std::string::npos ? "" : placement.substr(colon + 1);
+  return std::any_of(only.begin(), only.end(),
+                     [&](const std::string& name) { return name == world || (!variation.empty() && name == variation); });
+}
+
+}  // namespace
+
+TunePoint pointAt(const std::vector<Axis>& axes, uint64_t index) {
+  TunePoint point;
+  point.index = index;
+  for (size_t a = axes.size(); a-- > 0;) {
+    const uint64_t n = axes[a].placements.size();
+    point.decisions[axes[a].component] = axes[a].placements[index % n];
+    index /= n;
+  }
+  return point;
+}
+
+std::optional<TuneSpace> buildTuneSpace(const std::vector<graph::Choice>& choices, const SpaceRequest& request,
+                                        std::string& error) {
+  TuneSpace space;
+  std::set<std::string> wanted(request.components.begin(), request.components.end());
+  for (const graph::Choice& choice : choices) {
+    const std::string component = componentOf(choice.key);
+    if (!wanted.empty() && !wanted.erase(component)) continue;
+    Axis axis{component, {}};
+    for (const std::string& name : choice.names) {
+      if (kept(name, request.only)) axis.placements.push_back(name);
+    }
+    if (axis.placements.empty()) {
+      error = fmt::format("component '{}' has no placement among the requested worlds and variations", component);
+      return std::nullopt;
+    }
+    space.axes.push_back(std::move(axis));
+  }
+  if (!wanted.empty()) {
+    error = fmt::format("'{}' is not a choice of this shader (see spirec --choices)", *wanted.begin());
+    return std::nullopt;
+  }
+  constexpr uint64_t kLimit = uint64_t{1} << 62;
+  for (const Axis& axis : space.axes) {
+    space.productSize = space.productSize > kLimit / axis.placements.size() ? kLimit
+                                                                            : space.productSize * axis.placements.size();
+  }
+  if (space.productSize <= request.maxVariants) {
+    for (uint64_t i = 0; i < space.productSize; ++i) space.points.push_back(pointAt(space.axes, i));
+    return space;
+  }
+  // Sampling without replacement, in index order, so that the same request
+  // always measures the same variants.
+  space.sampled = true;
+  std::mt19937_64 rng(request.seed);
+  std::uniform_int_distribution<uint64_t> pick(0, space.productSize - 1);
+  std::set<uint64_t> indices;
+  while (indices.size() < request.maxVariants) indices.insert(pick(rng));
+  for (uint64_t i : indices) space.points.push_back(pointAt(space.axes, i));
+  return space;
+}
+
+}  // namespace spire::tune

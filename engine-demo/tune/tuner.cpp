@@ -1,0 +1,128 @@
+#include "tune/tuner.h"
+
+#include <fmt/format.h>
+
+#include "measure/image_metrics.h"
+#include "vk/timer.h"
+
+namespace spire::tune {
+
+Tuner::Tuner(engine::SceneRenderer& renderer, size_t instance, std::vector<Axis> axes, TunerOptions options)
+    : renderer_(renderer), instance_(instance), axes_(std::move(axes)), options_(options) {}
+
+engine::Expected<void> Tuner::renderReference(const std::optional<std::filesystem::path>& decisions) {
+  auto programs = renderer_.compile(decisions);
+  if (!programs) return programs.error();
+  auto prepared = renderer_.prepare(*programs);
+  if (!prepared) return prepared.error();
+  reference_.clear();
+  for (const scene::CameraView& view : renderer_.scene().camera.views) {
+    auto capture = renderer_.capture(*prepared, view);
+    if (!capture) return capture.error();
+    reference_.push_back(std::move(capture).value());
+  }
+  return {};
+}
+
+engine::Expected<std::vector<engine::VariantProgram>> Tuner::programsFor(const TunePoint& point,
+                                                                          std::vector<std::string>* skipped) {
+  if (others_.empty()) {
+    auto own = renderer_.compile(std::nullopt);
+    if (!own) return own.error();
+    others_ = std::move(own).value();
+  }
+  auto program = renderer_.compileVariant(instance_, point.decisions, skipped);
+  if (!program) return program.error();
+  std::vector<engine::VariantProgram> programs = others_;
+  programs[instance_] = std::move(program).value();
+  return programs;
+}
+
+engine::Expected<engine::VariantProgram> Tuner::program(const TunePoint& point) {
+  auto programs = programsFor(point, nullptr);
+  if (!programs) return programs.error();
+  return std::move(programs->at(instance_));
+}
+
+VariantResult Tuner::measure(const TunePoint& point) {
+  VariantResult result;
+  result.index = point.index;
+  for (const Axis& axis : axes_) result.placements.push_back(point.decisions.at(axis.component));
+
+  vk::HostTimer timer;
+  std::vector<std::string> skipped;
+  auto programs = programsFor(point, &skipped);
+  split_.compileMs += timer.elapsedMs();
+  if (!programs) {
+    result.status = "failed: " + programs.error().message;
+    return result;
+  }
+  if (!skipped.empty()) {
+    // The decisions cannot hold together (one component's world rules out
+    // another's): this point of the product is not a variant.
+    result.status = "infeasible";
+    return result;
+  }
+  result.kernels = programs->at(instance_).fingerprint();
+  if (const auto it = byKernels_.find(result.kernels); it != byKernels_.end()) {
+    VariantResult same = it->second;
+    same.index = result.index;
+    same.placements = result.placements;
+    same.sameAs = it->second.index;
+    return same;
+  }
+
+  timer.restart();
+  auto prepared = renderer_.prepare(*programs);
+  if (!prepared) {
+    result.status = "failed: " + prepared.error().message;
+    return result;
+  }
+  for (const engine::BakeRecord& bake : prepared->bakes) result.prebakeMs += bake.reused ? 0.0 : bake.milliseconds;
+  auto stats = renderer_.measure(*prepared, options_.warmupFrames, options_.frames);
+  if (!stats) {
+    result.status = "failed: " + stats.error().message;
+    return result;
+  }
+  result.frameMs = stats->medianGpuMs;
+  result.firstFrameMs = stats->firstFrameMs;
+  split_.firstUseMs += stats->firstFrameMs;
+  measure::ErrorAccumulator accumulated;
+  const auto& views = renderer_.scene().camera.views;
+  for (size_t v = 0; v < views.size(); ++v) {
+    auto capture = renderer_.capture(*prepared, views[v]);
+    if (!capture) {
+      result.status = "failed: " + capture.error().message;
+      return result;
+    }
+    const vk::HostTimer errorTimer;
+    std::vector<uint8_t> coverage = reference_[v].coverage;
+    for (size_t i = 0; i < coverage.size(); ++i) coverage[i] |= capture->coverage[i];
+    auto error = measure::compareImages(reference_[v].color, capture->color, &coverage);
+    split_.errorMs += errorTimer.elapsedMs();
+    if (!error) {
+      result.status = "failed: " + error.error();
+      return result;
+    }
+    accumulated.add(*error);
+  }
+  split_.renderMs += timer.elapsedMs() - stats->firstFrameMs;
+  const measure::ImageError total = accumulated.total();
+  result.rmse = total.rmse;
+  result.psnr = total.psnr;
+  result.maxError = total.maxError;
+  result.nanPixels = total.nanPixels;
+  result.infPixels = total.infPixels;
+  byKernels_[result.kernels] = result;
+  return result;
+}
+
+engine::Expected<engine::Capture> Tuner::capture(const TunePoint& point) {
+  auto programs = programsFor(point, nullptr);
+  if (!programs) return programs.error();
+  auto prepared = renderer_.prepare(*programs);
+  if (!prepared) return prepared.error();
+  return renderer_.capture(*prepared, renderer_.scene().camera.views.front());
+}
+
+}  // namespace spire::tune

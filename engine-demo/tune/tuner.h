@@ -1,0 +1,62 @@
+// Measures tuning points in process: each point's variant is built from
+// in-memory decisions through the compiler library (no re-parsing), rendered
+// by the engine (reusing bakes and shader modules across variants), timed,
+// and compared with the reference over every camera view. Variants whose
+// kernels are identical (by content hash) are measured once.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "renderer/scene_renderer.h"
+#include "tune/results_csv.h"
+#include "tune/tune_space.h"
+
+namespace spire::tune {
+
+// Where a run's time goes, summed over the points a tuner measured.
+struct TimeSplit {
+  double compileMs = 0.0;   // variant building, GLSL generation, glslang
+  double firstUseMs = 0.0;  // first frames: lavapipe compiles the kernels at the first draw
+  double renderMs = 0.0;    // bakes, measured frames and captures
+  double errorMs = 0.0;     // image comparison
+};
+
+struct TunerOptions {
+  uint32_t warmupFrames = 1;
+  uint32_t frames = 3;
+};
+
+class Tuner {
+ public:
+  Tuner(engine::SceneRenderer& renderer, size_t instance, std::vector<Axis> axes, TunerOptions options);
+
+  // Renders the reference variant (`decisions`: a decision file for every
+  // instance, or each instance's own) from every camera view.
+  engine::Expected<void> renderReference(const std::optional<std::filesystem::path>& decisions);
+
+  VariantResult measure(const TunePoint& point);
+
+  // The variant's image from camera view 0 and its placement, for reports
+  // and decision files.
+  engine::Expected<engine::Capture> capture(const TunePoint& point);
+  engine::Expected<engine::VariantProgram> program(const TunePoint& point);
+
+  const TimeSplit& timeSplit() const { return split_; }
+
+ private:
+  engine::Expected<std::vector<engine::VariantProgram>> programsFor(const TunePoint& point, std::vector<std::string>* skipped);
+
+  engine::SceneRenderer& renderer_;
+  size_t instance_;
+  std::vector<Axis> axes_;
+  TunerOptions options_;
+  std::vector<engine::VariantProgram> others_;  // every instance at its own decisions
+  std::vector<engine::Capture> reference_;
+  std::map<std::string, VariantResult> byKernels_;
+  TimeSplit split_;
+};
+
+}  // namespace spire::tune
