@@ -41,10 +41,11 @@ TunePoint pointAt(const std::vector<Axis>& axes, uint64_t index) {
 std::optional<TuneSpace> buildTuneSpace(const std::vector<graph::Choice>& choices, const SpaceRequest& request,
                                         std::string& error) {
   TuneSpace space;
-  std::set<std::string> wanted(request.components.begin(), request.components.end());
+  const std::set<std::string> selected(request.components.begin(), request.components.end());
+  std::set<std::string> missing = selected;
   for (const graph::Choice& choice : choices) {
     const std::string component = componentOf(choice.key);
-    if (!wanted.empty() && !wanted.erase(component)) continue;
+    if (!selected.empty() && !missing.erase(component)) continue;
     Axis axis{component, {}};
     for (const std::string& name : choice.names) {
       if (kept(name, request.only)) axis.placements.push_back(name);
@@ -55,8 +56,8 @@ std::optional<TuneSpace> buildTuneSpace(const std::vector<graph::Choice>& choice
     }
     space.axes.push_back(std::move(axis));
   }
-  if (!wanted.empty()) {
-    error = fmt::format("'{}' is not a choice of this shader (see spirec --choices)", *wanted.begin());
+  if (!missing.empty()) {
+    error = fmt::format("'{}' is not a choice of this shader (see spirec --choices)", *missing.begin());
     return std::nullopt;
   }
   constexpr uint64_t kLimit = uint64_t{1} << 62;

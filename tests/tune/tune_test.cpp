@@ -1,0 +1,177 @@
+// spire-tune: the search space, the Pareto front, the CSV journal, and a whole
+// run in-process on a small scene (with validation on), including resuming.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "engine/device_fixture.h"
+#include "tune/pareto.h"
+#include "tune/results_csv.h"
+#include "tune/tune_cli.h"
+#include "tune/tune_space.h"
+
+namespace spire::tune {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<graph::Choice> terrainChoices() {
+  std::vector<graph::Choice> choices(3);
+  choices[0].key = "Terrain.albedo";
+  choices[0].names = {"PrebakeTex", "Vertex", "Fragment"};
+  choices[1].key = "Terrain.normal";
+  choices[1].names = {"Vertex", "Fragment"};
+  choices[2].key = "Terrain.lighting";
+  choices[2].names = {"Vertex:basic", "Fragment:basic", "Vertex:ggx", "Fragment:ggx"};
+  return choices;
+}
+
+TEST(TuneSpace, EnumeratesTheWholeProductInOrder) {
+  std::string error;
+  const auto space = buildTuneSpace(terrainChoices(), {}, error);
+  ASSERT_TRUE(space) << error;
+  EXPECT_EQ(space->productSize, 24U);
+  ASSERT_EQ(space->points.size(), 24U);
+  EXPECT_FALSE(space->sampled);
+  EXPECT_EQ(space->points[0].decisions.at("albedo"), "PrebakeTex");
+  EXPECT_EQ(space->points[0].decisions.at("lighting"), "Vertex:basic");
+  EXPECT_EQ(space->points[23].decisions.at("albedo"), "Fragment");
+  EXPECT_EQ(space->points[23].decisions.at("lighting"), "Fragment:ggx");
+  for (size_t i = 0; i < space->points.size(); ++i) EXPECT_EQ(space->points[i].index, i);
+}
+
+TEST(TuneSpace, SelectsComponentsWorldsAndVariations) {
+  SpaceRequest request;
+  request.components = {"lighting"};
+  request.only = {"ggx"};
+  std::string error;
+  const auto algorithms = buildTuneSpace(terrainChoices(), request, error);
+  ASSERT_TRUE(algorithms) << error;
+  ASSERT_EQ(algorithms->axes.size(), 1U);
+  EXPECT_EQ(algorithms->axes[0].placements, (std::vector<std::string>{"Vertex:ggx", "Fragment:ggx"}));
+  request.components = {"albedo", "normal"};
+  request.only = {"Fragment"};
+  const auto placement = buildTuneSpace(terrainChoices(), request, error);
+  ASSERT_TRUE(placement) << error;
+  EXPECT_EQ(placement->productSize, 1U);
+  request.components = {"albdo"};
+  request.only = {};
+  EXPECT_FALSE(buildTuneSpace(terrainChoices(), request, error));
+  EXPECT_NE(error.find("'albdo' is not a choice"), std::string::npos) << error;
+}
+
+TEST(TuneSpace, SamplesLargeProductsDeterministically) {
+  SpaceRequest request;
+  request.maxVariants = 5;
+  std::string error;
+  const auto a = buildTuneSpace(terrainChoices(), request, error);
+  const auto b = buildTuneSpace(terrainChoices(), request, error);
+  ASSERT_TRUE(a && b);
+  EXPECT_TRUE(a->sampled);
+  ASSERT_EQ(a->points.size(), 5U);
+  for (size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(a->points[i].index, b->points[i].index);
+    if (i > 0) {
+      EXPECT_LT(a->points[i - 1].index, a->points[i].index);
+    }
+  }
+}
+
+TEST(Pareto, KeepsOnlyUndominatedFiniteVariants) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<Measured> points{
+      {10.0, 0.0, true},   // 0: reference, slowest exact
+      {5.0, 0.1, true},    // 1: front
+      {6.0, 0.2, true},    // 2: dominated by 1
+      {2.0, inf, true},    // 3: NaN pixels: never on the front
+      {3.0, 0.3, true},    // 4: front
+      {1.0, 0.05, false},  // 5: failed
+      {5.0, 0.05, true},   // 6: as fast as 1 and more accurate: replaces it
+  };
+  const std::vector<size_t> front = paretoFront(points);
+  EXPECT_EQ(front, (std::vector<size_t>{4, 6, 0}));
+  // Every front member is faster than every variant of lower error.
+  for (size_t f : front) {
+    for (size_t i = 0; i < points.size(); ++i) {
+      if (points[i].valid && points[i].error < points[f].error) {
+        EXPECT_LT(points[f].frameMs, points[i].frameMs);
+      }
+    }
+  }
+}
+
+TEST(ResultsCsv, RoundTripsAndRejectsOtherRuns) {
+  const fs::path path = fs::temp_directory_path() / ("spire_tune_csv_" + std::to_string(::getpid()) + ".csv");
+  VariantResult r;
+  r.index = 7;
+  r.placements = {"PrebakeTex", "Fragment:ggx"};
+  r.status = "failed: a, \"quoted\" reason";
+  r.frameMs = 1.5;
+  r.rmse = std::numeric_limits<double>::infinity();
+  r.psnr = 0.0;
+  r.nanPixels = 3;
+  r.sameAs = 2;
+  r.kernels = "Vertex=00ff;";
+  {
+    std::ofstream out(path);
+    out << csvHeader({"albedo", "lighting"}) << csvRow(r) << "8,Vertex";  // a row cut off by an interruption
+  }
+  std::string error;
+  const auto rows = readResults(path, {"albedo", "lighting"}, error);
+  ASSERT_TRUE(rows) << error;
+  ASSERT_EQ(rows->size(), 1U);
+  EXPECT_EQ((*rows)[0].status, r.status);
+  EXPECT_EQ((*rows)[0].placements, r.placements);
+  EXPECT_TRUE(std::isinf((*rows)[0].rmse));
+  EXPECT_EQ((*rows)[0].sameAs, 2U);
+  EXPECT_EQ((*rows)[0].kernels, r.kernels);
+  EXPECT_FALSE(readResults(path, {"normal"}, error));
+  fs::remove(path);
+}
+
+class TuneRun : public vk::testing::DeviceTest {};
+
+// The Terrain scene's four choices at a tiny size: a whole run, then a rerun
+// that resumes from the CSV and measures nothing again.
+TEST_F(TuneRun, WritesEveryOutputAndResumes) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_run_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const std::vector<std::string> args{"examples/scenes/terrain.json", "--shader", "Terrain", "--components",
+                                      "albedo,lighting", "--jobs", "1", "--bake-size", "64", "--validation",
+                                      "-o", dir.string()};
+  std::ostringstream out;
+  std::ostringstream err;
+  ASSERT_EQ(runTune(args, out, err), 0) << err.str();
+  for (const char* file : {"variants.csv", "pareto.csv", "plot.png", "report.md", "best_error_budget.decisions"}) {
+    EXPECT_TRUE(fs::exists(dir / file)) << file;
+  }
+  std::string error;
+  const auto rows = readResults(dir / "variants.csv", {"albedo", "lighting"}, error);
+  ASSERT_TRUE(rows) << error;
+  ASSERT_EQ(rows->size(), 12U);
+  // The reference (albedo in Fragment, Fragment:ggx) is a point of the space
+  // and has no error.
+  bool sawReference = false;
+  for (const VariantResult& r : *rows) {
+    if (r.placements == std::vector<std::string>{"Fragment", "Fragment:ggx"} && r.ok()) {
+      sawReference = true;
+      EXPECT_EQ(r.rmse, 0.0);
+    }
+  }
+  EXPECT_TRUE(sawReference);
+  EXPECT_NE(out.str().find("12 variants in"), std::string::npos) << out.str();
+
+  std::ostringstream again;
+  ASSERT_EQ(runTune(args, again, err), 0) << err.str();
+  EXPECT_NE(again.str().find("resuming with 12 measured"), std::string::npos) << again.str();
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace spire::tune
