@@ -5,7 +5,7 @@ import pathlib
 import re
 
 root = pathlib.Path(__file__).resolve().parent.parent
-codes = re.findall(r'SPIRE_DIAG\((\w+), (\w+), "([^"]+)"\)', (root / "compiler/support/diagnostic_codes.def").read_text())
+codes = re.findall(r'^SPIRE_DIAG\((\w+), (\w+), "([^"]+)"\)', (root / "compiler/support/diagnostic_codes.def").read_text(), re.M)
 table = ["| Code | Severity | Meaning |", "|---|---|---|"]
 table += [f"| {code} | {severity.lower()} | {summary} |" for code, severity, summary in codes]
 doc = root / "docs/diagnostics.md"

@@ -50,7 +50,8 @@ std::vector<Choice> ShaderLibrary::choices(std::string_view shader) const {
 
 std::optional<graph::Variant> ShaderLibrary::buildVariant(std::string_view shader,
                                                           const std::map<std::string, std::string>& decisions,
-                                                          std::vector<std::string>* skipped) const {
+                                                          std::vector<std::string>* skipped,
+                                                          const Attributes& attributes) const {
   const Entry* e = find(shader);
   if (!e) return std::nullopt;
   std::vector<graph::DecisionRequest> requests;
@@ -68,7 +69,9 @@ std::optional<graph::Variant> ShaderLibrary::buildVariant(std::string_view shade
       if (skipped) skipped->push_back(component);
       continue;
     }
-    requests.push_back({it->second, *alt, {}});
+    graph::DecisionRequest request{it->second, *alt, {}};
+    if (const auto hints = attributes.find(component); hints != attributes.end()) request.attributes = hints->second;
+    requests.push_back(std::move(request));
     names.push_back(component);
   }
   graph::VariantResult result = graph::buildVariant(*e->space, requests);

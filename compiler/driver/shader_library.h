@@ -46,8 +46,12 @@ class ShaderLibrary {
   // spelled as in decision files ("Fragment", "Vertex:ggx"). Unknown names
   // and infeasible or conflicting decisions are skipped, as in decision files;
   // `skipped` (if given) receives their component names.
+  // `attributes` (component -> attributes) are carried like a decision
+  // line's (`[Format: "RGBA8"]`), for components that have a decision.
+  using Attributes = std::map<std::string, std::vector<std::pair<std::string, std::string>>>;
   std::optional<graph::Variant> buildVariant(std::string_view shader, const std::map<std::string, std::string>& decisions,
-                                             std::vector<std::string>* skipped = nullptr) const;
+                                             std::vector<std::string>* skipped = nullptr,
+                                             const Attributes& attributes = {}) const;
 
  private:
   struct Entry {

@@ -12,6 +12,10 @@ namespace {
 std::string bakeKey(const KernelProgram& kernel, const std::string& meshKey, const MaterialValues& material,
                     const std::map<WorldRole, std::string>& upstream) {
   std::string key = fmt::format("{}|{}|{}", kernel.world, kernel.hash, meshKey);
+  // Format and size hints change the result but not the kernel's code.
+  for (const KernelOutput& output : kernel.outputs) {
+    for (const auto& [name, value] : output.hints) key += fmt::format("|{}[{}={}]", output.component, name, value);
+  }
   for (const KernelInput& input : kernel.inputs) {
     const WorldPass* pass = findWorldPass(input.from);
     if (!pass) continue;

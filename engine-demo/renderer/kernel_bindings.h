@@ -30,6 +30,7 @@ using MaterialValues = std::map<std::string, MaterialValue, std::less<>>;
 struct BakedTexture {
   vk::Image image;
   vk::Sampler sampler;
+  std::vector<std::byte> texels;  // the baked texels as stored, when TextureBakeOptions::forceFormat asked to keep them
 };
 
 struct UniformBakeResult {
@@ -43,6 +44,8 @@ struct VertexBakeResult {
 
 struct TextureBakeResult {
   std::map<std::string, BakedTexture, std::less<>> textures;  // component -> its texture
+  uint32_t size = 0;               // width and height of every texture
+  std::vector<uint8_t> coverage;   // 1 for texels a triangle covered (before dilation)
 };
 
 struct BindingSources {

@@ -24,6 +24,9 @@ class RenderTarget {
 
   const TargetFormats& formats() const { return formats_; }
   VkExtent2D extent() const { return depth_->extent(); }
+  // Color target 0 as the last render left it, e.g. to blit into a window;
+  // nullptr when there are no color targets.
+  vk::Image* color() { return colors_.empty() ? nullptr : &colors_.front(); }
 
   // Writes this frame's values into every item, then draws them all in one
   // submission and waits for it.

@@ -113,12 +113,13 @@ Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDes
 }
 
 Expected<VariantProgram> SceneRenderer::compileVariant(size_t index, const std::map<std::string, std::string>& decisions,
-                                                       std::vector<std::string>* skipped) {
+                                                       std::vector<std::string>* skipped,
+                                                       const ShaderLibrary::Attributes& attributes) {
   const scene::InstanceDesc& instance = scene_.instances.at(index);
   auto library = libraryFor(instance);
   if (!library) return library.error();
   ShaderLibrary& lib = **library;
-  const auto variant = lib.buildVariant(instance.shader, decisions, skipped);
+  const auto variant = lib.buildVariant(instance.shader, decisions, skipped, attributes);
   if (!variant) return Error{fmt::format("'{}' has no valid variant for these decisions", instance.shader), instance.shaderRange, {}};
   DiagnosticList& diags = lib.diagnostics();
   const size_t mark = diags.size();
@@ -224,6 +225,7 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
     auto baked = bakes_.bake(ctx_, modules_, programs[i], *meshes[i], instance.mesh, prepared.materials[i]);
     if (!baked) return Error{baked.error().message, instance.range, baked.error().details};
     prepared.bakes.insert(prepared.bakes.end(), baked->records.begin(), baked->records.end());
+    prepared.textureBakes.push_back(baked->texture);
     BindingSources sources;
     sources.mesh = meshes[i];
     sources.material = &prepared.materials[i];
@@ -261,11 +263,15 @@ Expected<std::vector<const DrawItem*>> SceneRenderer::drawList(const PreparedSce
 }
 
 Expected<FrameTiming> SceneRenderer::renderFrame(const PreparedScene& prepared, uint32_t frame) {
+  constexpr float kFrameSeconds = 1.0F / 60.0F;
+  return renderView(prepared, scene_.camera.views.front(), static_cast<float>(frame) * kFrameSeconds);
+}
+
+Expected<FrameTiming> SceneRenderer::renderView(const PreparedScene& prepared, const scene::CameraView& view,
+                                                float time) {
   auto items = drawList(prepared);
   if (!items) return items.error();
-  constexpr float kFrameSeconds = 1.0F / 60.0F;
-  return target_->render(ctx_, *items, frameState(scene_.camera.views.front(), static_cast<float>(frame) * kFrameSeconds),
-                         scene_.clearColor);
+  return target_->render(ctx_, *items, frameState(view, time), scene_.clearColor);
 }
 
 Expected<FrameStats> SceneRenderer::measure(const PreparedScene& prepared, uint32_t warmup, uint32_t frames) {

@@ -24,6 +24,7 @@ struct PreparedScene {
   std::vector<DrawItem> items;            // per instance
   std::vector<BakeRecord> bakes;          // every bake world the variants use, run or reused
   std::vector<std::string> fingerprints;  // per instance: its kernels' hashes
+  std::vector<const TextureBakeResult*> textureBakes;  // per instance: its PrebakeTex result, or null
 };
 
 struct FrameStats {
@@ -58,7 +59,8 @@ class SceneRenderer {
   // re-parsing. `skipped` receives decisions that were not applied
   // (infeasible together with the others).
   Expected<VariantProgram> compileVariant(size_t index, const std::map<std::string, std::string>& decisions,
-                                          std::vector<std::string>* skipped = nullptr);
+                                          std::vector<std::string>* skipped = nullptr,
+                                          const ShaderLibrary::Attributes& attributes = {});
   // The library compiled for instance `index` (compiling it on first use).
   Expected<ShaderLibrary*> library(size_t index) { return libraryFor(scene_.instances.at(index)); }
 
@@ -71,6 +73,12 @@ class SceneRenderer {
   Expected<FrameStats> measure(const PreparedScene& prepared, uint32_t warmup, uint32_t frames);
   // One frame from camera view 0 at frame number `frame` (its time), not read back.
   Expected<FrameTiming> renderFrame(const PreparedScene& prepared, uint32_t frame);
+  // One frame from `view` at `time` seconds, not read back (spire-demo
+  // --window blits it from colorImage()).
+  Expected<FrameTiming> renderView(const PreparedScene& prepared, const scene::CameraView& view, float time);
+  // Color target 0 of the last frame rendered (RGBA32F, TRANSFER_SRC usage);
+  // nullptr before prepare().
+  vk::Image* colorImage() { return target_ ? target_->color() : nullptr; }
   // One frame from `view`, read back.
   Expected<Capture> capture(const PreparedScene& prepared, const scene::CameraView& view);
 

@@ -65,14 +65,32 @@ struct BakeTarget {
   VkFormat format = VK_FORMAT_UNDEFINED;
 };
 
+struct FormatName {
+  std::string_view name;
+  VkFormat format;
+};
+
+constexpr FormatName kBakeFormats[] = {
+    {"R8", VK_FORMAT_R8_UNORM},          {"RG8", VK_FORMAT_R8G8_UNORM},
+    {"RGBA8", VK_FORMAT_R8G8B8A8_UNORM}, {"RGB10_A2", VK_FORMAT_A2B10G10R10_UNORM_PACK32},
+    {"R16F", VK_FORMAT_R16_SFLOAT},      {"RG16F", VK_FORMAT_R16G16_SFLOAT},
+    {"RGBA16F", VK_FORMAT_R16G16B16A16_SFLOAT}, {"R32F", VK_FORMAT_R32_SFLOAT},
+    {"RGBA32F", VK_FORMAT_R32G32B32A32_SFLOAT},
+};
+
 }  // namespace
 
 std::optional<VkFormat> bakeFormat(std::string_view hint) {
-  if (hint == "RGBA8") return VK_FORMAT_R8G8B8A8_UNORM;
-  if (hint == "RGBA16F") return VK_FORMAT_R16G16B16A16_SFLOAT;
-  if (hint == "RGBA32F") return VK_FORMAT_R32G32B32A32_SFLOAT;
-  if (hint == "R32F") return VK_FORMAT_R32_SFLOAT;
+  for (const FormatName& f : kBakeFormats) {
+    if (f.name == hint) return f.format;
+  }
   return std::nullopt;
+}
+
+std::string bakeFormatNames() {
+  std::string names;
+  for (const FormatName& f : kBakeFormats) names += fmt::format("{}{}", names.empty() ? "" : ", ", f.name);
+  return names;
 }
 
 Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
@@ -89,8 +107,8 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
     if (const auto hint = output.hints.find("Format"); hint != output.hints.end()) {
       const auto format = bakeFormat(hint->second);
       if (!format) {
-        return Error{fmt::format("'{}' asks for bake format \"{}\"; the engine supports RGBA8, RGBA16F, RGBA32F and R32F",
-                                 output.component, hint->second),
+        return Error{fmt::format("'{}' asks for bake format \"{}\"; the engine supports {}", output.component,
+                                 hint->second, bakeFormatNames()),
                      {},
                      {}};
       }
@@ -107,6 +125,7 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
                      {}};
       }
     }
+    if (options.forceFormat) target.format = *options.forceFormat;
     size = std::max(size, requested);
     targets.push_back(std::move(target));
   }
@@ -186,6 +205,8 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
   const std::vector<uint8_t> covered = depthCoverage(*depthTexels);
 
   TextureBakeResult result;
+  result.size = size;
+  result.coverage = covered;
   for (size_t t = 0; t < targets.size(); ++t) {
     auto texels = readImage(ctx, images[t]);
     if (!texels) return texels.error();
@@ -196,7 +217,10 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
     samplerDesc.addressMode = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     auto sampler = vk::createSampler(ctx, samplerDesc);
     if (!sampler) return Error::fromVk(sampler.error());
-    result.textures.emplace(targets[t].component, BakedTexture{std::move(texture).value(), std::move(sampler).value()});
+    std::vector<std::byte> kept;
+    if (options.forceFormat) kept = std::move(texels).value();
+    result.textures.emplace(targets[t].component,
+                            BakedTexture{std::move(texture).value(), std::move(sampler).value(), std::move(kept)});
   }
   timing.milliseconds = timer.elapsedMs();
   return result;

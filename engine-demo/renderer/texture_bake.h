@@ -14,12 +14,18 @@ namespace spire::engine {
 struct TextureBakeOptions {
   uint32_t defaultSize = 1024;  // when an output has no TextureSize hint
   VkFormat defaultFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // when it has no Format hint
+  // Bake every output in this format whatever its hint says (data-layout
+  // analysis bakes in RGBA32F), and keep the texels on the CPU.
+  std::optional<VkFormat> forceFormat;
   uint32_t dilationTexels = 4;
 };
 
-// The Vulkan format of a `Format` hint ("RGBA8", "RGBA16F", "RGBA32F",
-// "R32F"); nullopt for names the engine does not support.
+// The Vulkan format of a `Format` hint: "R8", "RG8", "RGBA8", "RGB10_A2"
+// (unsigned normalized), "R16F", "RG16F", "RGBA16F", "R32F", "RGBA32F";
+// nullopt for names the engine does not support.
 std::optional<VkFormat> bakeFormat(std::string_view hint);
+// The hint names, for messages.
+std::string bakeFormatNames();
 
 Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
                                            const BindingSources& sources, const TextureBakeOptions& options,

@@ -22,6 +22,7 @@
 #include "renderer/scene_renderer.h"
 #include "support/file_io.h"
 #include "tune/error_plot.h"
+#include "tune/format_selection.h"
 #include "tune/pareto.h"
 #include "tune/tuner.h"
 #include "vk/context.h"
@@ -181,9 +182,16 @@ bool runWorkers(const Options& o, const std::vector<std::string>& args, size_t a
   return ok;
 }
 
-std::string decisionFile(const std::string& shader, const engine::VariantProgram& program, const std::string& why) {
+std::string decisionFile(const std::string& shader, const engine::VariantProgram& program, const std::string& why,
+                         const ShaderLibrary::Attributes& attributes) {
   std::string text = fmt::format("// spire-tune: {}\n", why);
-  for (const auto& [component, placement] : program.placement) text += fmt::format("{}.{} = {}\n", shader, component, placement);
+  if (!attributes.empty()) text += "// Formats of the baked textures chosen from their values (data-layout selection).\n";
+  for (const auto& [component, placement] : program.placement) {
+    if (const auto it = attributes.find(component); it != attributes.end()) {
+      for (const auto& [name, value] : it->second) text += fmt::format("[{}: \"{}\"] ", name, value);
+    }
+    text += fmt::format("{}.{} = {}\n", shader, component, placement);
+  }
   return text;
 }
 
@@ -395,16 +403,24 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (results[i].frameMs <= timeBudget && (!bestInTime || results[i].rmse < results[*bestInTime].rmse)) bestInTime = i;
     if (measured[i].error <= errorBudget && (!bestInError || results[i].frameMs < results[*bestInError].frameMs)) bestInError = i;
   }
+  std::string layoutReport;
   const auto writeBest = [&](std::optional<size_t> best, const std::string& file, const std::string& why) -> int {
     if (!best) {
       out << fmt::format("no variant meets the {}; {} not written\n", why, file);
       return kSuccess;
     }
-    auto program = tuner.program(pointAt(space->axes, results[*best].index));
+    const TunePoint point = pointAt(space->axes, results[*best].index);
+    auto program = tuner.program(point);
     if (!program) return reporter.fail(program.error());
+    auto layouts = selectLayouts(renderer, instanceIndex, point, o.bakeSize);
+    if (!layouts) return reporter.fail(layouts.error());
+    if (!layouts->layouts.empty()) {
+      layoutReport += fmt::format("\n### Data layout of `{}`\n\n{}", file, layoutTable(*layouts));
+    }
     const std::string text = decisionFile(o.shader, *program,
                                           fmt::format("{} (variant {}: {:.3f} ms, RMSE {:.4g})", why, results[*best].index,
-                                                      results[*best].frameMs, results[*best].rmse));
+                                                      results[*best].frameMs, results[*best].rmse),
+                                          layouts->attributes);
     if (auto failed = writeFileAtomically((fs::path(o.outputDir) / file).string(), text)) return reporter.fail({*failed, {}, {}});
     out << fmt::format("{}: variant {} ({}) -> {}/{}\n", why, results[*best].index,
                        placementsText(components, results[*best]), o.outputDir, file);
@@ -440,6 +456,10 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                         "(summed over {} worker(s)).\n",
                         hazards, infeasible, reused, split.compileMs / 1000, split.firstUseMs / 1000,
                         split.renderMs / 1000, split.errorMs / 1000, o.jobs);
+  if (!layoutReport.empty()) {
+    report += "\n## Data-layout selection\n\nEach baked output of the chosen variants, analysed in a 32-bit float bake; "
+              "the error is what the selected format adds to the image against that bake.\n" + layoutReport;
+  }
   if (auto failed = writeFileAtomically((fs::path(o.outputDir) / "report.md").string(), report)) {
     return reporter.fail({*failed, {}, {}});
   }

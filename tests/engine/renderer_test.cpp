@@ -17,6 +17,7 @@
 #include "driver/spirec.h"
 #include "engine/device_fixture.h"
 #include "measure/image_metrics.h"
+#include "renderer/bake_analysis.h"
 #include "renderer/scene_renderer.h"
 #include "scene/texture.h"
 #include "support/diagnostic_renderer.h"
@@ -270,6 +271,62 @@ TEST_F(RendererTest, NonFiniteOutputIsCountedNotAveraged) {
   EXPECT_TRUE(std::isinf(error.rmse));
   EXPECT_TRUE(std::isinf(error.maxError));
   EXPECT_EQ(error.psnr, 0.0);
+}
+
+
+// Data-layout selection: a baked unit vector is recognized as one and stored
+// as RGB10_A2 with the signed remap, which costs far less than storing it in
+// 8 bits without the remap (which clamps every negative component to 0).
+TEST_F(RendererTest, BakedUnitVectorsSelectRgb10A2WithSignedRemap) {
+  std::string json = planeScene("normal_bake.spire", "NormalBake", R"({"colorMap": "noise"})");
+  sources_ = std::make_unique<SourceManager>();
+  diags_ = std::make_unique<DiagnosticList>();
+  scene_ = scene::parseSceneFile("test_scene.json", json, kDataDir, *sources_, *diags_);
+  ASSERT_TRUE(scene_);
+  const std::map<std::string, std::string> decisions{{"bentNormal", "PrebakeTex"}};
+  const auto renderWith = [&](SceneRenderer& renderer, const ShaderLibrary::Attributes& attributes,
+                              const TextureBakeResult** baked) -> std::optional<Capture> {
+    auto program = renderer.compileVariant(0, decisions, nullptr, attributes);
+    EXPECT_TRUE(program) << program.error().message << program.error().details;
+    if (!program) return std::nullopt;
+    auto prepared = renderer.prepare({*program});
+    EXPECT_TRUE(prepared) << prepared.error().message;
+    if (!prepared) return std::nullopt;
+    if (baked) *baked = prepared->textureBakes[0];
+    auto capture = renderer.capture(*prepared, scene_->camera.views.front());
+    EXPECT_TRUE(capture);
+    if (!capture) return std::nullopt;
+    return std::move(capture).value();
+  };
+
+  TextureBakeOptions analysisOptions;
+  analysisOptions.defaultSize = 64;
+  analysisOptions.forceFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+  SceneRenderer analysis(ctx(), *scene_, *diags_, analysisOptions);
+  const TextureBakeResult* baked = nullptr;
+  const auto reference = renderWith(analysis, {}, &baked);
+  ASSERT_TRUE(reference && baked);
+  auto program = analysis.compileVariant(0, decisions);
+  ASSERT_TRUE(program);
+  auto layouts = selectBakeLayouts(*program->kernel("PrebakeTex"), *baked);
+  ASSERT_TRUE(layouts) << layouts.error().message;
+  ASSERT_EQ(layouts->size(), 1U);
+  EXPECT_EQ((*layouts)[0].component, "bentNormal");
+  EXPECT_TRUE((*layouts)[0].unitVectors);
+  EXPECT_LT((*layouts)[0].minimum[0], 0.0F);
+  EXPECT_EQ((*layouts)[0].format, "RGB10_A2");
+  EXPECT_TRUE((*layouts)[0].signedEncoding);
+
+  TextureBakeOptions options;
+  options.defaultSize = 64;
+  SceneRenderer renderer(ctx(), *scene_, *diags_, options);
+  const auto remapped = renderWith(renderer, {{"bentNormal", {{"Format", "RGB10_A2"}, {"Encoding", "signed"}}}}, nullptr);
+  const auto clamped = renderWith(renderer, {{"bentNormal", {{"Format", "RGBA8"}}}}, nullptr);
+  ASSERT_TRUE(remapped && clamped);
+  const double remappedError = compare(*reference, *remapped).rmse;
+  const double clampedError = compare(*reference, *clamped).rmse;
+  EXPECT_LT(remappedError, 0.002);  // 10 bits over [-1, 1], halved again by the shader's * 0.5
+  EXPECT_GT(clampedError, 10.0 * remappedError);
 }
 
 }  // namespace

@@ -102,6 +102,22 @@ std::optional<std::string> checkVarying(const KernelValue& value, std::string_vi
 
 namespace spire::codegen {
 
+std::optional<std::string> checkEncoding(const KernelValue& value, bool& isSigned) {
+  isSigned = false;
+  for (const auto& [name, text] : value.attributes) {
+    if (name != "Encoding") continue;
+    if (text != "signed") {
+      return fmt::format("unknown Encoding \"{}\" on '{}'; the only encoding is \"signed\"", text, value.sourceName);
+    }
+    if (!(value.type->isScalar() || value.type->isVector()) || value.type->scalar != sem::ScalarKind::Float) {
+      return fmt::format("Encoding \"signed\" needs a float scalar or vector, not '{}' of type '{}'", value.sourceName,
+                         value.type->name());
+    }
+    isSigned = true;
+  }
+  return std::nullopt;
+}
+
 std::optional<std::string> emitOutVariables(ExportSite& site, std::string_view strategy) {
   KernelBuilder& kernel = site.producer;
   for (size_t i = 0; i < site.values.size(); ++i) {
@@ -116,7 +132,10 @@ std::optional<std::string> emitOutVariables(ExportSite& site, std::string_view s
     const bool flat = kernel.stage() == ShaderStage::Vertex && needsFlat(v.type);
     kernel.declare(fmt::format("layout(location = {}) {}out {};", site.locations[i], flat ? "flat " : "",
                                kernel.declaration(v.type, out)));
-    kernel.addStore(fmt::format("{} = {};", out, v.glslName));
+    bool encodeSigned = false;
+    if (auto problem = checkEncoding(v, encodeSigned)) return problem;
+    kernel.addStore(encodeSigned ? fmt::format("{} = {} * 0.5 + 0.5;", out, v.glslName)
+                                 : fmt::format("{} = {};", out, v.glslName));
     nlohmann::ordered_json entry = valueEntry(v, strategy);
     entry["glslName"] = out;
     entry["location"] = site.locations[i];

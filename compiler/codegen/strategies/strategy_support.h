@@ -48,4 +48,12 @@ namespace spire::codegen {
 // at the end of main(); shared by standardExport and vertexExport.
 std::optional<std::string> emitOutVariables(ExportSite& site, std::string_view strategy);
 
+// `[Encoding: "signed"]` on a component's declaration or decision line: its
+// values lie in [-1, 1] (unit vectors) and are stored remapped to [0, 1], so
+// that an unsigned normalized texture (RGBA8, RGB10_A2) can hold them; the
+// exporting strategy writes v * 0.5 + 0.5 and textureImport undoes it.
+// Returns an error message for an Encoding other than "signed" or on a
+// value that is not a float scalar or vector.
+std::optional<std::string> checkEncoding(const KernelValue& value, bool& isSigned);
+
 }  // namespace spire::codegen

@@ -26,7 +26,11 @@ class TextureImport final : public Strategy {
       kernel.declare(fmt::format("layout(set = {}, binding = {}) uniform sampler2D {};", KernelBuilder::kDescriptorSet,
                                  binding, sampler));
       kernel.declareGlobal(t, v.glslName);
-      kernel.addFetch(fmt::format("{} = texture({}, {}){};", v.glslName, sampler, uv, kSwizzles[t->rows]));
+      bool encodedSigned = false;
+      if (auto problem = checkEncoding(v, encodedSigned)) return problem;
+      const std::string fetch = fmt::format("texture({}, {}){}", sampler, uv, kSwizzles[t->rows]);
+      kernel.addFetch(encodedSigned ? fmt::format("{} = {} * 2.0 - 1.0;", v.glslName, fetch)
+                                    : fmt::format("{} = {};", v.glslName, fetch));
       nlohmann::ordered_json entry = importEntry(site, v, "textureImport");
       setBinding(entry, binding);
       entry["sampler"] = sampler;
