@@ -198,7 +198,13 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
   std::vector<const GpuMesh*> meshes;
   const size_t errorsBefore = diags_.errorCount();
   for (size_t i = 0; i < programs.size(); ++i) {
-    const scene::InstanceDesc& instance = scene_.instances[i];
+    scene::InstanceDesc instance = scene_.instances[i];
+    for (scene::MaterialBinding& binding : instance.material) {
+      if (const auto it = overrides_.find(binding.component); it != overrides_.end()) {
+        binding.texture.reset();
+        binding.numbers = it->second;
+      }
+    }
     meshes.push_back(meshFor(instance.mesh, instance.meshRange));
     const TextureLookup lookup = [this](const std::string& name, SourceRange range) { return textureFor(name, range); };
     auto material = resolveMaterial(programs[i], instance, lookup, diags_);

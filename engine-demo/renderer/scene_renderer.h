@@ -64,6 +64,13 @@ class SceneRenderer {
   // The library compiled for instance `index` (compiling it on first use).
   Expected<ShaderLibrary*> library(size_t index) { return libraryFor(scene_.instances.at(index)); }
 
+  // Material values that replace the scene's for every instance that binds
+  // the component, in the next prepare() calls: the tuner samples uniform
+  // parameters over ranges this way. Empty restores the scene's values.
+  void setParameterOverrides(std::map<std::string, std::vector<double>> overrides) {
+    overrides_ = std::move(overrides);
+  }
+
   // Resolves materials (reporting problems to `diags`), runs the bakes the
   // programs need and builds their draws.
   Expected<PreparedScene> prepare(const std::vector<VariantProgram>& programs);
@@ -111,6 +118,7 @@ class SceneRenderer {
   std::map<std::string, std::unique_ptr<GpuTexture>> textures_;
   std::optional<RenderTarget> target_;
   std::string compilerWarnings_;
+  std::map<std::string, std::vector<double>> overrides_;
 };
 
 }  // namespace spire::engine

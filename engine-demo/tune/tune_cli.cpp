@@ -8,11 +8,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <ostream>
+#include <random>
 #include <set>
 #include <thread>
 
@@ -56,7 +58,72 @@ struct Options {
   std::string device;
   bool validation = false;
   int worker = -1;
+  std::vector<std::string> params;  // NAME=MIN:MAX
+  uint32_t paramSamples = 1;
 };
+
+struct ParameterRange {
+  std::string component;
+  double minimum = 0.0;
+  double maximum = 0.0;
+  size_t arity = 1;
+};
+
+// Parameter samples as in Pellacini 2005: every parameter at its minimum,
+// every one at its maximum, then `randomSamples` uniform draws (seeded, so
+// workers and reruns agree).
+std::vector<ParameterSample> parameterSamples(const std::vector<ParameterRange>& ranges, uint32_t randomSamples,
+                                              uint64_t seed) {
+  if (ranges.empty()) return {};
+  std::vector<ParameterSample> samples(2);
+  for (const ParameterRange& r : ranges) {
+    samples[0][r.component] = std::vector<double>(r.arity, r.minimum);
+    samples[1][r.component] = std::vector<double>(r.arity, r.maximum);
+  }
+  std::mt19937_64 rng(seed);
+  for (uint32_t k = 0; k < randomSamples; ++k) {
+    ParameterSample sample;
+    for (const ParameterRange& r : ranges) {
+      std::uniform_real_distribution<double> draw(r.minimum, r.maximum);
+      std::vector<double> values(r.arity);
+      for (double& v : values) v = draw(rng);
+      sample[r.component] = std::move(values);
+    }
+    samples.push_back(std::move(sample));
+  }
+  return samples;
+}
+
+// Parses NAME=MIN:MAX against the instance's material, which gives the
+// value's arity (every component of a vector gets the same range).
+std::optional<ParameterRange> parseParameter(const std::string& text, const scene::InstanceDesc& instance,
+                                             std::string& error) {
+  const size_t equals = text.find('=');
+  const size_t colon = text.find(':', equals == std::string::npos ? 0 : equals);
+  ParameterRange range;
+  if (equals == std::string::npos || colon == std::string::npos) {
+    error = fmt::format("--param '{}': expected NAME=MIN:MAX", text);
+    return std::nullopt;
+  }
+  range.component = text.substr(0, equals);
+  const std::string low = text.substr(equals + 1, colon - equals - 1);
+  const std::string high = text.substr(colon + 1);
+  const auto [lowEnd, lowError] = std::from_chars(low.data(), low.data() + low.size(), range.minimum);
+  const auto [highEnd, highError] = std::from_chars(high.data(), high.data() + high.size(), range.maximum);
+  if (lowError != std::errc{} || highError != std::errc{} || lowEnd != low.data() + low.size() ||
+      highEnd != high.data() + high.size() || !(range.minimum <= range.maximum)) {
+    error = fmt::format("--param '{}': MIN and MAX must be numbers with MIN <= MAX", text);
+    return std::nullopt;
+  }
+  for (const scene::MaterialBinding& binding : instance.material) {
+    if (binding.component == range.component && !binding.texture) {
+      range.arity = binding.numbers.size();
+      return range;
+    }
+  }
+  error = fmt::format("--param '{}': the instance's material binds no numbers to '{}'", text, range.component);
+  return std::nullopt;
+}
 
 fs::path shardPath(const Options& o, int worker) { return fs::path(o.outputDir) / fmt::format("shard-{}.csv", worker); }
 fs::path splitPath(const Options& o, int worker) { return fs::path(o.outputDir) / fmt::format("shard-{}.time", worker); }
@@ -236,6 +303,13 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       ->type_name("PATH");
   app.add_option("--device", o.device, "Vulkan device whose name contains TEXT")->type_name("TEXT");
   app.add_flag("--validation", o.validation, "Enable VK_LAYER_KHRONOS_validation; any message fails the run");
+  app.add_option("--param", o.params,
+                 "Measure error over samples of a material parameter's range (repeatable): its minimum, its maximum "
+                 "and random values")
+      ->type_name("NAME=MIN:MAX");
+  app.add_option("--param-samples", o.paramSamples, "Random samples besides the minimum and maximum")
+      ->check(CLI::Range(0U, 100U))
+      ->type_name("N");
   app.add_option("--worker", o.worker, "Internal: measure shard K")->group("");
   std::vector<std::string> reversed(args.rbegin(), args.rend());
   try {
@@ -294,9 +368,19 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   if (!o.reference.empty()) reference = o.reference;
   else if (!scene->variants.empty()) reference = scene->variants.front().decisions;
 
+  std::vector<ParameterRange> ranges;
+  for (const std::string& text : o.params) {
+    auto range = parseParameter(text, *instance, spaceError);
+    if (!range) {
+      err << fmt::format("spire-tune: error: {}\n", spaceError);
+      return kUsageError;
+    }
+    ranges.push_back(*range);
+  }
   TunerOptions tunerOptions;
   tunerOptions.frames = o.frames;
   tunerOptions.warmupFrames = o.warmup;
+  tunerOptions.parameterSamples = parameterSamples(ranges, o.paramSamples, o.seed);
   Tuner tuner(renderer, instanceIndex, space->axes, tunerOptions);
 
   std::error_code ec;

@@ -10,17 +10,27 @@ namespace spire::tune {
 Tuner::Tuner(engine::SceneRenderer& renderer, size_t instance, std::vector<Axis> axes, TunerOptions options)
     : renderer_(renderer), instance_(instance), axes_(std::move(axes)), options_(options) {}
 
+std::vector<ParameterSample> Tuner::samples() const {
+  return options_.parameterSamples.empty() ? std::vector<ParameterSample>{ParameterSample{}} : options_.parameterSamples;
+}
+
 engine::Expected<void> Tuner::renderReference(const std::optional<std::filesystem::path>& decisions) {
   auto programs = renderer_.compile(decisions);
   if (!programs) return programs.error();
-  auto prepared = renderer_.prepare(*programs);
-  if (!prepared) return prepared.error();
   reference_.clear();
-  for (const scene::CameraView& view : renderer_.scene().camera.views) {
-    auto capture = renderer_.capture(*prepared, view);
-    if (!capture) return capture.error();
-    reference_.push_back(std::move(capture).value());
+  for (const ParameterSample& sample : samples()) {
+    renderer_.setParameterOverrides(sample);
+    auto prepared = renderer_.prepare(*programs);
+    if (!prepared) return prepared.error();
+    std::vector<engine::Capture> views;
+    for (const scene::CameraView& view : renderer_.scene().camera.views) {
+      auto capture = renderer_.capture(*prepared, view);
+      if (!capture) return capture.error();
+      views.push_back(std::move(capture).value());
+    }
+    reference_.push_back(std::move(views));
   }
+  renderer_.setParameterOverrides({});
   return {};
 }
 
@@ -73,40 +83,50 @@ VariantResult Tuner::measure(const TunePoint& point) {
   }
 
   timer.restart();
-  auto prepared = renderer_.prepare(*programs);
-  if (!prepared) {
-    result.status = "failed: " + prepared.error().message;
-    return result;
-  }
-  for (const engine::BakeRecord& bake : prepared->bakes) result.prebakeMs += bake.reused ? 0.0 : bake.milliseconds;
-  auto stats = renderer_.measure(*prepared, options_.warmupFrames, options_.frames);
-  if (!stats) {
-    result.status = "failed: " + stats.error().message;
-    return result;
-  }
-  result.frameMs = stats->medianGpuMs;
-  result.firstFrameMs = stats->firstFrameMs;
-  split_.firstUseMs += stats->firstFrameMs;
   measure::ErrorAccumulator accumulated;
-  const auto& views = renderer_.scene().camera.views;
-  for (size_t v = 0; v < views.size(); ++v) {
-    auto capture = renderer_.capture(*prepared, views[v]);
-    if (!capture) {
-      result.status = "failed: " + capture.error().message;
+  double errorMs = 0.0;
+  const std::vector<ParameterSample> parameterSamples = samples();
+  for (size_t s = 0; s < parameterSamples.size(); ++s) {
+    renderer_.setParameterOverrides(parameterSamples[s]);
+    auto prepared = renderer_.prepare(*programs);
+    renderer_.setParameterOverrides({});
+    if (!prepared) {
+      result.status = "failed: " + prepared.error().message;
       return result;
     }
-    const vk::HostTimer errorTimer;
-    std::vector<uint8_t> coverage = reference_[v].coverage;
-    for (size_t i = 0; i < coverage.size(); ++i) coverage[i] |= capture->coverage[i];
-    auto error = measure::compareImages(reference_[v].color, capture->color, &coverage);
-    split_.errorMs += errorTimer.elapsedMs();
-    if (!error) {
-      result.status = "failed: " + error.error();
-      return result;
+    if (s == 0) {
+      for (const engine::BakeRecord& bake : prepared->bakes) result.prebakeMs += bake.reused ? 0.0 : bake.milliseconds;
+      auto stats = renderer_.measure(*prepared, options_.warmupFrames, options_.frames);
+      if (!stats) {
+        result.status = "failed: " + stats.error().message;
+        return result;
+      }
+      result.frameMs = stats->medianGpuMs;
+      result.firstFrameMs = stats->firstFrameMs;
+      split_.firstUseMs += stats->firstFrameMs;
     }
-    accumulated.add(*error);
+    const auto& views = renderer_.scene().camera.views;
+    for (size_t v = 0; v < views.size(); ++v) {
+      auto capture = renderer_.capture(*prepared, views[v]);
+      if (!capture) {
+        result.status = "failed: " + capture.error().message;
+        return result;
+      }
+      const vk::HostTimer errorTimer;
+      const engine::Capture& reference = reference_[s][v];
+      std::vector<uint8_t> coverage = reference.coverage;
+      for (size_t i = 0; i < coverage.size(); ++i) coverage[i] |= capture->coverage[i];
+      auto error = measure::compareImages(reference.color, capture->color, &coverage);
+      errorMs += errorTimer.elapsedMs();
+      if (!error) {
+        result.status = "failed: " + error.error();
+        return result;
+      }
+      accumulated.add(*error);
+    }
   }
-  split_.renderMs += timer.elapsedMs() - stats->firstFrameMs;
+  split_.errorMs += errorMs;
+  split_.renderMs += timer.elapsedMs() - result.firstFrameMs - errorMs;
   const measure::ImageError total = accumulated.total();
   result.rmse = total.rmse;
   result.psnr = total.psnr;

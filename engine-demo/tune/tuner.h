@@ -24,9 +24,15 @@ struct TimeSplit {
   double errorMs = 0.0;     // image comparison
 };
 
+// Material values for one parameter sample: component -> numbers.
+using ParameterSample = std::map<std::string, std::vector<double>>;
+
 struct TunerOptions {
   uint32_t warmupFrames = 1;
   uint32_t frames = 3;
+  // Error is measured over every sample (and every camera view); time over
+  // the first. Empty: the scene's own values only.
+  std::vector<ParameterSample> parameterSamples;
 };
 
 class Tuner {
@@ -54,7 +60,9 @@ class Tuner {
   std::vector<Axis> axes_;
   TunerOptions options_;
   std::vector<engine::VariantProgram> others_;  // every instance at its own decisions
-  std::vector<engine::Capture> reference_;
+  std::vector<ParameterSample> samples() const;
+
+  std::vector<std::vector<engine::Capture>> reference_;  // [sample][view]
   std::map<std::string, VariantResult> byKernels_;
   TimeSplit split_;
 };
