@@ -38,6 +38,29 @@ std::string chooseFormat(BakeLayout& layout) {
 
 }  // namespace
 
+BakeLayout analyzeBakedValues(std::string component, uint32_t channels, std::span<const float> rgba,
+                              std::span<const uint8_t> coverage) {
+  BakeLayout layout;
+  layout.component = std::move(component);
+  layout.channels = channels;
+  layout.minimum.fill(std::numeric_limits<float>::infinity());
+  layout.maximum.fill(-std::numeric_limits<float>::infinity());
+  bool unit = channels >= 3;
+  for (size_t i = 0; i < coverage.size() && (i + 1) * 4 <= rgba.size(); ++i) {
+    if (!coverage[i]) continue;
+    const float* v = rgba.data() + i * 4;
+    for (uint32_t c = 0; c < 4; ++c) {
+      layout.finite = layout.finite && std::isfinite(v[c]);
+      layout.minimum[c] = std::min(layout.minimum[c], v[c]);
+      layout.maximum[c] = std::max(layout.maximum[c], v[c]);
+    }
+    if (unit) unit = std::abs(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) - 1.0F) <= kUnitTolerance;
+  }
+  layout.unitVectors = unit;
+  layout.format = chooseFormat(layout);
+  return layout;
+}
+
 Expected<std::vector<BakeLayout>> selectBakeLayouts(const KernelProgram& kernel, const TextureBakeResult& baked) {
   std::vector<BakeLayout> layouts;
   for (const KernelOutput& output : kernel.outputs) {
@@ -50,26 +73,9 @@ Expected<std::vector<BakeLayout>> selectBakeLayouts(const KernelProgram& kernel,
     if (texels.size() != count * 4 * sizeof(float) || baked.coverage.size() != count) {
       return Error{fmt::format("'{}' was not baked in RGBA32F with its texels kept", output.component), {}, {}};
     }
-    BakeLayout layout;
-    layout.component = output.component;
-    layout.channels = type->rows;
-    layout.minimum.fill(std::numeric_limits<float>::infinity());
-    layout.maximum.fill(-std::numeric_limits<float>::infinity());
-    bool unit = layout.channels >= 3;
-    for (size_t i = 0; i < count; ++i) {
-      if (!baked.coverage[i]) continue;
-      float v[4];
-      std::memcpy(v, texels.data() + i * sizeof v, sizeof v);
-      for (uint32_t c = 0; c < 4; ++c) {
-        layout.finite = layout.finite && std::isfinite(v[c]);
-        layout.minimum[c] = std::min(layout.minimum[c], v[c]);
-        layout.maximum[c] = std::max(layout.maximum[c], v[c]);
-      }
-      if (unit) unit = std::abs(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) - 1.0F) <= kUnitTolerance;
-    }
-    layout.unitVectors = unit;
-    layout.format = chooseFormat(layout);
-    layouts.push_back(std::move(layout));
+    std::vector<float> rgba(count * 4);
+    std::memcpy(rgba.data(), texels.data(), texels.size());
+    layouts.push_back(analyzeBakedValues(output.component, type->rows, rgba, baked.coverage));
   }
   return layouts;
 }

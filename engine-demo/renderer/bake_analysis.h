@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,11 @@ struct BakeLayout {
   std::string format;           // a Format hint name (texture_bake.h)
   bool signedEncoding = false;  // store v * 0.5 + 0.5 ([Encoding: "signed"])
 };
+
+// Analyses one output from its RGBA32F texels (4 floats each) where
+// `coverage` is non-zero, keeping the first `channels` components.
+BakeLayout analyzeBakedValues(std::string component, uint32_t channels, std::span<const float> rgba,
+                              std::span<const uint8_t> coverage);
 
 // Analyses every output of the PrebakeTex `kernel` in `baked`, which must have
 // been baked with TextureBakeOptions::forceFormat = RGBA32F.

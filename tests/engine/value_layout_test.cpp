@@ -1,0 +1,119 @@
+// Host-side pieces of the renderer that need no device: GLSL value types and
+// their std140/std430 placement, the values the engine supplies, the world
+// table and the choice of bake formats.
+#include <gtest/gtest.h>
+
+#include <glm/ext/matrix_transform.hpp>
+
+#include <cstring>
+
+#include "renderer/bake_analysis.h"
+#include "renderer/supplied_values.h"
+#include "renderer/texture_bake.h"
+#include "renderer/value_layout.h"
+#include "renderer/world_roles.h"
+
+namespace spire::engine {
+namespace {
+
+TEST(ValueLayout, ParsesNumericTypes) {
+  const auto mat = parseValueType("mat3x4");
+  ASSERT_TRUE(mat);
+  EXPECT_EQ(mat->columns, 3U);
+  EXPECT_EQ(mat->rows, 4U);
+  EXPECT_EQ(mat->componentCount(), 12U);
+  const auto array = parseValueType("vec2[3]");
+  ASSERT_TRUE(array);
+  EXPECT_EQ(array->componentCount(), 6U);
+  EXPECT_EQ(parseValueType("uvec3")->scalar, ValueType::Scalar::Uint);
+  EXPECT_FALSE(parseValueType("sampler2D"));
+  EXPECT_FALSE(parseValueType("vec5"));
+  EXPECT_FALSE(parseValueType("float[0]"));
+  EXPECT_FALSE(parseValueType("float[2][2]"));
+  EXPECT_FALSE(parseValueType("Light"));
+}
+
+// A std140 mat3 has 16-byte columns: the fourth float of each column is padding.
+TEST(ValueLayout, WritesMatricesByColumnStride) {
+  std::vector<std::byte> memory(64, std::byte{0xff});
+  const BlockMember member{"m", "mat3", 4, 48, 0, 16};
+  const std::vector<double> values{1, 2, 3, 4, 5, 6, 7, 8, 9};
+  writeValue(memory, member, *parseValueType("mat3"), values);
+  float column1[4];
+  std::memcpy(column1, memory.data() + 4 + 16, sizeof column1);
+  EXPECT_EQ(column1[0], 4.0F);
+  EXPECT_EQ(column1[2], 6.0F);
+  EXPECT_EQ(readValue(memory, member, *parseValueType("mat3")), values);
+  // Writes past the end are skipped rather than performed.
+  const BlockMember outside{"v", "vec4", 56, 16, 0, 0};
+  writeValue(memory, outside, *parseValueType("vec4"), std::vector<double>{1, 2, 3, 4});
+  EXPECT_EQ(readValue(memory, outside, *parseValueType("vec4")).size(), 2U);
+}
+
+TEST(ValueLayout, WritesIntegersAndArraysWithStride) {
+  std::vector<std::byte> memory(64);
+  const BlockMember ints{"i", "int[2]", 0, 32, 16, 0};
+  writeValue(memory, ints, *parseValueType("int[2]"), std::vector<double>{-3, 7});
+  int32_t second = 0;
+  std::memcpy(&second, memory.data() + 16, sizeof second);
+  EXPECT_EQ(second, 7);
+  EXPECT_EQ(readValue(memory, ints, *parseValueType("int[2]")), (std::vector<double>{-3, 7}));
+}
+
+TEST(SuppliedValues, FrameValuesAreInModelSpace) {
+  FrameState frame;
+  frame.cameraPosition = {0, 0, 10};
+  frame.lightDirection = {0, 1, 0};
+  const glm::mat4 model = glm::translate(glm::rotate(glm::mat4(1.0F), glm::radians(90.0F), {0, 0, 1}), {1, 0, 0});
+  const auto light = frameValue("lightDir", frame, model);
+  ASSERT_TRUE(light);
+  EXPECT_EQ(light->type, "vec3");
+  // The model rotates +x onto +y, so the world's up is the model's +x.
+  EXPECT_NEAR(light->numbers[0], 1.0, 1e-6);
+  EXPECT_NEAR(light->numbers[1], 0.0, 1e-6);
+  EXPECT_EQ(frameValue("matMVP", frame, model)->numbers.size(), 16U);
+  EXPECT_FALSE(frameValue("noSuchValue", frame, model));
+  EXPECT_EQ(findMeshAttribute("vert_uv")->components, 2U);
+  EXPECT_FALSE(findMeshAttribute("vert_color"));
+}
+
+TEST(WorldTable, NamesEveryWorldOfThePipelinesOnce) {
+  for (const char* world : {"MeshVertex", "FrameUniform", "MaterialUniform", "PrebakeUniform", "PrebakeVertex",
+                            "PrebakeTex", "Vertex", "Fragment"}) {
+    EXPECT_NE(findWorldPass(world), nullptr) << world;
+  }
+  EXPECT_EQ(findWorldPass("ScreenSpace"), nullptr);
+  EXPECT_EQ(findWorldPass("PrebakeTex")->stage, codegen::ShaderStage::Fragment);
+  EXPECT_FALSE(findWorldPass("MeshVertex")->stage);
+}
+
+TEST(BakeFormats, HintNamesMapToFormats) {
+  EXPECT_EQ(bakeFormat("RGB10_A2"), VK_FORMAT_A2B10G10R10_UNORM_PACK32);
+  EXPECT_EQ(bakeFormat("R8"), VK_FORMAT_R8_UNORM);
+  EXPECT_FALSE(bakeFormat("BC7"));
+  EXPECT_NE(bakeFormatNames().find("RGBA16F"), std::string::npos);
+}
+
+std::string formatFor(uint32_t channels, const std::vector<float>& rgba, bool* signedEncoding = nullptr) {
+  const std::vector<uint8_t> coverage(rgba.size() / 4, 1);
+  const BakeLayout layout = analyzeBakedValues("value", channels, rgba, coverage);
+  if (signedEncoding) *signedEncoding = layout.signedEncoding;
+  return layout.format;
+}
+
+TEST(BakeAnalysis, PicksTheSmallestFormatThatHoldsTheValues) {
+  EXPECT_EQ(formatFor(1, {0.2F, 0, 0, 1, 0.9F, 0, 0, 1}), "R8");
+  EXPECT_EQ(formatFor(2, {0.2F, 0.4F, 0, 1, 0.9F, 1, 0, 1}), "RG8");
+  EXPECT_EQ(formatFor(4, {0.2F, 0.4F, 0.1F, 1, 0.9F, 1, 0, 0.5F}), "RGBA8");
+  bool encoded = false;
+  EXPECT_EQ(formatFor(3, {0, 0, 1, 1, 0.6F, -0.8F, 0, 1}, &encoded), "RGB10_A2");
+  EXPECT_TRUE(encoded);
+  EXPECT_EQ(formatFor(3, {0, 0, 2, 1, 0.6F, -0.8F, 0, 1}), "RGBA16F");  // signed, not unit
+  EXPECT_EQ(formatFor(1, {-5, 0, 0, 1, 1e6F, 0, 0, 1}), "R32F");        // beyond half precision
+  // An uncovered texel does not count.
+  const std::vector<uint8_t> coverage{1, 0};
+  EXPECT_EQ(analyzeBakedValues("v", 1, std::vector<float>{0.5F, 0, 0, 1, -7, 0, 0, 1}, coverage).format, "R8");
+}
+
+}  // namespace
+}  // namespace spire::engine
