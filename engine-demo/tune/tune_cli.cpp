@@ -280,7 +280,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   app.add_option("--shader", o.shader, "The shader to tune (an instance of the scene must use it)")
       ->required()
       ->type_name("NAME");
-  app.add_option("--components", o.components, "Components to explore (default: every choice)")
+  app.add_option("--components", o.components, "Components to explore (default: every choice); NAME@World keeps one world for NAME")
       ->delimiter(',')
       ->type_name("A,B,...");
   app.add_option("--only", o.only, "Keep placements in these worlds or with these variation names")

@@ -41,14 +41,21 @@ TunePoint pointAt(const std::vector<Axis>& axes, uint64_t index) {
 std::optional<TuneSpace> buildTuneSpace(const std::vector<graph::Choice>& choices, const SpaceRequest& request,
                                         std::string& error) {
   TuneSpace space;
-  const std::set<std::string> selected(request.components.begin(), request.components.end());
-  std::set<std::string> missing = selected;
+  std::map<std::string, std::string> selected;  // component -> the one world it is restricted to, or ""
+  for (const std::string& entry : request.components) {
+    const size_t at = entry.find('@');
+    selected[entry.substr(0, at)] = at == std::string::npos ? "" : entry.substr(at + 1);
+  }
+  std::set<std::string> missing;
+  for (const auto& [component, world] : selected) missing.insert(component);
   for (const graph::Choice& choice : choices) {
     const std::string component = componentOf(choice.key);
     if (!selected.empty() && !missing.erase(component)) continue;
+    const std::string onlyWorld = selected.empty() ? "" : selected.at(component);
     Axis axis{component, {}};
     for (const std::string& name : choice.names) {
-      if (kept(name, request.only)) axis.placements.push_back(name);
+      const bool inWorld = onlyWorld.empty() || name.substr(0, name.find(':')) == onlyWorld;
+      if (inWorld && kept(name, request.only)) axis.placements.push_back(name);
     }
     if (axis.placements.empty()) {
       error = fmt::format("component '{}' has no placement among the requested worlds and variations", component);

@@ -60,6 +60,12 @@ TEST(TuneSpace, SelectsComponentsWorldsAndVariations) {
   const auto placement = buildTuneSpace(terrainChoices(), request, error);
   ASSERT_TRUE(placement) << error;
   EXPECT_EQ(placement->productSize, 1U);
+  request.components = {"albedo", "lighting@Fragment"};
+  request.only = {};
+  const auto perWorld = buildTuneSpace(terrainChoices(), request, error);
+  ASSERT_TRUE(perWorld) << error;
+  EXPECT_EQ(perWorld->axes[1].placements, (std::vector<std::string>{"Fragment:basic", "Fragment:ggx"}));
+  EXPECT_EQ(perWorld->productSize, 6U);
   request.components = {"albdo"};
   request.only = {};
   EXPECT_FALSE(buildTuneSpace(terrainChoices(), request, error));
