@@ -7,6 +7,8 @@
 #include <optional>
 #include <ostream>
 
+#include "demo/glfw_window.h"
+#include "demo/window.h"
 #include "measure/comparison_image.h"
 #include "measure/image_metrics.h"
 #include "measure/report_table.h"
@@ -36,6 +38,7 @@ struct Options {
   uint32_t bakeSize = 1024;
   bool listDevices = false;
   bool validation = false;
+  bool window = false;
 };
 
 struct VariantRun {
@@ -71,6 +74,13 @@ std::optional<std::string> writeText(const fs::path& path, const std::string& te
   return writeFileAtomically(path.string(), text);
 }
 
+// Validation messages make any run fail, whatever it did otherwise.
+int reportValidation(const vk::Context& ctx, int status, std::ostream& err) {
+  const std::vector<std::string> messages = ctx.validationMessages();
+  for (const std::string& message : messages) err << "validation: " << message << "\n";
+  return messages.empty() ? status : kInputError;
+}
+
 int listDevices(const Options& options, std::ostream& out, std::ostream& err) {
   vk::ContextOptions contextOptions;
   contextOptions.deviceFilter = options.device;
@@ -99,7 +109,9 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       ->type_name("PATH");
   app.add_option("-o,--output", options.outputDir, "Write PNGs, comparison.png and report.md to DIR")
       ->type_name("DIR");
-  app.add_option("--frames", options.frames, "Measured frames per variant (default: the scene's)")->type_name("N");
+  app.add_option("--frames", options.frames,
+                 "Measured frames per variant (default: the scene's); with --window, close it after N frames")
+      ->type_name("N");
   app.add_option("--warmup", options.warmup, "Unmeasured frames first (default: the scene's; at least 1)")
       ->type_name("N");
   app.add_option("--device", options.device, "Use the Vulkan device whose name contains TEXT (default: llvmpipe)")
@@ -110,6 +122,9 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   app.add_flag("--list-devices", options.listDevices, "List the Vulkan devices and exit");
   app.add_flag("--validation", options.validation,
                "Enable VK_LAYER_KHRONOS_validation; any message makes the run fail");
+  app.add_flag("--window", options.window,
+               "Show the variants in a window instead of measuring them (needs a display): keys 1-9 switch "
+               "variants, dragging orbits the camera, Space pauses it, Escape quits");
   std::vector<std::string> reversed(args.rbegin(), args.rend());
   try {
     app.parse(reversed);
@@ -148,7 +163,21 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   contextOptions.validation = options.validation;
   contextOptions.deviceFilter = options.device;
   contextOptions.applicationName = "spire-demo";
-  auto ctx = vk::Context::create(contextOptions);
+  // Opened before the context, which makes its surface on it and must be
+  // destroyed first.
+  std::optional<GlfwWindow> window;
+  vk::SurfaceFactory surfaceFactory;
+  if (options.window) {
+    auto opened = GlfwWindow::open(scene->width, scene->height, fmt::format("spire-demo | {}", options.scenePath));
+    if (!opened) {
+      err << fmt::format("spire-demo: error: {}\n", opened.error());
+      return kInputError;
+    }
+    window.emplace(std::move(opened).value());
+    contextOptions.instanceExtensions = window->vulkanInstanceExtensions();
+    surfaceFactory = [&window](VkInstance instance) { return window->createSurface(instance); };
+  }
+  auto ctx = vk::Context::create(contextOptions, surfaceFactory);
   if (!ctx) {
     err << fmt::format("spire-demo: error: no usable Vulkan device: {}\n", ctx.error().message());
     return kNoDevice;
@@ -174,6 +203,12 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (!scenePrepared) return reporter.fail(scenePrepared.error());
     results.push_back({run.name, {}, scenePrepared->bakes, {}, {}});
     prepared.push_back(std::move(scenePrepared).value());
+  }
+  if (window) {
+    std::vector<std::string> names;
+    for (const VariantRun& run : runs) names.push_back(run.name);
+    const WindowOptions windowOptions{fs::path(options.scenePath).filename().string(), options.frames};
+    return reportValidation(*ctx, runWindow(*window, renderer, prepared, names, windowOptions, out, reporter), err);
   }
   for (uint32_t f = 0; f < warmup + frames; ++f) {
     for (size_t v = 0; v < runs.size(); ++v) {
@@ -259,9 +294,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                        return names;
                      }());
 
-  const std::vector<std::string> messages = ctx->validationMessages();
-  for (const std::string& message : messages) err << "validation: " << message << "\n";
-  return messages.empty() ? kSuccess : kInputError;
+  return reportValidation(*ctx, kSuccess, err);
 }
 
 }  // namespace spire::demo

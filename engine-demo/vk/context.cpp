@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <utility>
 
 namespace spire::vk {
 namespace {
@@ -87,7 +88,7 @@ std::optional<size_t> selectPhysicalDevice(std::span<const PhysicalDeviceInfo> d
   return std::nullopt;
 }
 
-Expected<Context> Context::create(const ContextOptions& options) {
+Expected<Context> Context::create(const ContextOptions& options, const SurfaceFactory& surfaceFactory) {
   Context ctx;
   ctx.log_ = std::make_unique<ValidationLog>();
 
@@ -123,6 +124,7 @@ Expected<Context> Context::create(const ContextOptions& options) {
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     instanceInfo.pNext = &debugInfo;
   }
+  for (const std::string& extension : options.instanceExtensions) extensions.push_back(extension.c_str());
   instanceInfo.pApplicationInfo = &app;
   instanceInfo.enabledLayerCount = static_cast<uint32_t>(layers.size());
   instanceInfo.ppEnabledLayerNames = layers.data();
@@ -147,6 +149,12 @@ Expected<Context> Context::create(const ContextOptions& options) {
       return VkError{result, "vkCreateDebugUtilsMessengerEXT", {}};
     }
     ctx.messenger_ = DebugMessenger(messenger, {instance, destroy});
+  }
+
+  if (surfaceFactory) {
+    auto surface = surfaceFactory(instance);
+    if (!surface) return surface.error();
+    ctx.surface_ = Surface(*surface, {instance});
   }
 
   uint32_t deviceCount = 0;
@@ -176,24 +184,43 @@ Expected<Context> Context::create(const ContextOptions& options) {
                    fmt::format("'{}' supports only Vulkan 1.0", ctx.properties_.deviceName)};
   }
 
-  // One family doing graphics and compute keeps submission and ownership
-  // trivial; every conformant implementation with graphics has one.
+  // One family doing graphics and compute (and presenting, with a window)
+  // keeps submission and ownership trivial; every conformant implementation
+  // with graphics has one, and in practice it is also the one that presents.
   uint32_t familyCount = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physical, &familyCount, nullptr);
   std::vector<VkQueueFamilyProperties> families(familyCount);
   vkGetPhysicalDeviceQueueFamilyProperties(physical, &familyCount, families.data());
   const VkQueueFlags wanted = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-  const auto family = std::find_if(families.begin(), families.end(),
-                                   [&](const VkQueueFamilyProperties& f) { return (f.queueFlags & wanted) == wanted; });
-  if (family == families.end()) {
-    return VkError{VK_ERROR_FEATURE_NOT_PRESENT, "Context::create", "no graphics+compute queue family"};
+  const auto usable = [&](uint32_t index) {
+    if ((families[index].queueFlags & wanted) != wanted) return false;
+    if (!ctx.surface_) return true;
+    VkBool32 presents = VK_FALSE;
+    return vkGetPhysicalDeviceSurfaceSupportKHR(physical, index, ctx.surface_.get(), &presents) == VK_SUCCESS &&
+           presents == VK_TRUE;
+  };
+  uint32_t family = 0;
+  while (family < familyCount && !usable(family)) ++family;
+  if (family == familyCount) {
+    std::string detail =
+        ctx.surface_ ? fmt::format("'{}' has no graphics+compute queue family that can present to the window",
+                                   ctx.properties_.deviceName)
+                     : std::string("no graphics+compute queue family");
+    return VkError{VK_ERROR_FEATURE_NOT_PRESENT, "Context::create", std::move(detail)};
   }
-  ctx.queueFamily_ = static_cast<uint32_t>(family - families.begin());
-  ctx.timestampValidBits_ = family->timestampValidBits;
+  ctx.queueFamily_ = family;
+  ctx.timestampValidBits_ = families[family].timestampValidBits;
 
+  std::vector<const char*> deviceExtensions;
+  if (ctx.surface_) {
+    if (!deviceExtensionAvailable(physical, VK_KHR_SWAPCHAIN_EXTENSION_NAME)) {
+      return VkError{VK_ERROR_FEATURE_NOT_PRESENT, "Context::create",
+                     fmt::format("'{}' has no {}", ctx.properties_.deviceName, VK_KHR_SWAPCHAIN_EXTENSION_NAME)};
+    }
+    deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  }
   // Dynamic rendering: core feature on 1.3, otherwise the KHR extension.
   const bool core13 = ctx.apiVersion_ >= VK_API_VERSION_1_3;
-  std::vector<const char*> deviceExtensions;
   if (!core13) {
     if (!deviceExtensionAvailable(physical, VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME)) {
       return VkError{VK_ERROR_FEATURE_NOT_PRESENT, "Context::create",

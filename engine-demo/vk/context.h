@@ -1,6 +1,7 @@
-// The Vulkan context of the engine: a headless instance (optionally with the
-// Khronos validation layer), one physical device, one graphics+compute queue,
-// a command pool and a one-shot submit helper.
+// The Vulkan context of the engine: an instance (optionally with the Khronos
+// validation layer), one physical device, one graphics+compute queue, a
+// command pool and a one-shot submit helper. Headless unless the caller hands
+// it a window's surface, which it then owns and can present to.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -29,7 +30,15 @@ struct ContextOptions {
   // empty picks llvmpipe (lavapipe) when present, else the first device.
   std::string deviceFilter;
   std::string applicationName = "spire-engine";
+  // Instance extensions besides the library's own, e.g. the surface
+  // extensions a window system needs (glfwGetRequiredInstanceExtensions).
+  std::vector<std::string> instanceExtensions;
 };
+
+// Creates the surface of a window once the instance exists. It is a callback
+// because the surface needs the instance while the choice of queue family
+// needs the surface; the context takes ownership of what it returns.
+using SurfaceFactory = std::function<Expected<VkSurfaceKHR>(VkInstance)>;
 
 struct PhysicalDeviceInfo {
   VkPhysicalDevice handle = VK_NULL_HANDLE;
@@ -54,7 +63,10 @@ struct ValidationLog {
 
 class Context {
  public:
-  static Expected<Context> create(const ContextOptions& options);
+  // With a `surfaceFactory`, the queue must be able to present to the surface
+  // and VK_KHR_swapchain is enabled; a device that cannot present fails with
+  // VK_ERROR_FEATURE_NOT_PRESENT. Without one the context is headless.
+  static Expected<Context> create(const ContextOptions& options, const SurfaceFactory& surfaceFactory = {});
 
   VkInstance instance() const { return instance_.get(); }
   VkPhysicalDevice physicalDevice() const { return devices_[selected_].handle; }
@@ -62,6 +74,8 @@ class Context {
   VkQueue queue() const { return queue_; }
   uint32_t queueFamily() const { return queueFamily_; }
   VkCommandPool commandPool() const { return commandPool_.get(); }
+  // The window's surface (see create); VK_NULL_HANDLE when headless.
+  VkSurfaceKHR surface() const { return surface_.get(); }
 
   // Every physical device the instance reports, and the selected one.
   const std::vector<PhysicalDeviceInfo>& physicalDevices() const { return devices_; }
@@ -96,10 +110,12 @@ class Context {
   Context() = default;
 
   // Declaration order is destruction order reversed: the log outlives the
-  // messenger and instance that write to it; the pool dies before the device.
+  // messenger and instance that write to it; the pool dies before the device;
+  // the surface after the device and before the instance.
   std::unique_ptr<ValidationLog> log_;
   Instance instance_;
   DebugMessenger messenger_;
+  Surface surface_;
   std::vector<PhysicalDeviceInfo> devices_;
   size_t selected_ = 0;
   VkPhysicalDeviceProperties properties_{};

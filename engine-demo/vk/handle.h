@@ -74,9 +74,29 @@ struct DebugMessengerDeleter {
   void operator()(VkDebugUtilsMessengerEXT messenger) const { destroy(instance, messenger, nullptr); }
 };
 
+// Surfaces belong to the instance, not the device.
+struct SurfaceDeleter {
+  VkInstance instance = VK_NULL_HANDLE;
+  void operator()(VkSurfaceKHR surface) const { vkDestroySurfaceKHR(instance, surface, nullptr); }
+};
+// Command buffers go back to the pool they were allocated from.
+struct CommandBufferDeleter {
+  VkDevice device = VK_NULL_HANDLE;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  void operator()(VkCommandBuffer cmd) const { vkFreeCommandBuffers(device, pool, 1, &cmd); }
+};
+// Not a destruction: waits until the device has finished all submitted work,
+// for owners whose members are still in use by the GPU (swapchain frames).
+struct DeviceIdleWaiter {
+  void operator()(VkDevice device) const { vkDeviceWaitIdle(device); }
+};
+
 using Instance = Handle<VkInstance, InstanceDeleter>;
 using Device = Handle<VkDevice, DeviceObjectDeleter>;
 using DebugMessenger = Handle<VkDebugUtilsMessengerEXT, DebugMessengerDeleter>;
+using Surface = Handle<VkSurfaceKHR, SurfaceDeleter>;
+using CommandBuffer = Handle<VkCommandBuffer, CommandBufferDeleter>;
+using WaitIdleOnDestroy = Handle<VkDevice, DeviceIdleWaiter>;
 using CommandPool = DeviceHandle<VkCommandPool, vkDestroyCommandPool>;
 using Fence = DeviceHandle<VkFence, vkDestroyFence>;
 using DeviceMemory = DeviceHandle<VkDeviceMemory, vkFreeMemory>;
@@ -90,5 +110,7 @@ using PipelineHandle = DeviceHandle<VkPipeline, vkDestroyPipeline>;
 using DescriptorSetLayout = DeviceHandle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout>;
 using DescriptorPool = DeviceHandle<VkDescriptorPool, vkDestroyDescriptorPool>;
 using QueryPool = DeviceHandle<VkQueryPool, vkDestroyQueryPool>;
+using Semaphore = DeviceHandle<VkSemaphore, vkDestroySemaphore>;
+using SwapchainHandle = DeviceHandle<VkSwapchainKHR, vkDestroySwapchainKHR>;
 
 }  // namespace spire::vk

@@ -1,0 +1,35 @@
+// spire-demo --window: the scene's prepared variants shown interactively,
+// with the camera moving through the scene's views, so the trade between
+// speed and quality can be seen rather than only measured.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <span>
+#include <string>
+
+#include "demo/glfw_window.h"
+#include "renderer/error_report.h"
+#include "renderer/scene_renderer.h"
+
+namespace spire::demo {
+
+struct WindowOptions {
+  std::string sceneName;              // shown in the title
+  std::optional<uint32_t> maxFrames;  // close after this many frames (--frames); nullopt: when the user does
+};
+
+// Shows `variants` (prepared by `renderer`, whose context presents to
+// `window`; named by `names`, in the order of the number keys) until the
+// user closes the window or presses Escape. Each frame renders the current
+// variant into the renderer's RGBA32F target and blits it into the window.
+// 1..9 switch variants, dragging with the left button orbits the camera,
+// Space stops and resumes its loop; the title shows the frame times. Returns
+// the exit status: 0, or 1 after printing a Vulkan or rendering error through
+// `reporter`.
+int runWindow(GlfwWindow& window, engine::SceneRenderer& renderer, std::span<const engine::PreparedScene> variants,
+              std::span<const std::string> names, const WindowOptions& options, std::ostream& out,
+              engine::ErrorReporter& reporter);
+
+}  // namespace spire::demo
