@@ -26,8 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-enum ExitCode : int { kSuccess = 0, kInputError = 1, kUsageError = 2, kNoDevice = 3 };
-
 struct Options {
   std::string scenePath;
   std::vector<std::string> variants;
@@ -74,26 +72,19 @@ std::optional<std::string> writeText(const fs::path& path, const std::string& te
   return writeFileAtomically(path.string(), text);
 }
 
-// Validation messages make any run fail, whatever it did otherwise.
-int reportValidation(const vk::Context& ctx, int status, std::ostream& err) {
-  const std::vector<std::string> messages = ctx.validationMessages();
-  for (const std::string& message : messages) err << "validation: " << message << "\n";
-  return messages.empty() ? status : kInputError;
-}
-
 int listDevices(const Options& options, std::ostream& out, std::ostream& err) {
   vk::ContextOptions contextOptions;
   contextOptions.deviceFilter = options.device;
   auto ctx = vk::Context::create(contextOptions);
   if (!ctx) {
     err << fmt::format("spire-demo: error: no usable Vulkan device: {}\n", ctx.error().message());
-    return kNoDevice;
+    return engine::kToolNoDevice;
   }
   for (const vk::PhysicalDeviceInfo& device : ctx->physicalDevices()) {
     out << fmt::format("{} {} ({}){}\n", &device == &ctx->selectedDevice() ? "*" : " ", device.name,
                        vk::deviceTypeName(device.type), &device == &ctx->selectedDevice() ? "  [selected]" : "");
   }
-  return kSuccess;
+  return engine::kToolSuccess;
 }
 
 }  // namespace
@@ -130,16 +121,16 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     app.parse(reversed);
   } catch (const CLI::Success&) {
     out << app.help();
-    return kSuccess;
+    return engine::kToolSuccess;
   } catch (const CLI::ParseError& e) {
     err << fmt::format("spire-demo: error: {}\nRun 'spire-demo --help' for usage.\n", e.what());
-    return kUsageError;
+    return engine::kToolUsageError;
   }
   if (options.listDevices) return listDevices(options, out, err);
   engine::stabilizeHostAllocator();
   if (options.scenePath.empty()) {
     err << "spire-demo: error: a scene file is required\nRun 'spire-demo --help' for usage.\n";
-    return kUsageError;
+    return engine::kToolUsageError;
   }
 
   SourceManager sources;
@@ -148,7 +139,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   const auto scene = scene::loadSceneFile(options.scenePath, sources, diags);
   if (!scene) {
     reporter.flush();
-    return kInputError;
+    return engine::kToolInputError;
   }
   std::vector<VariantRun> runs;
   for (const std::string& path : options.variants) runs.push_back({fs::path(path).stem().string(), fs::path(path)});
@@ -171,7 +162,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     auto opened = GlfwWindow::open(scene->width, scene->height, fmt::format("spire-demo | {}", options.scenePath));
     if (!opened) {
       err << fmt::format("spire-demo: error: {}\n", opened.error());
-      return kInputError;
+      return engine::kToolInputError;
     }
     window.emplace(std::move(opened).value());
     contextOptions.instanceExtensions = window->vulkanInstanceExtensions();
@@ -180,7 +171,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   auto ctx = vk::Context::create(contextOptions, surfaceFactory);
   if (!ctx) {
     err << fmt::format("spire-demo: error: no usable Vulkan device: {}\n", ctx.error().message());
-    return kNoDevice;
+    return engine::kToolNoDevice;
   }
   out << fmt::format("device: {} ({})\n", ctx->selectedDevice().name, vk::deviceTypeName(ctx->selectedDevice().type));
 
@@ -208,7 +199,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     std::vector<std::string> names;
     for (const VariantRun& run : runs) names.push_back(run.name);
     const WindowOptions windowOptions{fs::path(options.scenePath).filename().string(), options.frames};
-    return reportValidation(*ctx, runWindow(*window, renderer, prepared, names, windowOptions, out, reporter), err);
+    return engine::reportValidation(*ctx, runWindow(*window, renderer, prepared, names, windowOptions, out, reporter), err);
   }
   for (uint32_t f = 0; f < warmup + frames; ++f) {
     for (size_t v = 0; v < runs.size(); ++v) {
@@ -294,7 +285,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                        return names;
                      }());
 
-  return reportValidation(*ctx, kSuccess, err);
+  return engine::reportValidation(*ctx, engine::kToolSuccess, err);
 }
 
 }  // namespace spire::demo

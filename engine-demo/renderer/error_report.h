@@ -10,7 +10,18 @@
 #include "support/diagnostic.h"
 #include "support/source_manager.h"
 
+namespace spire::vk {
+class Context;
+}
+
 namespace spire::engine {
+
+// The exit status of the engine's command-line tools.
+enum ToolExit : int { kToolSuccess = 0, kToolInputError = 1, kToolUsageError = 2, kToolNoDevice = 3 };
+
+// Prints the Vulkan validation messages of a run; any message makes the run
+// fail (kToolInputError), whatever `status` it had otherwise.
+int reportValidation(const vk::Context& ctx, int status, std::ostream& err);
 
 class ErrorReporter {
  public:

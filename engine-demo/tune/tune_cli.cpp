@@ -38,8 +38,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-enum ExitCode : int { kSuccess = 0, kInputError = 1, kUsageError = 2, kNoDevice = 3 };
-
 struct Options {
   std::string scenePath;
   std::string shader;
@@ -316,10 +314,10 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     app.parse(reversed);
   } catch (const CLI::Success&) {
     out << app.help();
-    return kSuccess;
+    return engine::kToolSuccess;
   } catch (const CLI::ParseError& e) {
     err << fmt::format("spire-tune: error: {}\nRun 'spire-tune --help' for usage.\n", e.what());
-    return kUsageError;
+    return engine::kToolUsageError;
   }
   const vk::HostTimer wall;
   engine::stabilizeHostAllocator();
@@ -330,7 +328,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   const auto scene = scene::loadSceneFile(o.scenePath, sources, diags);
   if (!scene) {
     reporter.flush();
-    return kInputError;
+    return engine::kToolInputError;
   }
   const auto instance = std::find_if(scene->instances.begin(), scene->instances.end(),
                                      [&](const scene::InstanceDesc& i) { return i.shader == o.shader; });
@@ -346,7 +344,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   auto ctx = vk::Context::create(contextOptions);
   if (!ctx) {
     err << fmt::format("spire-tune: error: no usable Vulkan device: {}\n", ctx.error().message());
-    return kNoDevice;
+    return engine::kToolNoDevice;
   }
   engine::TextureBakeOptions bakeOptions;
   bakeOptions.defaultSize = o.bakeSize;
@@ -373,7 +371,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     auto range = parseParameter(text, *instance, spaceError);
     if (!range) {
       err << fmt::format("spire-tune: error: {}\n", spaceError);
-      return kUsageError;
+      return engine::kToolUsageError;
     }
     ranges.push_back(*range);
   }
@@ -407,8 +405,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     // Exploring variants leaves some material values unused by design, so
     // only errors are worth printing here.
     if (diags.hasErrors()) reporter.flush();
-    for (const std::string& message : ctx->validationMessages()) err << "validation: " << message << "\n";
-    return ctx->validationMessages().empty() ? kSuccess : kInputError;
+    return engine::reportValidation(*ctx, engine::kToolSuccess, err);
   };
   if (o.worker >= 0) return measureShard(o.worker, nullptr);
 
@@ -422,10 +419,10 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   if (already < total) {
     if (o.jobs == 1) {
       Progress progress(err, total, already);
-      if (const int status = measureShard(-1, &progress); status != kSuccess) return status;
+      if (const int status = measureShard(-1, &progress); status != engine::kToolSuccess) return status;
     } else if (!runWorkers(o, args, already, total, err)) {
       err << "spire-tune: error: a worker failed (its messages are above); rerun to resume\n";
-      return kInputError;
+      return engine::kToolInputError;
     }
   }
 
@@ -491,7 +488,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   const auto writeBest = [&](std::optional<size_t> best, const std::string& file, const std::string& why) -> int {
     if (!best) {
       out << fmt::format("no variant meets the {}; {} not written\n", why, file);
-      return kSuccess;
+      return engine::kToolSuccess;
     }
     const TunePoint point = pointAt(space->axes, results[*best].index);
     auto program = tuner.program(point);
@@ -508,7 +505,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (auto failed = writeFileAtomically((fs::path(o.outputDir) / file).string(), text)) return reporter.fail({*failed, {}, {}});
     out << fmt::format("{}: variant {} ({}) -> {}/{}\n", why, results[*best].index,
                        placementsText(components, results[*best]), o.outputDir, file);
-    return kSuccess;
+    return engine::kToolSuccess;
   };
   if (int s = writeBest(bestInTime, "best_time_budget.decisions", fmt::format("time budget {:.3f} ms", timeBudget)); s) return s;
   if (int s = writeBest(bestInError, "best_error_budget.decisions", fmt::format("error budget RMSE {:.4g}", errorBudget)); s) return s;
@@ -553,8 +550,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                      split.compileMs / 1000, split.firstUseMs / 1000, split.renderMs / 1000, split.errorMs / 1000);
   out << fmt::format("wrote {0}/variants.csv, pareto.csv, plot.png, report.md, front/\n", o.outputDir);
   out << fmt::format("{} variants in {:.1f} s\n", results.size(), wall.elapsedMs() / 1000.0);
-  for (const std::string& message : ctx->validationMessages()) err << "validation: " << message << "\n";
-  return ctx->validationMessages().empty() ? kSuccess : kInputError;
+  return engine::reportValidation(*ctx, engine::kToolSuccess, err);
 }
 
 }  // namespace spire::tune
