@@ -52,6 +52,7 @@ const std::vector<KindKeys<TextureKind>> kTextureKinds = {
     {TextureKind::Checker, "checker", {"type", "size", "cells", "color", "color2", "address"}},
     {TextureKind::NormalMap, "normalMap", {"type", "size", "seed", "strength", "address"}},
     {TextureKind::Solid, "solid", {"type", "size", "color", "address"}},
+    {TextureKind::GgxLut, "ggxLut", {"type", "size", "address"}},
 };
 
 constexpr uint32_t kMaxImageSide = 8192;
@@ -377,6 +378,9 @@ class SceneReader {
     }
     const KindKeys<TextureKind>* kind = readKind(named, kTextureKinds, "texture");
     if (kind != nullptr) texture.kind = kind->kind;
+    // A lookup table's axes end at its borders: repeating would blend the
+    // roughest row into the smoothest.
+    texture.clamp = texture.kind == TextureKind::GgxLut;
     const JsonValue* cells = nullptr;
     for (const JsonMember& member : named.value.members) {
       if (member.key == "type" || !keyApplies(member, kind, kTextureKinds, "texture")) continue;

@@ -45,7 +45,7 @@ struct MeshDesc {
   std::filesystem::path file;
 };
 
-enum class TextureKind { File, Gltf, Noise, Checker, NormalMap, Solid };
+enum class TextureKind { File, Gltf, Noise, Checker, NormalMap, Solid, GgxLut };
 
 struct TextureDesc {
   std::string name;
@@ -60,7 +60,7 @@ struct TextureDesc {
   float strength = 1.0F;       // NormalMap
   glm::vec4 color{1.0F};       // Solid; Checker's first color (components in [0, 1])
   glm::vec4 color2{0.0F, 0.0F, 0.0F, 1.0F};  // Checker's second color
-  bool clamp = false;          // sampler addressing: repeat unless "address": "clamp"
+  bool clamp = false;          // sampler addressing: "address", default repeat (clamp for GgxLut)
 };
 
 // A material value for one shader input, by component name. Either the name

@@ -135,6 +135,8 @@ Expected<Image> buildTexture(const TextureDesc& desc) {
       return makeNormalMap(desc.size, desc.seed, desc.strength);
     case TextureKind::Solid:
       return makeSolid(desc.size, toColor8(desc.color));
+    case TextureKind::GgxLut:
+      return makeGgxLut(desc.size);
   }
   return Error{"texture '" + desc.name + "': unknown kind"};
 }

@@ -101,6 +101,23 @@ Image makeSolid(uint32_t size, Rgba8 color) {
   return image;
 }
 
+Image makeGgxLut(uint32_t size) {
+  Image image = blank(size);
+  const double texel = 1.0 / static_cast<double>(size);
+  for (uint32_t y = 0; y < size; ++y) {
+    const double roughness = (y + 0.5) * texel;
+    const double alpha = std::max(roughness * roughness, static_cast<double>(kGgxMinAlpha));
+    const double alpha2 = alpha * alpha;
+    for (uint32_t x = 0; x < size; ++x) {
+      const double sinTheta = (x + 0.5) * texel;
+      const double ratio = alpha2 / (alpha2 + sinTheta * sinTheta * (1.0 - alpha2));
+      const auto q = static_cast<uint32_t>(std::lround(ratio * ratio * 65535.0));
+      setPixel(image, x, y, Rgba8(static_cast<uint8_t>(q >> 8), static_cast<uint8_t>(q & 0xFF), 0, 255));
+    }
+  }
+  return image;
+}
+
 Expected<Image> loadImage(const std::filesystem::path& path) {
   int width = 0;
   int height = 0;

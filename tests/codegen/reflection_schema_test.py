@@ -6,8 +6,9 @@ Usage: reflection_schema_test.py SPIREC REPO_ROOT SCRATCH_DIR
 Runs SPIREC (from REPO_ROOT, with relative paths) over examples/terrain.spire
 without decisions and with every examples/decisions/*.decisions file, over
 examples/terrain_five_world.spire without decisions and with every
-examples/decisions/five_world/*.decisions file, over
-examples/lod_library.spire, over the engine's test shaders
+examples/decisions/five_world/*.decisions file, over examples/couch.spire
+without decisions and with every examples/decisions/couch/*.decisions file,
+over examples/lod_library.spire, over the engine's test shaders
 tests/data/engine/NAME.spire without decisions and with every
 tests/data/engine/NAME_*.decisions file, and over a small pipeline written into SCRATCH_DIR
 that exercises what the examples do not (bufferImport, bufferExport, hints,
@@ -226,7 +227,8 @@ def main(argv):
     runs = []
     for case, source, decisions_dir in (("terrain", "examples/terrain.spire", "examples/decisions"),
                                         ("terrain_five_world", "examples/terrain_five_world.spire",
-                                         "examples/decisions/five_world")):
+                                         "examples/decisions/five_world"),
+                                        ("couch", "examples/couch.spire", "examples/decisions/couch")):
         runs.append((case, [source]))
         for name in decision_files(decisions_dir):
             runs.append((f"{case}-{name}", [source, "--decisions", f"{decisions_dir}/{name}.decisions"]))

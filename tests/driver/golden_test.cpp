@@ -7,6 +7,9 @@
 //  - decision files in examples/decisions/five_world/, applied to
 //    examples/terrain_five_world.spire with --dump-placement
 //    (tests/golden/decisions/five_world/NAME.expected);
+//  - decision files in examples/decisions/couch/, applied to
+//    examples/couch.spire with --dump-placement
+//    (tests/golden/decisions/couch/NAME.expected);
 //  - kernels and reflection of some of those variants (GoldenKernels below).
 // After an intended change, run with SPIRE_UPDATE_GOLDENS=1 to rewrite the
 // expectations, then review the diff.
@@ -65,6 +68,11 @@ std::vector<GoldenCase> goldenCases() {
     cases.push_back({"decisions_five_world_" + decisions.stem().string(),
                      {"examples/terrain_five_world.spire", "--decisions", decisions.string(), "--dump-placement"},
                      "tests/golden/decisions/five_world" / decisions.stem().concat(".expected"), 0});
+  }
+  for (const fs::path& decisions : filesIn("examples/decisions/couch", ".decisions")) {
+    cases.push_back({"decisions_couch_" + decisions.stem().string(),
+                     {"examples/couch.spire", "--decisions", decisions.string(), "--dump-placement"},
+                     "tests/golden/decisions/couch" / decisions.stem().concat(".expected"), 0});
   }
   return cases;
 }

@@ -159,6 +159,21 @@ TEST(SceneFile, IntegralNumbersAreIntegersAndColorsTakeAlpha) {
   EXPECT_EQ(loaded->scene->findTexture("missing"), nullptr);
 }
 
+TEST(SceneFile, LookupTablesClampByDefault) {
+  const auto loaded = parseScene(scene(R"("textures": {"lut": {"type": "ggxLut", "size": 128},
+      "wrapped": {"type": "ggxLut", "address": "repeat"}, "tiles": {"type": "checker"}})"));
+  ASSERT_TRUE(loaded->scene) << loaded->rendered;
+  const TextureDesc* lut = loaded->scene->findTexture("lut");
+  ASSERT_NE(lut, nullptr);
+  EXPECT_EQ(lut->kind, TextureKind::GgxLut);
+  EXPECT_EQ(lut->size, 128u);
+  EXPECT_TRUE(lut->clamp);
+  EXPECT_FALSE(loaded->scene->findTexture("wrapped")->clamp);
+  EXPECT_FALSE(loaded->scene->findTexture("tiles")->clamp);
+  expectError(scene(R"("textures": {"lut": {"type": "ggxLut", "seed": 2}})"), DiagCode::E7002,
+              "key 'seed' does not apply to a ggxLut texture (its keys are 'type', 'size' and 'address')");
+}
+
 TEST(SceneFile, PathsResolveAgainstTheSceneDirectory) {
   const auto loaded = parseScene(
       withInstance(R"({"mesh": "ground", "source": "../shaders/a.spire", "shader": "A", "decisions": "d/x.decisions",

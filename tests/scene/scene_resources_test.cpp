@@ -153,7 +153,7 @@ TEST(SceneResourcesTest, MeshErrors) {
   EXPECT_FALSE(buildMesh(plane));
 }
 
-TEST(SceneResourcesTest, SolidCheckerAndNormalMapUseTheirGenerators) {
+TEST(SceneResourcesTest, SolidCheckerNormalMapAndGgxLutUseTheirGenerators) {
   TextureDesc solid = textureDesc(TextureKind::Solid);
   // 0.5 * 255 = 127.5 rounds up; out-of-range components clamp.
   solid.color = glm::vec4(0.5F, 0.25F, 2.0F, -1.0F);
@@ -162,6 +162,7 @@ TEST(SceneResourcesTest, SolidCheckerAndNormalMapUseTheirGenerators) {
   EXPECT_EQ(build(textureDesc(TextureKind::Checker)).rgba8,
             makeChecker(16, 4, Rgba8(255, 0, 128, 255), Rgba8(0, 255, 0, 128)).rgba8);
   EXPECT_EQ(build(textureDesc(TextureKind::NormalMap)).rgba8, makeNormalMap(16, 3, 1.5F).rgba8);
+  EXPECT_EQ(build(textureDesc(TextureKind::GgxLut)).rgba8, makeGgxLut(16).rgba8);
 }
 
 TEST(SceneResourcesTest, NoiseMixesTheTwoColors) {
@@ -187,7 +188,8 @@ TEST(SceneResourcesTest, NoiseMixesTheTwoColors) {
 }
 
 TEST(SceneResourcesTest, ProceduralTexturesAreDeterministic) {
-  for (TextureKind kind : {TextureKind::Noise, TextureKind::Checker, TextureKind::NormalMap, TextureKind::Solid}) {
+  for (TextureKind kind :
+       {TextureKind::Noise, TextureKind::Checker, TextureKind::NormalMap, TextureKind::Solid, TextureKind::GgxLut}) {
     TextureDesc desc = textureDesc(kind);
     Image first = build(desc);
     EXPECT_EQ(first.width, 16u);

@@ -9,6 +9,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 
 namespace spire::scene {
@@ -76,6 +78,57 @@ TEST(TextureTest, NormalMapDecodesToUnitUpwardNormals) {
   EXPECT_TRUE(tilted) << "strength 2 should tilt some normals";
   // Zero strength is a flat map: (0, 0, 1) encodes to (128, 128, 255).
   EXPECT_EQ(makeNormalMap(4, 5, 0.0f).pixel(1, 2), Rgba8(128, 128, 255, 255));
+}
+
+// The 16-bit value of a GGX table texel (R high byte, G low byte), in [0, 1].
+double ggxLutValue(const Image& lut, uint32_t x, uint32_t y) {
+  Rgba8 p = lut.pixel(x, y);
+  return (p.r * 256.0 + p.g) / 65535.0;
+}
+
+// GGX D(n.h, alpha) written the usual way, to check the table against a
+// formula other than the one it was made with.
+double ggxDistribution(double nDotH, double alpha) {
+  const double pi = 3.14159265358979;
+  double alpha2 = alpha * alpha;
+  double denom = nDotH * nDotH * (alpha2 - 1.0) + 1.0;
+  return alpha2 / (pi * denom * denom);
+}
+
+TEST(TextureTest, GgxLutTabulatesTheDistributionOverItsPeak) {
+  constexpr uint32_t kSize = 64;
+  Image lut = makeGgxLut(kSize);
+  ASSERT_EQ(lut.width, kSize);
+  ASSERT_EQ(lut.height, kSize);
+  for (uint32_t y = 0; y < kSize; ++y) {
+    double roughness = (y + 0.5) / kSize;
+    double alpha = std::max(roughness * roughness, static_cast<double>(kGgxMinAlpha));
+    double peak = ggxDistribution(1.0, alpha);
+    for (uint32_t x = 0; x < kSize; ++x) {
+      Rgba8 p = lut.pixel(x, y);
+      EXPECT_EQ(p.b, 0);
+      EXPECT_EQ(p.a, 255);
+      double sinTheta = (x + 0.5) / kSize;
+      double expected = ggxDistribution(std::sqrt(1.0 - sinTheta * sinTheta), alpha) / peak;
+      // Half a step of the 16-bit encoding, plus double rounding in the formulas.
+      EXPECT_NEAR(ggxLutValue(lut, x, y), expected, 0.5 / 65535.0 + 1e-9) << x << "," << y;
+      // The distribution falls away from the peak (or stays at 0 in 16 bits).
+      if (x > 0) {
+        EXPECT_LE(ggxLutValue(lut, x, y), ggxLutValue(lut, x - 1, y)) << x << "," << y;
+      }
+    }
+  }
+}
+
+TEST(TextureTest, GgxLutKeepsTheTailsThatEightBitsWouldLose) {
+  Image lut = makeGgxLut(256);
+  // Roughness 0.4 at 60 degrees off the normal (leather's highlight tail): D
+  // is 0.12% of its peak, under a third of an 8-bit step, and 76 16-bit steps.
+  uint32_t row = 102;     // roughness (102 + 0.5) / 256, about 0.4
+  uint32_t column = 221;  // sin(theta_h) (221 + 0.5) / 256, about 0.865 (60 degrees)
+  EXPECT_EQ(lut.pixel(column, row), Rgba8(0, 76, 0, 255));
+  // The peak texel of the roughest row is (almost) exactly 1.
+  EXPECT_GT(ggxLutValue(lut, 0, 255), 0.9999);
 }
 
 TEST(ImageFileTest, PngRoundTripIsBitExact) {
