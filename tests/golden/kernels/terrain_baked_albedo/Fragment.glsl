@@ -35,26 +35,44 @@ vec3 normal;
 float lighting;
 vec4 output_;
 
-#line 8 "stdlib/common.spire"
-vec3 safeNormalize(vec3 v) {
+#line 12 "stdlib/common.spire"
+vec3 normalizeOr(vec3 v, vec3 fallback) {
     float lengthSquared = dot(v, v);
-    if (lengthSquared < 1e-12) {
-        return vec3(0.0, 0.0, 1.0);
+#line 15 "stdlib/common.spire"
+    if (lengthSquared > 1e-30 && lengthSquared < 1e30) {
+        return v * inversesqrt(lengthSquared);
     }
-    return v * inversesqrt(lengthSquared);
+#line 22 "stdlib/common.spire"
+    vec3 scaled = v * 1e20;
+    if (lengthSquared >= 1e30) {
+        scaled = clamp(v, -3.4e38, 3.4e38) * 1e-20;
+    }
+    float scaledLengthSquared = dot(scaled, scaled);
+    if (scaledLengthSquared < 1e-36) {
+        return fallback;
+    }
+    return scaled * inversesqrt(scaledLengthSquared);
 }
-#line 47 "Fragment.glsl"
+#line 57 "Fragment.glsl"
+
+#line 34 "stdlib/common.spire"
+vec3 safeNormalize(vec3 v) {
+    return normalizeOr(v, vec3(0.0, 0.0, 1.0));
+}
+#line 63 "Fragment.glsl"
 
 #line 16 "stdlib/lighting.spire"
 vec3 unpackNormal(vec4 texel) {
     return safeNormalize(texel.xyz * 2.0 - 1.0);
 }
-#line 53 "Fragment.glsl"
+#line 69 "Fragment.glsl"
 
-#line 24 "stdlib/lighting.spire"
+#line 25 "stdlib/lighting.spire"
 vec3 perturbNormal(vec3 tangentNormal, vec3 normal, vec4 tangent) {
     vec3 n = safeNormalize(normal);
-    vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
+#line 30 "stdlib/lighting.spire"
+    vec3 t = normalizeOr(tangent.xyz, vec3(0.0));
+    t = t - n * dot(n, t);
     float tangentLengthSquared = dot(t, t);
     if (tangentLengthSquared < 1e-12) {
         return n;
@@ -62,30 +80,30 @@ vec3 perturbNormal(vec3 tangentNormal, vec3 normal, vec4 tangent) {
     t = t * inversesqrt(tangentLengthSquared);
     float handedness = tangent.w < 0.0 ? -1.0 : 1.0;
     vec3 b = cross(n, t) * handedness;
-    return safeNormalize(t * tangentNormal.x + b * tangentNormal.y + n * tangentNormal.z);
+    return normalizeOr(t * tangentNormal.x + b * tangentNormal.y + n * tangentNormal.z, n);
 }
-#line 68 "Fragment.glsl"
+#line 86 "Fragment.glsl"
 
 #line 11 "stdlib/lighting.spire"
 float clamp01(float x) {
     return clamp(x, 0.0, 1.0);
 }
-#line 74 "Fragment.glsl"
+#line 92 "Fragment.glsl"
 
-#line 17 "stdlib/common.spire"
+#line 39 "stdlib/common.spire"
 float pow5(float x) {
     float x2 = x * x;
     return x2 * x2 * x;
 }
-#line 81 "Fragment.glsl"
+#line 99 "Fragment.glsl"
 
-#line 56 "stdlib/lighting.spire"
+#line 61 "stdlib/lighting.spire"
 float ggx(vec3 lightDir, vec3 normal, vec3 viewDir, float roughness) {
     const float PI = 3.14159265;
     const float EPSILON = 1e-4;
     const float MIN_ALPHA = 2e-3;
     const float F0 = 0.04;
-#line 62 "stdlib/lighting.spire"
+#line 67 "stdlib/lighting.spire"
     vec3 n = safeNormalize(normal);
     vec3 l = safeNormalize(lightDir);
     vec3 v = safeNormalize(viewDir);
@@ -98,46 +116,46 @@ float ggx(vec3 lightDir, vec3 normal, vec3 viewDir, float roughness) {
     float nDotV = clamp(dot(n, v), EPSILON, 1.0);
     float nDotH = clamp01(dot(n, h));
     float vDotH = clamp01(dot(v, h));
-#line 76 "stdlib/lighting.spire"
+#line 81 "stdlib/lighting.spire"
     float r = clamp01(roughness);
     float alpha = max(r * r, MIN_ALPHA);
     float alpha2 = alpha * alpha;
-#line 81 "stdlib/lighting.spire"
+#line 86 "stdlib/lighting.spire"
     float denom = nDotH * nDotH * (alpha2 - 1.0) + 1.0;
     float distribution = alpha2 / (PI * denom * denom);
-#line 85 "stdlib/lighting.spire"
+#line 90 "stdlib/lighting.spire"
     float k = alpha * 0.5;
     float geometryL = nDotL / (nDotL * (1.0 - k) + k);
     float geometryV = nDotV / (nDotV * (1.0 - k) + k);
     float geometry = geometryL * geometryV;
-#line 91 "stdlib/lighting.spire"
+#line 96 "stdlib/lighting.spire"
     float fresnel = F0 + (1.0 - F0) * pow5(1.0 - vDotH);
-#line 93 "stdlib/lighting.spire"
+#line 98 "stdlib/lighting.spire"
     float specular = distribution * geometry * fresnel / (4.0 * nDotL * nDotV);
     float diffuse = (1.0 - fresnel) / PI;
-#line 96 "stdlib/lighting.spire"
+#line 101 "stdlib/lighting.spire"
     return (diffuse + specular) * nDotL * PI;
 }
-#line 122 "Fragment.glsl"
+#line 140 "Fragment.glsl"
 
-#line 47 "examples/terrain.spire"
+#line 50 "examples/terrain.spire"
 vec3 spire_normal() {
     vec4 n1 = texture(normalMap1, vert_uv * 5.0);
     vec4 n2 = texture(normalMap2, vert_uv * 5.0);
     vec3 n = unpackNormal(mix(n1, n2, mixFactor));
     return perturbNormal(n, vert_normal, vert_tangent);
 }
-#line 131 "Fragment.glsl"
+#line 149 "Fragment.glsl"
 
 void main() {
     mixFactor = texture(spire_tex_mixFactor, vert_uv).x;
     albedo = texture(spire_tex_albedo, vert_uv);
-#line 47 "examples/terrain.spire"
+#line 50 "examples/terrain.spire"
     normal = spire_normal();
-#line 56 "examples/terrain.spire"
-    lighting = ggx(lightDir, normal, normalize(cameraPos - vert_pos), roughness);
 #line 59 "examples/terrain.spire"
+    lighting = ggx(lightDir, normal, safeNormalize(cameraPos - vert_pos), roughness);
+#line 62 "examples/terrain.spire"
     output_ = albedo * lighting;
-#line 142 "Fragment.glsl"
+#line 160 "Fragment.glsl"
     spire_out_output_ = output_;
 }

@@ -25,23 +25,39 @@ vec4 albedo;
 float lighting;
 vec4 output_;
 
-#line 8 "stdlib/common.spire"
-vec3 safeNormalize(vec3 v) {
+#line 12 "stdlib/common.spire"
+vec3 normalizeOr(vec3 v, vec3 fallback) {
     float lengthSquared = dot(v, v);
-    if (lengthSquared < 1e-12) {
-        return vec3(0.0, 0.0, 1.0);
+#line 15 "stdlib/common.spire"
+    if (lengthSquared > 1e-30 && lengthSquared < 1e30) {
+        return v * inversesqrt(lengthSquared);
     }
-    return v * inversesqrt(lengthSquared);
+#line 22 "stdlib/common.spire"
+    vec3 scaled = v * 1e20;
+    if (lengthSquared >= 1e30) {
+        scaled = clamp(v, -3.4e38, 3.4e38) * 1e-20;
+    }
+    float scaledLengthSquared = dot(scaled, scaled);
+    if (scaledLengthSquared < 1e-36) {
+        return fallback;
+    }
+    return scaled * inversesqrt(scaledLengthSquared);
 }
-#line 37 "Fragment.glsl"
+#line 47 "Fragment.glsl"
+
+#line 34 "stdlib/common.spire"
+vec3 safeNormalize(vec3 v) {
+    return normalizeOr(v, vec3(0.0, 0.0, 1.0));
+}
+#line 53 "Fragment.glsl"
 
 #line 11 "stdlib/lighting.spire"
 float clamp01(float x) {
     return clamp(x, 0.0, 1.0);
 }
-#line 43 "Fragment.glsl"
+#line 59 "Fragment.glsl"
 
-#line 39 "stdlib/lighting.spire"
+#line 44 "stdlib/lighting.spire"
 float phong(vec3 lightDir, vec3 normal, vec3 viewDir, float shininess) {
     vec3 n = safeNormalize(normal);
     vec3 l = safeNormalize(lightDir);
@@ -51,18 +67,18 @@ float phong(vec3 lightDir, vec3 normal, vec3 viewDir, float shininess) {
         return 0.0;
     }
     vec3 r = reflect(-l, n);
-#line 49 "stdlib/lighting.spire"
+#line 54 "stdlib/lighting.spire"
     float specular = pow(clamp01(dot(r, v)), max(shininess, 1.0));
     return nDotL + specular;
 }
-#line 59 "Fragment.glsl"
+#line 75 "Fragment.glsl"
 
 void main() {
     albedo = texture(spire_tex_albedo, vert_uv);
-#line 55 "examples/terrain.spire"
-    lighting = phong(lightDir, normal, normalize(cameraPos - vert_pos), shininess);
-#line 59 "examples/terrain.spire"
+#line 58 "examples/terrain.spire"
+    lighting = phong(lightDir, normal, safeNormalize(cameraPos - vert_pos), shininess);
+#line 62 "examples/terrain.spire"
     output_ = albedo * lighting;
-#line 67 "Fragment.glsl"
+#line 83 "Fragment.glsl"
     spire_out_output_ = output_;
 }

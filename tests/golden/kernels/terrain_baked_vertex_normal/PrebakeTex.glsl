@@ -15,7 +15,7 @@ layout(location = 0) out vec4 spire_out_albedo;
 float mixFactor;
 vec4 albedo;
 
-#line 37 "examples/terrain.spire"
+#line 40 "examples/terrain.spire"
 vec4 spire_albedo() {
     vec4 c1 = texture(albedoMap1, vert_uv * 5.0);
     vec4 c2 = texture(albedoMap2, vert_uv * 5.0);
@@ -24,9 +24,9 @@ vec4 spire_albedo() {
 #line 25 "PrebakeTex.glsl"
 
 void main() {
-#line 34 "examples/terrain.spire"
-    mixFactor = texture(mixMap, vert_uv).x;
 #line 37 "examples/terrain.spire"
+    mixFactor = texture(mixMap, vert_uv).x;
+#line 40 "examples/terrain.spire"
     albedo = spire_albedo();
 #line 32 "PrebakeTex.glsl"
     spire_out_albedo = albedo;

@@ -22,9 +22,9 @@ vec4 projPos;
 vec3 normal;
 
 void main() {
-#line 58 "examples/terrain.spire"
+#line 61 "examples/terrain.spire"
     projPos = matMVP * vec4(vert_pos, 1.0);
-#line 44 "examples/terrain.spire"
+#line 47 "examples/terrain.spire"
     normal = vert_normal;
 #line 30 "Vertex.glsl"
     spire_out_vert_pos = vert_pos;

@@ -25,7 +25,7 @@ layout(location = 3) out vec4 spire_out_vert_tangent;
 vec4 projPos;
 
 void main() {
-#line 58 "examples/terrain.spire"
+#line 61 "examples/terrain.spire"
     projPos = matMVP * vec4(vert_pos, 1.0);
 #line 31 "Vertex.glsl"
     spire_out_vert_pos = vert_pos;

@@ -36,26 +36,44 @@ float lighting;
 vec4 albedo;
 vec4 output_;
 
-#line 8 "stdlib/common.spire"
-vec3 safeNormalize(vec3 v) {
+#line 12 "stdlib/common.spire"
+vec3 normalizeOr(vec3 v, vec3 fallback) {
     float lengthSquared = dot(v, v);
-    if (lengthSquared < 1e-12) {
-        return vec3(0.0, 0.0, 1.0);
+#line 15 "stdlib/common.spire"
+    if (lengthSquared > 1e-30 && lengthSquared < 1e30) {
+        return v * inversesqrt(lengthSquared);
     }
-    return v * inversesqrt(lengthSquared);
+#line 22 "stdlib/common.spire"
+    vec3 scaled = v * 1e20;
+    if (lengthSquared >= 1e30) {
+        scaled = clamp(v, -3.4e38, 3.4e38) * 1e-20;
+    }
+    float scaledLengthSquared = dot(scaled, scaled);
+    if (scaledLengthSquared < 1e-36) {
+        return fallback;
+    }
+    return scaled * inversesqrt(scaledLengthSquared);
 }
-#line 48 "Fragment.glsl"
+#line 58 "Fragment.glsl"
+
+#line 34 "stdlib/common.spire"
+vec3 safeNormalize(vec3 v) {
+    return normalizeOr(v, vec3(0.0, 0.0, 1.0));
+}
+#line 64 "Fragment.glsl"
 
 #line 16 "stdlib/lighting.spire"
 vec3 unpackNormal(vec4 texel) {
     return safeNormalize(texel.xyz * 2.0 - 1.0);
 }
-#line 54 "Fragment.glsl"
+#line 70 "Fragment.glsl"
 
-#line 24 "stdlib/lighting.spire"
+#line 25 "stdlib/lighting.spire"
 vec3 perturbNormal(vec3 tangentNormal, vec3 normal, vec4 tangent) {
     vec3 n = safeNormalize(normal);
-    vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
+#line 30 "stdlib/lighting.spire"
+    vec3 t = normalizeOr(tangent.xyz, vec3(0.0));
+    t = t - n * dot(n, t);
     float tangentLengthSquared = dot(t, t);
     if (tangentLengthSquared < 1e-12) {
         return n;
@@ -63,30 +81,30 @@ vec3 perturbNormal(vec3 tangentNormal, vec3 normal, vec4 tangent) {
     t = t * inversesqrt(tangentLengthSquared);
     float handedness = tangent.w < 0.0 ? -1.0 : 1.0;
     vec3 b = cross(n, t) * handedness;
-    return safeNormalize(t * tangentNormal.x + b * tangentNormal.y + n * tangentNormal.z);
+    return normalizeOr(t * tangentNormal.x + b * tangentNormal.y + n * tangentNormal.z, n);
 }
-#line 69 "Fragment.glsl"
+#line 87 "Fragment.glsl"
 
 #line 11 "stdlib/lighting.spire"
 float clamp01(float x) {
     return clamp(x, 0.0, 1.0);
 }
-#line 75 "Fragment.glsl"
+#line 93 "Fragment.glsl"
 
-#line 17 "stdlib/common.spire"
+#line 39 "stdlib/common.spire"
 float pow5(float x) {
     float x2 = x * x;
     return x2 * x2 * x;
 }
-#line 82 "Fragment.glsl"
+#line 100 "Fragment.glsl"
 
-#line 56 "stdlib/lighting.spire"
+#line 61 "stdlib/lighting.spire"
 float ggx(vec3 lightDir, vec3 normal, vec3 viewDir, float roughness) {
     const float PI = 3.14159265;
     const float EPSILON = 1e-4;
     const float MIN_ALPHA = 2e-3;
     const float F0 = 0.04;
-#line 62 "stdlib/lighting.spire"
+#line 67 "stdlib/lighting.spire"
     vec3 n = safeNormalize(normal);
     vec3 l = safeNormalize(lightDir);
     vec3 v = safeNormalize(viewDir);
@@ -99,27 +117,27 @@ float ggx(vec3 lightDir, vec3 normal, vec3 viewDir, float roughness) {
     float nDotV = clamp(dot(n, v), EPSILON, 1.0);
     float nDotH = clamp01(dot(n, h));
     float vDotH = clamp01(dot(v, h));
-#line 76 "stdlib/lighting.spire"
+#line 81 "stdlib/lighting.spire"
     float r = clamp01(roughness);
     float alpha = max(r * r, MIN_ALPHA);
     float alpha2 = alpha * alpha;
-#line 81 "stdlib/lighting.spire"
+#line 86 "stdlib/lighting.spire"
     float denom = nDotH * nDotH * (alpha2 - 1.0) + 1.0;
     float distribution = alpha2 / (PI * denom * denom);
-#line 85 "stdlib/lighting.spire"
+#line 90 "stdlib/lighting.spire"
     float k = alpha * 0.5;
     float geometryL = nDotL / (nDotL * (1.0 - k) + k);
     float geometryV = nDotV / (nDotV * (1.0 - k) + k);
     float geometry = geometryL * geometryV;
-#line 91 "stdlib/lighting.spire"
+#line 96 "stdlib/lighting.spire"
     float fresnel = F0 + (1.0 - F0) * pow5(1.0 - vDotH);
-#line 93 "stdlib/lighting.spire"
+#line 98 "stdlib/lighting.spire"
     float specular = distribution * geometry * fresnel / (4.0 * nDotL * nDotV);
     float diffuse = (1.0 - fresnel) / PI;
-#line 96 "stdlib/lighting.spire"
+#line 101 "stdlib/lighting.spire"
     return (diffuse + specular) * nDotL * PI;
 }
-#line 123 "Fragment.glsl"
+#line 141 "Fragment.glsl"
 
 #line 39 "examples/terrain_five_world.spire"
 vec4 spire_albedo() {
@@ -127,7 +145,7 @@ vec4 spire_albedo() {
     vec4 c2 = texture(albedoMap2, vert_uv * 5.0);
     return mix(c1, c2, mixFactor);
 }
-#line 131 "Fragment.glsl"
+#line 149 "Fragment.glsl"
 
 #line 49 "examples/terrain_five_world.spire"
 vec3 spire_normal() {
@@ -136,17 +154,17 @@ vec3 spire_normal() {
     vec3 n = unpackNormal(mix(n1, n2, mixFactor));
     return perturbNormal(n, vert_normal, vert_tangent);
 }
-#line 140 "Fragment.glsl"
+#line 158 "Fragment.glsl"
 
 void main() {
 #line 49 "examples/terrain_five_world.spire"
     normal = spire_normal();
 #line 58 "examples/terrain_five_world.spire"
-    lighting = ggx(lightDir, normal, normalize(cameraPos - vert_pos), roughness);
+    lighting = ggx(lightDir, normal, safeNormalize(cameraPos - vert_pos), roughness);
 #line 39 "examples/terrain_five_world.spire"
     albedo = spire_albedo();
 #line 61 "examples/terrain_five_world.spire"
     output_ = albedo * lighting;
-#line 151 "Fragment.glsl"
+#line 169 "Fragment.glsl"
     spire_out_output_ = output_;
 }

@@ -1,0 +1,755 @@
+// Numerical stability at the extremes, rendered on the device the loader
+// finds (lavapipe on CI) with validation on. Every function of stdlib/ runs in
+// a probe shader (tests/data/engine/stability/probes.spire) whose arguments
+// are material uniforms, set from the scene's bindings to the extremes:
+// zero-length, tiny, huge and non-normalized vectors, grazing and back-facing
+// light, roughness 0 and 1, uniforms near the float limits. The Terrain
+// example runs under its three decision files and two per-vertex lighting
+// ones with the camera at a vertex, the light below the horizon, all-black
+// and all-white textures and UVs outside [0, 1]. Each case asserts that every
+// covered pixel is finite, and equals the function's exact value where that
+// is known (so a guard that returns a finite but wrong value fails too), or,
+// where the true value does not fit in a float, that the engine counts the
+// hazard. A user's own division by a zero uniform, which no library guard can
+// prevent, must be counted and named by spire-demo's warning.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <unistd.h>
+
+#include "demo/demo.h"
+#include "engine/device_fixture.h"
+#include "measure/image_metrics.h"
+#include "renderer/scene_renderer.h"
+#include "support/diagnostic_renderer.h"
+
+namespace spire::engine {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSourceDir = SPIRE_SOURCE_DIR;
+const fs::path kDataDir = kSourceDir / "tests/data/engine/stability";
+
+using Rgba = std::array<float, 4>;
+
+// The probes write a scalar result to red, with alpha 1.
+Rgba scalar(float value) { return {value, 0.0F, 0.0F, 1.0F}; }
+// ... and a vector result to RGB, with alpha 1.
+Rgba direction(float x, float y, float z) { return {x, y, z, 1.0F}; }
+
+enum class Outcome {
+  Finite,          // every covered pixel finite
+  InfEverywhere,   // every covered pixel Inf: the true value overflows a float, and the engine must count it
+};
+
+struct ProbeCase {
+  std::string_view function;  // the stdlib function under test
+  std::string_view extreme;   // what is extreme about the inputs
+  std::string_view shader;    // its probe in probes.spire
+  std::string_view material;  // the probe's bindings
+  std::optional<Rgba> value = std::nullopt;  // every covered pixel's value, where the exact result is known
+  float tolerance = 1e-4F;                    // relative, for `value`
+  Outcome outcome = Outcome::Finite;
+};
+
+// 1/sqrt(2), 1/sqrt(3): unit vectors along diagonals.
+constexpr float kHalfSqrt2 = 0.70710678F;
+constexpr float kInvSqrt3 = 0.57735027F;
+// ggx at normal = light = view: 0.96 / PI diffuse plus D * F0 / 4 specular
+// with D = 1 / (PI * alpha^2), times PI; alpha is clamped to at least 2e-3.
+constexpr float kGgxMirrorRough = 0.97F;
+constexpr float kGgxMirrorSmooth = 0.96F + 0.01F / (2e-3F * 2e-3F);
+// The GGX peak 1 / (PI alpha^2) at the smallest alpha comes out of the
+// cancellation 1 + (alpha^2 - 1), good to a few 0.1% in float.
+constexpr float kPeakTolerance = 1e-2F;
+constexpr float kPi = 3.14159265F;
+// D * G / (4 n.l n.v) at n.h = n.l = n.v = 1 is D / 4: 1 / (4 PI alpha^2).
+constexpr float kSpecularPeakSmooth = 1.0F / (4.0F * kPi * 2e-3F * 2e-3F);
+constexpr float kSpecularPeakRough = 1.0F / (4.0F * kPi);
+
+const std::vector<ProbeCase>& probeCases() {
+  static const std::vector<ProbeCase> cases = {
+      // safeNormalize
+      {.function = "safeNormalize", .extreme = "v = (0, 0, 0): zero length gives the +Z fallback",
+       .shader = "SafeNormalizeProbe", .material = R"({"v": [0, 0, 0]})", .value = direction(0, 0, 1)},
+      {.function = "safeNormalize", .extreme = "v = (0, 3, 4): not normalized", .shader = "SafeNormalizeProbe",
+       .material = R"({"v": [0, 3, 4]})", .value = direction(0, 0.6F, 0.8F)},
+      {.function = "safeNormalize", .extreme = "v = (0, 1e-20, 0): dot(v, v) underflows",
+       .shader = "SafeNormalizeProbe", .material = R"({"v": [0, 1e-20, 0]})", .value = direction(0, 1, 0)},
+      {.function = "safeNormalize", .extreme = "v = (-1e-37, 0, 0): near the smallest normal float",
+       .shader = "SafeNormalizeProbe", .material = R"({"v": [-1e-37, 0, 0]})", .value = direction(-1, 0, 0)},
+      {.function = "safeNormalize", .extreme = "v = (1e-39, 0, 0): subnormal, too short for a direction",
+       .shader = "SafeNormalizeProbe", .material = R"({"v": [1e-39, 0, 0]})", .value = direction(0, 0, 1)},
+      {.function = "safeNormalize", .extreme = "v = (0, 1e30, 0): dot(v, v) overflows",
+       .shader = "SafeNormalizeProbe", .material = R"({"v": [0, 1e30, 0]})", .value = direction(0, 1, 0)},
+      {.function = "safeNormalize", .extreme = "v = (3e38, -3e38, 0): near the largest float",
+       .shader = "SafeNormalizeProbe", .material = R"({"v": [3e38, -3e38, 0]})",
+       .value = direction(kHalfSqrt2, -kHalfSqrt2, 0)},
+
+      // normalizeOr
+      {.function = "normalizeOr", .extreme = "v = (0, 0, 0): gives the fallback", .shader = "NormalizeOrProbe",
+       .material = R"({"v": [0, 0, 0], "fallback": [0, 1, 0]})", .value = direction(0, 1, 0)},
+      {.function = "normalizeOr", .extreme = "v = (0, 0, 0), fallback (0, 0, 0): the degeneracy signal perturbNormal uses",
+       .shader = "NormalizeOrProbe", .material = R"({"v": [0, 0, 0], "fallback": [0, 0, 0]})",
+       .value = direction(0, 0, 0)},
+      {.function = "normalizeOr", .extreme = "v = (0, -1e30, 0): dot(v, v) overflows", .shader = "NormalizeOrProbe",
+       .material = R"({"v": [0, -1e30, 0], "fallback": [0, 0, 0]})", .value = direction(0, -1, 0)},
+      {.function = "normalizeOr", .extreme = "v = (3e38, 3e38, 3e38): near the largest float",
+       .shader = "NormalizeOrProbe", .material = R"({"v": [3e38, 3e38, 3e38], "fallback": [0, 0, 0]})",
+       .value = direction(kInvSqrt3, kInvSqrt3, kInvSqrt3)},
+      {.function = "normalizeOr", .extreme = "v = (0, 0, 1e-25): dot(v, v) underflows", .shader = "NormalizeOrProbe",
+       .material = R"({"v": [0, 0, 1e-25], "fallback": [0, 0, 0]})", .value = direction(0, 0, 1)},
+
+      // pow5
+      {.function = "pow5", .extreme = "x = 0", .shader = "Pow5Probe", .material = R"({"x": 0})", .value = scalar(0)},
+      {.function = "pow5", .extreme = "x = -2: negative base (pow() would be undefined)", .shader = "Pow5Probe",
+       .material = R"({"x": -2})", .value = scalar(-32)},
+      {.function = "pow5", .extreme = "x = 1e-38: x^5 underflows", .shader = "Pow5Probe", .material = R"({"x": 1e-38})",
+       .value = scalar(0)},
+      {.function = "pow5", .extreme = "x = 1e7: x^5 = 1e35, near the largest float", .shader = "Pow5Probe",
+       .material = R"({"x": 1e7})", .value = scalar(1e35F)},
+      {.function = "pow5", .extreme = "x = 1e8: x^5 = 1e40 does not fit in a float, the engine counts the Inf",
+       .shader = "Pow5Probe", .material = R"({"x": 1e8})", .outcome = Outcome::InfEverywhere},
+
+      // luminance
+      {.function = "luminance", .extreme = "color = (0, 0, 0)", .shader = "LuminanceProbe",
+       .material = R"({"color": [0, 0, 0]})", .value = scalar(0)},
+      {.function = "luminance", .extreme = "color = (3e38, 3e38, 3e38): near the largest float",
+       .shader = "LuminanceProbe", .material = R"({"color": [3e38, 3e38, 3e38]})", .value = scalar(3e38F)},
+      {.function = "luminance", .extreme = "color = (1e-38, 1e-38, 1e-38)", .shader = "LuminanceProbe",
+       .material = R"({"color": [1e-38, 1e-38, 1e-38]})", .value = scalar(0)},
+
+      // clamp01
+      {.function = "clamp01", .extreme = "x = 3e38", .shader = "Clamp01Probe", .material = R"({"x": 3e38})",
+       .value = scalar(1)},
+      {.function = "clamp01", .extreme = "x = -3e38", .shader = "Clamp01Probe", .material = R"({"x": -3e38})",
+       .value = scalar(0)},
+      {.function = "clamp01", .extreme = "x = 1e-38", .shader = "Clamp01Probe", .material = R"({"x": 1e-38})",
+       .value = scalar(0)},
+
+      // unpackNormal
+      {.function = "unpackNormal", .extreme = "texel = (0.5, 0.5, 0.5): decodes to a zero vector",
+       .shader = "UnpackNormalProbe", .material = R"({"texel": [0.5, 0.5, 0.5, 1]})", .value = direction(0, 0, 1)},
+      {.function = "unpackNormal", .extreme = "texel = (0, 0, 0, 0): all-black", .shader = "UnpackNormalProbe",
+       .material = R"({"texel": [0, 0, 0, 0]})", .value = direction(-kInvSqrt3, -kInvSqrt3, -kInvSqrt3)},
+      {.function = "unpackNormal", .extreme = "texel = (1, 1, 1, 1): all-white", .shader = "UnpackNormalProbe",
+       .material = R"({"texel": [1, 1, 1, 1]})", .value = direction(kInvSqrt3, kInvSqrt3, kInvSqrt3)},
+      {.function = "unpackNormal", .extreme = "texel = (0.5, 1e30, 0.5): the decoded length overflows",
+       .shader = "UnpackNormalProbe", .material = R"({"texel": [0.5, 1e30, 0.5, 1]})", .value = direction(0, 1, 0)},
+      {.function = "unpackNormal", .extreme = "texel = (3e38, 3e38, 3e38): texel * 2 overflows to Inf",
+       .shader = "UnpackNormalProbe", .material = R"({"texel": [3e38, 3e38, 3e38, 1]})",
+       .value = direction(kInvSqrt3, kInvSqrt3, kInvSqrt3)},
+
+      // perturbNormal; normal +Y and tangent +X unless the extreme says otherwise
+      {.function = "perturbNormal", .extreme = "tangent = (0, 0, 0): falls back to the normal",
+       .shader = "PerturbNormalProbe",
+       .material = R"({"tangentNormal": [1, 0, 0], "normal": [0, 1, 0], "tangent": [0, 0, 0, 1]})",
+       .value = direction(0, 1, 0)},
+      {.function = "perturbNormal", .extreme = "tangent = (0, 5, 0): parallel to the normal",
+       .shader = "PerturbNormalProbe",
+       .material = R"({"tangentNormal": [1, 0, 0], "normal": [0, 1, 0], "tangent": [0, 5, 0, 1]})",
+       .value = direction(0, 1, 0)},
+      {.function = "perturbNormal", .extreme = "normal = (0, 0, 0): the +Z fallback, tangent still +X",
+       .shader = "PerturbNormalProbe",
+       .material = R"({"tangentNormal": [1, 0, 0], "normal": [0, 0, 0], "tangent": [1, 0, 0, 1]})",
+       .value = direction(1, 0, 0)},
+      {.function = "perturbNormal", .extreme = "tangentNormal = (0, 0, 0): falls back to the normal",
+       .shader = "PerturbNormalProbe",
+       .material = R"({"tangentNormal": [0, 0, 0], "normal": [0, 1, 0], "tangent": [1, 0, 0, 1]})",
+       .value = direction(0, 1, 0)},
+      {.function = "perturbNormal", .extreme = "tangentNormal = (0, 0, 1e30): huge", .shader = "PerturbNormalProbe",
+       .material = R"({"tangentNormal": [0, 0, 1e30], "normal": [0, 1, 0], "tangent": [1, 0, 0, 1]})",
+       .value = direction(0, 1, 0)},
+      {.function = "perturbNormal", .extreme = "tangent = (1e30, 0, 0): its squared length overflows",
+       .shader = "PerturbNormalProbe",
+       .material = R"({"tangentNormal": [1, 0, 0], "normal": [0, 1, 0], "tangent": [1e30, 0, 0, 1]})",
+       .value = direction(1, 0, 0)},
+      {.function = "perturbNormal", .extreme = "tangent = (3e38, 3e38, 0): near the largest float, half along the normal",
+       .shader = "PerturbNormalProbe",
+       .material = R"({"tangentNormal": [1, 0, 0], "normal": [0, 1, 0], "tangent": [3e38, 3e38, 0, 1]})",
+       .value = direction(1, 0, 0)},
+      {.function = "perturbNormal", .extreme = "tangent = (1e-20, 0, 0): its squared length underflows",
+       .shader = "PerturbNormalProbe",
+       .material = R"({"tangentNormal": [1, 0, 0], "normal": [0, 1, 0], "tangent": [1e-20, 0, 0, 1]})",
+       .value = direction(1, 0, 0)},
+      {.function = "perturbNormal", .extreme = "tangent.w = 0: no handedness counts as +1",
+       .shader = "PerturbNormalProbe",
+       .material = R"({"tangentNormal": [0, 1, 0], "normal": [0, 1, 0], "tangent": [1, 0, 0, 0]})",
+       .value = direction(0, 0, -1)},
+      {.function = "perturbNormal", .extreme = "all-black normal map (through unpackNormal)", .shader = "NormalMapProbe",
+       .material = R"({"normalMap": "black", "uvScale": [1, 1], "uvOffset": [0, 0]})"},
+      {.function = "perturbNormal", .extreme = "all-white normal map (through unpackNormal)", .shader = "NormalMapProbe",
+       .material = R"({"normalMap": "white", "uvScale": [1, 1], "uvOffset": [0, 0]})"},
+      {.function = "perturbNormal", .extreme = "UVs scaled by 1e4, repeat addressing", .shader = "NormalMapProbe",
+       .material = R"({"normalMap": "normals", "uvScale": [1e4, 1e4], "uvOffset": [0, 0]})"},
+      {.function = "perturbNormal", .extreme = "UVs offset by (-1e6, 1e6), repeat addressing",
+       .shader = "NormalMapProbe",
+       .material = R"({"normalMap": "normals", "uvScale": [1, 1], "uvOffset": [-1e6, 1e6]})"},
+      {.function = "perturbNormal", .extreme = "UVs offset by (3e38, -3e38), repeat addressing",
+       .shader = "NormalMapProbe",
+       .material = R"({"normalMap": "normals", "uvScale": [1, 1], "uvOffset": [3e38, -3e38]})"},
+      {.function = "perturbNormal", .extreme = "UVs in [-5e3, 5e3], clamp addressing", .shader = "NormalMapProbe",
+       .material = R"({"normalMap": "normalsClamped", "uvScale": [1e4, 1e4], "uvOffset": [-5e3, -5e3]})"},
+
+      // phong; normal +Y
+      {.function = "phong", .extreme = "lightDir = (0, 0, 0): zero length", .shader = "PhongProbe",
+       .material = R"({"lightDir": [0, 0, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "shininess": 32})",
+       .value = scalar(0)},
+      {.function = "phong", .extreme = "N.L = -1: back-facing light", .shader = "PhongProbe",
+       .material = R"({"lightDir": [0, -1, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "shininess": 32})",
+       .value = scalar(0)},
+      {.function = "phong", .extreme = "N.L = 1e-7: grazing light", .shader = "PhongProbe",
+       .material = R"({"lightDir": [1, 1e-7, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "shininess": 32})",
+       .value = scalar(1e-7F)},
+      {.function = "phong", .extreme = "viewDir = (0, 0, 0): zero length", .shader = "PhongProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [0, 0, 0], "shininess": 32})",
+       .value = scalar(1)},
+      {.function = "phong", .extreme = "normal = (0, 0, 0): zero length", .shader = "PhongProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 0, 0], "viewDir": [0, 1, 0], "shininess": 32})",
+       .value = scalar(0)},
+      {.function = "phong", .extreme = "shininess = 3e38 on the mirror direction: pow(1, 3e38)",
+       .shader = "PhongProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "shininess": 3e38})",
+       .value = scalar(2)},
+      {.function = "phong", .extreme = "shininess = 3e38 off the mirror direction: pow(0.8, 3e38)",
+       .shader = "PhongProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [0.6, 0.8, 0], "shininess": 3e38})",
+       .value = scalar(1)},
+      {.function = "phong", .extreme = "shininess = 0: pow(0, 0) if unguarded", .shader = "PhongProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [0, 0, 1], "shininess": 0})",
+       .value = scalar(1)},
+      {.function = "phong", .extreme = "shininess = 1e-38", .shader = "PhongProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "shininess": 1e-38})",
+       .value = scalar(2)},
+      {.function = "phong", .extreme = "shininess = -3e38", .shader = "PhongProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "shininess": -3e38})",
+       .value = scalar(2)},
+      {.function = "phong", .extreme = "non-normalized vectors of lengths 5, 0.1 and 7", .shader = "PhongProbe",
+       .material = R"({"lightDir": [0, 5, 0], "normal": [0, 0.1, 0], "viewDir": [0, 7, 0], "shininess": 32})",
+       .value = scalar(2)},
+      {.function = "phong", .extreme = "vectors of length 1e30", .shader = "PhongProbe",
+       .material = R"({"lightDir": [0, 1e30, 0], "normal": [0, 1e30, 0], "viewDir": [0, 1e30, 0], "shininess": 32})",
+       .value = scalar(2)},
+      {.function = "phong", .extreme = "vectors of length 3e38", .shader = "PhongProbe",
+       .material = R"({"lightDir": [0, 3e38, 0], "normal": [0, 3e38, 0], "viewDir": [0, 3e38, 0], "shininess": 32})",
+       .value = scalar(2)},
+      // N.L = 1/sqrt(2) and R.V = 1/sqrt(2), so phong = 2^-0.5 + 2^-16.
+      {.function = "phong", .extreme = "vectors of length 1e-20", .shader = "PhongProbe",
+       .material =
+           R"({"lightDir": [1e-20, 1e-20, 0], "normal": [0, 1e-20, 0], "viewDir": [0, 1e-20, 0], "shininess": 32})",
+       .value = scalar(kHalfSqrt2 + 1.0F / 65536.0F)},
+
+      // ggx; normal +Y
+      {.function = "ggx", .extreme = "roughness = 0 on the mirror direction: the sharpest lobe", .shader = "GgxProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "roughness": 0})",
+       .value = scalar(kGgxMirrorSmooth), .tolerance = kPeakTolerance},
+      {.function = "ggx", .extreme = "roughness = 1", .shader = "GgxProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "roughness": 1})",
+       .value = scalar(kGgxMirrorRough)},
+      {.function = "ggx", .extreme = "roughness = 1e-38", .shader = "GgxProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "roughness": 1e-38})",
+       .value = scalar(kGgxMirrorSmooth), .tolerance = kPeakTolerance},
+      {.function = "ggx", .extreme = "roughness = 3e38", .shader = "GgxProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "roughness": 3e38})",
+       .value = scalar(kGgxMirrorRough)},
+      {.function = "ggx", .extreme = "roughness = -3e38", .shader = "GgxProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "roughness": -3e38})",
+       .value = scalar(kGgxMirrorSmooth), .tolerance = kPeakTolerance},
+      {.function = "ggx", .extreme = "roughness = 0, N.L = N.V = 1e-7: grazing mirror, the largest specular",
+       .shader = "GgxProbe",
+       .material = R"({"lightDir": [1, 1e-7, 0], "normal": [0, 1, 0], "viewDir": [-1, 1e-7, 0], "roughness": 0})"},
+      {.function = "ggx", .extreme = "roughness = 0, N.V = 0: view along the surface", .shader = "GgxProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [1, 0, 0], "roughness": 0})"},
+      {.function = "ggx", .extreme = "N.L = -1: back-facing light", .shader = "GgxProbe",
+       .material = R"({"lightDir": [0, -1, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "roughness": 0.5})",
+       .value = scalar(0)},
+      {.function = "ggx", .extreme = "lightDir = (0, 0, 0): zero length", .shader = "GgxProbe",
+       .material = R"({"lightDir": [0, 0, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "roughness": 0.5})",
+       .value = scalar(0)},
+      {.function = "ggx", .extreme = "viewDir = (0, 0, 0): zero length", .shader = "GgxProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [0, 0, 0], "roughness": 0})"},
+      {.function = "ggx", .extreme = "viewDir = -lightDir: the half vector is zero", .shader = "GgxProbe",
+       .material = R"({"lightDir": [0, 1, 0], "normal": [0, 1, 0], "viewDir": [0, -1, 0], "roughness": 0})"},
+      {.function = "ggx", .extreme = "vectors of length 1e30", .shader = "GgxProbe",
+       .material = R"({"lightDir": [0, 1e30, 0], "normal": [0, 1e30, 0], "viewDir": [0, 1e30, 0], "roughness": 1})",
+       .value = scalar(kGgxMirrorRough)},
+      {.function = "ggx", .extreme = "lightDir of length 1e-20", .shader = "GgxProbe",
+       .material = R"({"lightDir": [0, 1e-20, 0], "normal": [0, 1, 0], "viewDir": [0, 1, 0], "roughness": 1})",
+       .value = scalar(kGgxMirrorRough)},
+
+      // ggxAlpha (pbr.spire)
+      {.function = "ggxAlpha", .extreme = "roughness = 0: alpha kept at 2e-3", .shader = "GgxAlphaProbe",
+       .material = R"({"roughness": 0})", .value = scalar(2e-3F)},
+      {.function = "ggxAlpha", .extreme = "roughness = 1", .shader = "GgxAlphaProbe", .material = R"({"roughness": 1})",
+       .value = scalar(1)},
+      {.function = "ggxAlpha", .extreme = "roughness = 3e38", .shader = "GgxAlphaProbe",
+       .material = R"({"roughness": 3e38})", .value = scalar(1)},
+      {.function = "ggxAlpha", .extreme = "roughness = -3e38", .shader = "GgxAlphaProbe",
+       .material = R"({"roughness": -3e38})", .value = scalar(2e-3F)},
+      {.function = "ggxAlpha", .extreme = "roughness = 1e-38", .shader = "GgxAlphaProbe",
+       .material = R"({"roughness": 1e-38})", .value = scalar(2e-3F)},
+
+      // distributionGGX (pbr.spire): D(1, alpha) = 1 / (PI alpha^2), D(0, alpha) = alpha^2 / PI
+      {.function = "distributionGGX", .extreme = "alpha = 1", .shader = "DistributionGgxProbe",
+       .material = R"({"nDotH": 1, "alpha": 1})", .value = scalar(1.0F / kPi)},
+      {.function = "distributionGGX", .extreme = "alpha = 0 at n.h = 1: 0 / 0 unguarded",
+       .shader = "DistributionGgxProbe", .material = R"({"nDotH": 1, "alpha": 0})",
+       .value = scalar(1.0F / (kPi * 2e-3F * 2e-3F)), .tolerance = kPeakTolerance},
+      {.function = "distributionGGX", .extreme = "alpha = 1e-38 at n.h = 1: alpha^2 underflows",
+       .shader = "DistributionGgxProbe", .material = R"({"nDotH": 1, "alpha": 1e-38})",
+       .value = scalar(1.0F / (kPi * 2e-3F * 2e-3F)), .tolerance = kPeakTolerance},
+      {.function = "distributionGGX", .extreme = "alpha = 3e38: alpha^2 overflows", .shader = "DistributionGgxProbe",
+       .material = R"({"nDotH": 0.5, "alpha": 3e38})", .value = scalar(1.0F / kPi)},
+      {.function = "distributionGGX", .extreme = "n.h = 2 / sqrt(3) > 1 at alpha = 0.5: denom = 0 unguarded",
+       .shader = "DistributionGgxProbe", .material = R"({"nDotH": 1.1547005, "alpha": 0.5})",
+       .value = scalar(1.0F / (kPi * 0.25F))},
+      {.function = "distributionGGX", .extreme = "n.h = -1: back-facing half vector", .shader = "DistributionGgxProbe",
+       .material = R"({"nDotH": -1, "alpha": 0.5})", .value = scalar(0.25F / kPi)},
+
+      // visibilitySmithSchlick (pbr.spire): 0.25 at n.l = n.v = 1
+      {.function = "visibilitySmithSchlick", .extreme = "n.l = n.v = 1, alpha = 1", .shader = "VisibilityProbe",
+       .material = R"({"nDotL": 1, "nDotV": 1, "alpha": 1})", .value = scalar(0.25F)},
+      {.function = "visibilitySmithSchlick", .extreme = "n.l = n.v = 0, alpha = 0: grazing, the largest value",
+       .shader = "VisibilityProbe", .material = R"({"nDotL": 0, "nDotV": 0, "alpha": 0})"},
+      {.function = "visibilitySmithSchlick", .extreme = "n.l = n.v = -1: back-facing", .shader = "VisibilityProbe",
+       .material = R"({"nDotL": -1, "nDotV": -1, "alpha": 0.5})"},
+      {.function = "visibilitySmithSchlick", .extreme = "alpha = 3e38: l (1 - k) + k cancels to 0 unguarded",
+       .shader = "VisibilityProbe", .material = R"({"nDotL": 1, "nDotV": 1, "alpha": 3e38})", .value = scalar(0.25F)},
+      {.function = "visibilitySmithSchlick", .extreme = "alpha = -1: a denominator is 0 at n.l = 1/3 unguarded",
+       .shader = "VisibilityProbe", .material = R"({"nDotL": 0.33333334, "nDotV": 1, "alpha": -1})"},
+      {.function = "visibilitySmithSchlick", .extreme = "n.l = n.v = 3e38", .shader = "VisibilityProbe",
+       .material = R"({"nDotL": 3e38, "nDotV": 3e38, "alpha": 0.5})"},
+
+      // fresnelSchlick (pbr.spire)
+      {.function = "fresnelSchlick", .extreme = "v.h = 1: F0", .shader = "FresnelSchlickProbe",
+       .material = R"({"f0": [0.04, 0.5, 1], "vDotH": 1})", .value = direction(0.04F, 0.5F, 1)},
+      {.function = "fresnelSchlick", .extreme = "v.h = -3e38: clamped to grazing, 1", .shader = "FresnelSchlickProbe",
+       .material = R"({"f0": [0.04, 0.5, 1], "vDotH": -3e38})", .value = direction(1, 1, 1)},
+      {.function = "fresnelSchlick", .extreme = "v.h = 3e38", .shader = "FresnelSchlickProbe",
+       .material = R"({"f0": [0.04, 0.5, 1], "vDotH": 3e38})", .value = direction(0.04F, 0.5F, 1)},
+      {.function = "fresnelSchlick", .extreme = "F0 = (3e38, 0, -3e38)", .shader = "FresnelSchlickProbe",
+       .material = R"({"f0": [3e38, 0, -3e38], "vDotH": 0.5})"},
+
+      // specularBlinnPhong (pbr.spire): (n + 2) / (8 PI) at n.h = 1, n = 2 / alpha^2 - 2
+      {.function = "specularBlinnPhong", .extreme = "alpha = 0: an infinite exponent unguarded",
+       .shader = "SpecularBlinnPhongProbe", .material = R"({"nDotH": 1, "alpha": 0})",
+       .value = scalar(2.0F / (2e-3F * 2e-3F) / (8.0F * kPi)), .tolerance = kPeakTolerance},
+      {.function = "specularBlinnPhong", .extreme = "alpha = 1e-38: alpha^2 underflows",
+       .shader = "SpecularBlinnPhongProbe", .material = R"({"nDotH": 0.5, "alpha": 1e-38})", .value = scalar(0)},
+      {.function = "specularBlinnPhong", .extreme = "alpha = 1: exponent at its floor 1",
+       .shader = "SpecularBlinnPhongProbe", .material = R"({"nDotH": 1, "alpha": 1})",
+       .value = scalar(3.0F / (8.0F * kPi))},
+      {.function = "specularBlinnPhong", .extreme = "alpha = 3e38", .shader = "SpecularBlinnPhongProbe",
+       .material = R"({"nDotH": 1, "alpha": 3e38})", .value = scalar(3.0F / (8.0F * kPi))},
+      {.function = "specularBlinnPhong", .extreme = "n.h = -1, alpha = 2e-3", .shader = "SpecularBlinnPhongProbe",
+       .material = R"({"nDotH": -1, "alpha": 2e-3})", .value = scalar(0)},
+
+      // specularGGX (pbr.spire)
+      {.function = "specularGGX", .extreme = "roughness = 0 at n.h = n.l = n.v = 1: the peak",
+       .shader = "SpecularGgxProbe", .material = R"({"nDotH": 1, "nDotL": 1, "nDotV": 1, "roughness": 0})",
+       .value = scalar(kSpecularPeakSmooth), .tolerance = kPeakTolerance},
+      {.function = "specularGGX", .extreme = "roughness = 1", .shader = "SpecularGgxProbe",
+       .material = R"({"nDotH": 1, "nDotL": 1, "nDotV": 1, "roughness": 1})", .value = scalar(kSpecularPeakRough)},
+      {.function = "specularGGX", .extreme = "roughness = 0, n.l = n.v = 0: grazing peak", .shader = "SpecularGgxProbe",
+       .material = R"({"nDotH": 1, "nDotL": 0, "nDotV": 0, "roughness": 0})"},
+      {.function = "specularGGX", .extreme = "roughness = -3e38, n.h = 3e38", .shader = "SpecularGgxProbe",
+       .material = R"({"nDotH": 3e38, "nDotL": 1, "nDotV": 1, "roughness": -3e38})",
+       .value = scalar(kSpecularPeakSmooth), .tolerance = kPeakTolerance},
+      {.function = "specularGGX", .extreme = "roughness = 3e38, cosines -1", .shader = "SpecularGgxProbe",
+       .material = R"({"nDotH": -1, "nDotL": -1, "nDotV": -1, "roughness": 3e38})"},
+
+      // specularGGXLut (pbr.spire), on the engine's "ggxLut" texture and on all-black and all-white ones
+      {.function = "specularGGXLut", .extreme = "roughness = 0 at n.h = n.l = n.v = 1", .shader = "SpecularGgxLutProbe",
+       .material = R"({"ggxLut": "ggxLut", "nDotH": 1, "nDotL": 1, "nDotV": 1, "roughness": 0})"},
+      {.function = "specularGGXLut", .extreme = "n.h = 3e38, n.l = n.v = 0, roughness = -3e38",
+       .shader = "SpecularGgxLutProbe",
+       .material = R"({"ggxLut": "ggxLut", "nDotH": 3e38, "nDotL": 0, "nDotV": 0, "roughness": -3e38})"},
+      {.function = "specularGGXLut", .extreme = "n.h = -3e38, roughness = 3e38", .shader = "SpecularGgxLutProbe",
+       .material = R"({"ggxLut": "ggxLut", "nDotH": -3e38, "nDotL": 1, "nDotV": 1, "roughness": 3e38})"},
+      {.function = "specularGGXLut", .extreme = "all-black lookup texture: the shape is 0", .shader = "SpecularGgxLutProbe",
+       .material = R"({"ggxLut": "black", "nDotH": 1, "nDotL": 1, "nDotV": 1, "roughness": 1})", .value = scalar(0)},
+      {.function = "specularGGXLut", .extreme = "all-white lookup texture: the shape is 1, the peak",
+       .shader = "SpecularGgxLutProbe",
+       .material = R"({"ggxLut": "white", "nDotH": 1, "nDotL": 1, "nDotV": 1, "roughness": 1})",
+       .value = scalar(kSpecularPeakRough)},
+
+      // environmentBRDF (pbr.spire)
+      {.function = "environmentBRDF", .extreme = "roughness = 0, n.v = 1", .shader = "EnvironmentBrdfProbe",
+       .material = R"({"f0": [0.04, 0.04, 0.04], "roughness": 0, "nDotV": 1})"},
+      {.function = "environmentBRDF", .extreme = "roughness = 3e38, n.v = -3e38", .shader = "EnvironmentBrdfProbe",
+       .material = R"({"f0": [0, 0.5, 1], "roughness": 3e38, "nDotV": -3e38})"},
+      {.function = "environmentBRDF", .extreme = "roughness = -3e38, n.v = 3e38", .shader = "EnvironmentBrdfProbe",
+       .material = R"({"f0": [0, 0.5, 1], "roughness": -3e38, "nDotV": 3e38})"},
+      {.function = "environmentBRDF", .extreme = "F0 = (1e30, 0, -1e30)", .shader = "EnvironmentBrdfProbe",
+       .material = R"({"f0": [1e30, 0, -1e30], "roughness": 0.5, "nDotV": 0.5})"},
+
+      // hemisphereLight (pbr.spire); sky blue, ground red
+      {.function = "hemisphereLight", .extreme = "direction = (0, 0, 0): the +Z fallback, the horizon",
+       .shader = "HemisphereLightProbe",
+       .material = R"({"direction": [0, 0, 0], "skyColor": [0, 0, 1], "groundColor": [1, 0, 0]})",
+       .value = direction(0.5F, 0, 0.5F)},
+      {.function = "hemisphereLight", .extreme = "direction = (0, 1e30, 0): straight up, its length overflows",
+       .shader = "HemisphereLightProbe",
+       .material = R"({"direction": [0, 1e30, 0], "skyColor": [0, 0, 1], "groundColor": [1, 0, 0]})",
+       .value = direction(0, 0, 1)},
+      {.function = "hemisphereLight", .extreme = "direction = (0, -1e-20, 0): straight down, its length underflows",
+       .shader = "HemisphereLightProbe",
+       .material = R"({"direction": [0, -1e-20, 0], "skyColor": [0, 0, 1], "groundColor": [1, 0, 0]})",
+       .value = direction(1, 0, 0)},
+      {.function = "hemisphereLight", .extreme = "colors of 1e30", .shader = "HemisphereLightProbe",
+       .material = R"({"direction": [0, 1, 1], "skyColor": [1e30, 1e30, 1e30], "groundColor": [-1e30, 1e30, 0]})"},
+
+      // blendTangentNormals (pbr.spire)
+      {.function = "blendTangentNormals", .extreme = "flat base and detail", .shader = "BlendTangentNormalsProbe",
+       .material = R"({"base": [0, 0, 1], "detail": [0, 0, 1]})", .value = direction(0, 0, 1)},
+      {.function = "blendTangentNormals", .extreme = "z = 1e30 each: their product overflows to Inf",
+       .shader = "BlendTangentNormalsProbe", .material = R"({"base": [0, 0, 1e30], "detail": [0, 0, 1e30]})",
+       .value = direction(0, 0, 1)},
+      {.function = "blendTangentNormals", .extreme = "opposite slopes and z = 0: the zero vector",
+       .shader = "BlendTangentNormalsProbe", .material = R"({"base": [1, 0, 0], "detail": [-1, 0, 0]})",
+       .value = direction(0, 0, 1)},
+      {.function = "blendTangentNormals", .extreme = "x = 3e38 each: their sum overflows to Inf",
+       .shader = "BlendTangentNormalsProbe", .material = R"({"base": [3e38, 0, 0], "detail": [3e38, 0, 0]})",
+       .value = direction(1, 0, 0)},
+
+      // scaleTangentNormal (pbr.spire)
+      {.function = "scaleTangentNormal", .extreme = "strength = 0: flat", .shader = "ScaleTangentNormalProbe",
+       .material = R"({"n": [0.6, 0, 0.8], "strength": 0})", .value = direction(0, 0, 1)},
+      {.function = "scaleTangentNormal", .extreme = "strength = 0 of a normal with z = 0: the zero vector",
+       .shader = "ScaleTangentNormalProbe", .material = R"({"n": [1, 0, 0], "strength": 0})",
+       .value = direction(0, 0, 1)},
+      {.function = "scaleTangentNormal", .extreme = "strength = 3e38", .shader = "ScaleTangentNormalProbe",
+       .material = R"({"n": [0.6, 0, 0.8], "strength": 3e38})", .value = direction(1, 0, 0)},
+      {.function = "scaleTangentNormal", .extreme = "strength = -3e38", .shader = "ScaleTangentNormalProbe",
+       .material = R"({"n": [0.6, 0, 0.8], "strength": -3e38})", .value = direction(-1, 0, 0)},
+      {.function = "scaleTangentNormal", .extreme = "strength = 1e-38", .shader = "ScaleTangentNormalProbe",
+       .material = R"({"n": [0.6, 0, 0.8], "strength": 1e-38})", .value = direction(0, 0, 1)},
+  };
+  return cases;
+}
+
+// The Terrain example (examples/terrain.spire) at the extremes: `material`
+// replaces the bindings of kTerrainMaterial with the same names, or adds
+// bindings of the engine-supplied lightDir and cameraPos, which then win.
+struct TerrainCase {
+  std::string_view extreme;
+  std::map<std::string, std::string> material;  // component -> JSON value
+  std::string_view mesh = "plane";
+  std::optional<Rgba> value = std::nullopt;  // every covered pixel's value, where known
+};
+
+const std::map<std::string, std::string> kTerrainMaterial = {
+    {"mixMap", R"("noise")"},       {"albedoMap1", R"("grass")"},    {"albedoMap2", R"("rock")"},
+    {"normalMap1", R"("normals")"}, {"normalMap2", R"("normals")"}, {"shininess", "32"},
+    {"roughness", "0.4"}};
+
+std::map<std::string, std::string> allTextures(const std::string& texture) {
+  std::map<std::string, std::string> bindings;
+  for (const char* map : {"mixMap", "albedoMap1", "albedoMap2", "normalMap1", "normalMap2"}) {
+    bindings[map] = "\"" + texture + "\"";
+  }
+  return bindings;
+}
+
+const std::vector<TerrainCase>& terrainCases() {
+  static const std::vector<TerrainCase> cases = {
+      {.extreme = "the scene's own values", .material = {}},
+      // The plane's central vertex is the origin (the test scene's plane has
+      // an even number of quads per side).
+      {.extreme = "camera exactly at a vertex: cameraPos = (0, 0, 0)", .material = {{"cameraPos", "[0, 0, 0]"}}},
+      {.extreme = "eye below the surface: cameraPos = (0, -2, 0)", .material = {{"cameraPos", "[0, -2, 0]"}}},
+      // Normal-mapped normals stay in the upper hemisphere, so no pixel is lit.
+      {.extreme = "light below the horizon: lightDir = (0, -1, 0)", .material = {{"lightDir", "[0, -1, 0]"}},
+       .value = Rgba{0, 0, 0, 0}},
+      {.extreme = "grazing light: lightDir = (1, 1e-7, 0)", .material = {{"lightDir", "[1, 1e-7, 0]"}}},
+      {.extreme = "lightDir = (0, 0, 0)", .material = {{"lightDir", "[0, 0, 0]"}}},
+      {.extreme = "lightDir and cameraPos of length 1e30 and 3e38",
+       .material = {{"lightDir", "[0, 1e30, 0]"}, {"cameraPos", "[0, 3e38, 0]"}}},
+      {.extreme = "shininess = 3e38, roughness = 0", .material = {{"shininess", "3e38"}, {"roughness", "0"}}},
+      {.extreme = "shininess = 1e-38, roughness = 1e-38", .material = {{"shininess", "1e-38"}, {"roughness", "1e-38"}}},
+      {.extreme = "shininess = -3e38, roughness = 3e38", .material = {{"shininess", "-3e38"}, {"roughness", "3e38"}}},
+      {.extreme = "roughness = 1", .material = {{"roughness", "1"}}},
+      {.extreme = "all-black textures", .material = allTextures("black")},
+      {.extreme = "all-white textures", .material = allTextures("white")},
+      {.extreme = "UVs in [-3.25, 4.25] (uv_outside.gltf), repeat addressing", .material = {}, .mesh = "uvOutside"},
+      {.extreme = "UVs in [-3.25, 4.25] (uv_outside.gltf), clamp addressing",
+       .material = {{"mixMap", R"("noiseClamped")"},
+                    {"albedoMap1", R"("grassClamped")"},
+                    {"albedoMap2", R"("rockClamped")"},
+                    {"normalMap1", R"("normalsClamped")"},
+                    {"normalMap2", R"("normalsClamped")"}},
+       .mesh = "uvOutside"},
+  };
+  return cases;
+}
+
+// The decision files Terrain runs under: the example's three, and two that
+// light per vertex, where `cameraPos - vert_pos` is evaluated exactly at the
+// vertices and so is exactly zero in the camera-at-a-vertex case.
+const std::vector<fs::path>& terrainDecisions() {
+  static const std::vector<fs::path> files = {
+      kSourceDir / "examples/decisions/terrain_full_quality.decisions",
+      kSourceDir / "examples/decisions/terrain_baked_albedo.decisions",
+      kSourceDir / "examples/decisions/terrain_baked_vertex_normal.decisions",
+      kDataDir / "terrain_vertex_basic.decisions",
+      kDataDir / "terrain_vertex_ggx.decisions",
+  };
+  return files;
+}
+
+// 17x17 pixels straight down onto a 2x2 plane (4x4 quads), which covers the
+// whole image; odd, so that the central pixel's centre lies on the view axis,
+// right above the plane's central vertex. Textures and meshes are loaded only
+// where an instance uses them.
+std::string sceneJson(std::string_view mesh, std::string_view source, std::string_view shader,
+                      std::string_view material) {
+  std::ostringstream json;
+  json << R"({
+  "resolution": [17, 17], "frames": 1, "warmupFrames": 0,
+  "camera": {"fovY": 45, "up": [0, 0, -1], "views": [{"position": [0, 2, 0], "target": [0, 0, 0]}]},
+  "light": {"direction": [0.4, 1.0, 0.3]},
+  "meshes": {"plane": {"type": "plane", "size": 2, "resolution": 4},
+             "uvOutside": {"type": "gltf", "file": "uv_outside.gltf"}},
+  "textures": {
+    "black": {"type": "solid", "size": 4, "color": [0, 0, 0, 0]},
+    "white": {"type": "solid", "size": 4, "color": [1, 1, 1, 1]},
+    "noise": {"type": "noise", "size": 32, "seed": 3, "octaves": 3},
+    "grass": {"type": "noise", "size": 32, "seed": 11, "octaves": 3, "color": [0.42, 0.62, 0.2], "color2": [0.12, 0.3, 0.08]},
+    "rock": {"type": "noise", "size": 32, "seed": 23, "octaves": 3, "color": [0.58, 0.53, 0.48], "color2": [0.3, 0.25, 0.2]},
+    "normals": {"type": "normalMap", "size": 32, "seed": 5, "strength": 2.5},
+    "noiseClamped": {"type": "noise", "size": 32, "seed": 3, "octaves": 3, "address": "clamp"},
+    "grassClamped": {"type": "noise", "size": 32, "seed": 11, "octaves": 3, "color": [0.42, 0.62, 0.2], "color2": [0.12, 0.3, 0.08], "address": "clamp"},
+    "rockClamped": {"type": "noise", "size": 32, "seed": 23, "octaves": 3, "color": [0.58, 0.53, 0.48], "color2": [0.3, 0.25, 0.2], "address": "clamp"},
+    "normalsClamped": {"type": "normalMap", "size": 32, "seed": 5, "strength": 2.5, "address": "clamp"},
+    "ggxLut": {"type": "ggxLut", "size": 64}
+  },
+  "instances": [{"mesh": ")"
+       << mesh << R"(", "source": ")" << source << R"(", "shader": ")" << shader << R"(", "material": )" << material
+       << "}]\n}\n";
+  return json.str();
+}
+
+std::string materialJson(const std::map<std::string, std::string>& bindings) {
+  std::string json = "{";
+  for (const auto& [name, value] : bindings) {
+    if (json.size() > 1) json += ", ";
+    json += "\"" + name + "\": " + value;
+  }
+  return json + "}";
+}
+
+size_t coveredPixels(const Capture& capture) {
+  size_t covered = 0;
+  for (uint8_t c : capture.coverage) covered += c != 0 ? 1 : 0;
+  return covered;
+}
+
+// The hazards as the engine reports them: spire-demo counts NaN and Inf
+// pixels with measure::compareImages.
+measure::ImageError hazardsOf(const Capture& capture) {
+  auto error = measure::compareImages(capture.color, capture.color, &capture.coverage);
+  EXPECT_TRUE(error) << error.error();
+  return error ? *error : measure::ImageError{};
+}
+
+std::string pixelText(const Capture& capture, size_t pixel) {
+  const float* p = &capture.color.rgba[pixel * 4];
+  return "pixel (" + std::to_string(pixel % capture.color.width) + ", " + std::to_string(pixel / capture.color.width) +
+         ") = (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) + ", " +
+         std::to_string(p[3]) + ")";
+}
+
+// Every covered pixel finite, and equal to `value` where one is given, to a
+// relative `tolerance` (the shaders compute in float, in another order than
+// the constants above).
+void expectFiniteEverywhere(const Capture& capture, const std::optional<Rgba>& value, float tolerance = 1e-4F) {
+  EXPECT_EQ(coveredPixels(capture), capture.coverage.size()) << "the plane must cover the whole image";
+  const measure::ImageError hazards = hazardsOf(capture);
+  EXPECT_EQ(hazards.nanPixels, 0U);
+  EXPECT_EQ(hazards.infPixels, 0U);
+  for (size_t i = 0; i < capture.coverage.size(); ++i) {
+    if (capture.coverage[i] == 0) continue;
+    for (size_t c = 0; c < 4; ++c) {
+      const float got = capture.color.rgba[i * 4 + c];
+      bool ok = std::isfinite(got);
+      if (ok && value) ok = std::abs(got - (*value)[c]) <= 1e-6F + tolerance * std::abs((*value)[c]);
+      if (!ok) {
+        ADD_FAILURE() << pixelText(capture, i) << (value ? ", expected (" + std::to_string((*value)[0]) + ", " +
+                                                               std::to_string((*value)[1]) + ", " +
+                                                               std::to_string((*value)[2]) + ", " +
+                                                               std::to_string((*value)[3]) + ")"
+                                                         : std::string(", expected finite"));
+        return;  // one pixel tells the story; the others would repeat it
+      }
+    }
+  }
+}
+
+class StabilityTest : public vk::testing::DeviceTest {
+ protected:
+  // Renders view 0 of `json`, a scene as if in tests/data/engine/stability,
+  // with `decisions` for every instance; reports the failure and returns
+  // nothing when the scene does not load, compile or render.
+  static std::optional<Capture> render(const std::string& json, const std::optional<fs::path>& decisions) {
+    SourceManager sources;
+    DiagnosticList diags;
+    const auto scene = scene::parseSceneFile("stability_scene.json", json, kDataDir, sources, diags);
+    if (!scene) {
+      ADD_FAILURE() << renderDiagnostics(sources, diags, DiagnosticFormat::Text);
+      return std::nullopt;
+    }
+    SceneRenderer renderer(ctx(), *scene, diags);
+    auto programs = renderer.compile(decisions);
+    if (!programs) {
+      ADD_FAILURE() << programs.error().message << "\n" << programs.error().details;
+      return std::nullopt;
+    }
+    auto prepared = renderer.prepare(*programs);
+    if (!prepared) {
+      ADD_FAILURE() << prepared.error().message << "\n" << renderDiagnostics(sources, diags, DiagnosticFormat::Text);
+      return std::nullopt;
+    }
+    auto capture = renderer.capture(*prepared, scene->camera.views.front());
+    if (!capture) {
+      ADD_FAILURE() << capture.error().message;
+      return std::nullopt;
+    }
+    return std::move(capture).value();
+  }
+};
+
+// One test per stdlib function, running every case of the table for it.
+class StdlibStabilityTest : public StabilityTest, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(StdlibStabilityTest, FiniteAtTheExtremes) {
+  size_t cases = 0;
+  for (const ProbeCase& probe : probeCases()) {
+    if (probe.function != GetParam()) continue;
+    ++cases;
+    SCOPED_TRACE(std::string(probe.function) + ", " + std::string(probe.extreme) + ": " + std::string(probe.shader) +
+                 " " + std::string(probe.material));
+    const auto capture = render(sceneJson("plane", "probes.spire", probe.shader, probe.material), std::nullopt);
+    if (!capture) continue;
+    if (probe.outcome == Outcome::Finite) {
+      expectFiniteEverywhere(*capture, probe.value, probe.tolerance);
+    } else {
+      const measure::ImageError hazards = hazardsOf(*capture);
+      EXPECT_EQ(hazards.nanPixels, 0U);
+      EXPECT_EQ(hazards.infPixels, coveredPixels(*capture));
+      EXPECT_GT(hazards.infPixels, 0U);
+    }
+  }
+  EXPECT_GT(cases, 0U);
+}
+
+std::vector<std::string> testedFunctions() {
+  std::vector<std::string> functions;
+  for (const ProbeCase& probe : probeCases()) {
+    if (std::find(functions.begin(), functions.end(), probe.function) == functions.end()) {
+      functions.emplace_back(probe.function);
+    }
+  }
+  return functions;
+}
+
+INSTANTIATE_TEST_SUITE_P(Stdlib, StdlibStabilityTest, ::testing::ValuesIn(testedFunctions()),
+                         [](const ::testing::TestParamInfo<std::string>& param) { return param.param; });
+
+// A function added to stdlib/ without cases in the table fails here.
+TEST(StabilityTable, CoversEveryStdlibFunction) {
+  const std::regex definition(R"(^(?:float|int|uint|bool|[biu]?vec[234]|mat[234])\s+(\w+)\s*\()");
+  std::set<std::string> defined;
+  for (const auto& entry : fs::directory_iterator(kSourceDir / "stdlib")) {
+    if (entry.path().extension() != ".spire") continue;
+    std::ifstream in(entry.path());
+    for (std::string line; std::getline(in, line);) {
+      std::smatch match;
+      if (std::regex_search(line, match, definition)) defined.insert(match[1].str());
+    }
+  }
+  ASSERT_TRUE(defined.count("phong") && defined.count("ggx")) << "the scan of stdlib/ no longer sees its functions";
+  const std::vector<std::string> tested = testedFunctions();
+  for (const std::string& function : defined) {
+    EXPECT_TRUE(std::find(tested.begin(), tested.end(), function) != tested.end())
+        << function << " (stdlib/) has no cases in probeCases()";
+  }
+}
+
+// One test per decision file, running every Terrain case under it.
+class TerrainStabilityTest : public StabilityTest, public ::testing::WithParamInterface<fs::path> {};
+
+TEST_P(TerrainStabilityTest, FiniteAtTheExtremes) {
+  for (const TerrainCase& terrain : terrainCases()) {
+    std::map<std::string, std::string> material = kTerrainMaterial;
+    for (const auto& [name, value] : terrain.material) material[name] = value;
+    const std::string bindings = materialJson(material);
+    SCOPED_TRACE("Terrain, " + std::string(terrain.extreme) + ": " + bindings);
+    const auto capture =
+        render(sceneJson(terrain.mesh, "../../../../examples/terrain.spire", "Terrain", bindings), GetParam());
+    if (capture) expectFiniteEverywhere(*capture, terrain.value);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Terrain, TerrainStabilityTest, ::testing::ValuesIn(terrainDecisions()),
+                         [](const ::testing::TestParamInfo<fs::path>& param) { return param.param.stem().string(); });
+
+// A user's component divides by a uniform bound to 0 (user_divide.json): no
+// library guard can prevent that, so the engine must count every such pixel
+// and spire-demo must name the variant and the counts in its warning.
+TEST_F(StabilityTest, UsersDivisionByZeroIsCountedAndNamed) {
+  const fs::path scenePath = kDataDir / "user_divide.json";
+  std::ifstream in(scenePath);
+  const std::string json{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  ASSERT_FALSE(json.empty());
+
+  // 0.5 / 0 is Inf and 0 / 0 is NaN, in every covered pixel.
+  const auto inf = render(json, kDataDir / "user_divide_fragment.decisions");
+  ASSERT_TRUE(inf);
+  const measure::ImageError infHazards = hazardsOf(*inf);
+  const size_t covered = coveredPixels(*inf);
+  ASSERT_GT(covered, 0U);
+  EXPECT_EQ(infHazards.infPixels, covered);
+  EXPECT_EQ(infHazards.nanPixels, 0U);
+  const std::string color = "[0.5, 0.5, 0.5, 1.0]";
+  std::string zeroColor = json;
+  ASSERT_NE(zeroColor.find(color), std::string::npos);
+  zeroColor.replace(zeroColor.find(color), color.size(), "[0.0, 0.0, 0.0, 0.0]");
+  const auto nan = render(zeroColor, kDataDir / "user_divide_fragment.decisions");
+  ASSERT_TRUE(nan);
+  EXPECT_EQ(hazardsOf(*nan).nanPixels, coveredPixels(*nan));
+
+  const fs::path outputDir =
+      fs::temp_directory_path() / ("spire_stability_user_divide_" + std::to_string(::getpid()));
+  std::ostringstream out;
+  std::ostringstream err;
+  ASSERT_EQ(demo::runDemo({scenePath.string(), "--validation", "-o", outputDir.string()}, out, err), 0) << err.str();
+  fs::remove_all(outputDir);
+  EXPECT_NE(err.str().find("spire-demo: warning: variant 'divide_per_fragment' produced 0 NaN and " +
+                           std::to_string(covered) + " Inf pixels; its error is infinite\n"),
+            std::string::npos)
+      << err.str();
+  // Per vertex, the Inf results are interpolated, which may turn some into
+  // NaN (Inf - Inf); every covered pixel is still one or the other.
+  const std::regex vertexWarning(R"(variant 'divide_per_vertex' produced (\d+) NaN and (\d+) Inf pixels)");
+  std::smatch match;
+  const std::string errText = err.str();
+  ASSERT_TRUE(std::regex_search(errText, match, vertexWarning)) << errText;
+  EXPECT_EQ(std::stoul(match[1].str()) + std::stoul(match[2].str()), covered) << errText;
+}
+
+}  // namespace
+}  // namespace spire::engine
