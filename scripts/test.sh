@@ -13,6 +13,8 @@ bash scripts/install-deps.sh
 
 # Make sanitizer failures fatal and readable in CTest output.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1}"
+# lavapipe's own leaks are suppressed (tests/lsan.supp says why); ours are not.
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$ROOT/tests/lsan.supp}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 
 failed=()
