@@ -4,5 +4,6 @@
 
 int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
-  return spire::tune::runTune(args, std::cout, std::cerr);
+  // Workers are this same executable, started with --worker.
+  return spire::tune::runTune(args, std::cout, std::cerr, "/proc/self/exe");
 }

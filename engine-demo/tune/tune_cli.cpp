@@ -200,8 +200,8 @@ size_t countRows(const fs::path& path) {
 // Runs `jobs` copies of this program as workers, each on every jobs-th
 // point, with lavapipe limited to one thread so the workers share the cores
 // instead of fighting over them.
-bool runWorkers(const Options& o, const std::vector<std::string>& args, size_t already, size_t total,
-                std::ostream& err) {
+bool runWorkers(const Options& o, const std::string& program, const std::vector<std::string>& args, size_t already,
+                size_t total, std::ostream& err) {
   std::vector<std::string> env;
   for (char** e = environ; *e; ++e) {
     if (!std::string_view(*e).starts_with("LP_NUM_THREADS=")) env.emplace_back(*e);
@@ -219,7 +219,7 @@ bool runWorkers(const Options& o, const std::vector<std::string>& args, size_t a
     for (std::string& a : workerArgs) argv.push_back(a.data());
     argv.push_back(nullptr);
     pid_t pid = 0;
-    if (posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), envp.data()) != 0) {
+    if (posix_spawn(&pid, program.c_str(), nullptr, nullptr, argv.data(), envp.data()) != 0) {
       err << "spire-tune: error: cannot start a worker process\n";
       return false;
     }
@@ -270,7 +270,8 @@ std::string placementsText(const std::vector<std::string>& components, const Var
 
 }  // namespace
 
-int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+            const std::string& workerProgram) {
   CLI::App app{"spire-tune: explores a shader's optimization choices on a scene and measures the speed/accuracy trade",
                "spire-tune"};
   Options o;
@@ -417,10 +418,10 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   size_t already = 0;
   for (const TunePoint& point : space->points) already += done->contains(point.index) ? 1 : 0;
   if (already < total) {
-    if (o.jobs == 1) {
+    if (o.jobs == 1 || workerProgram.empty()) {
       Progress progress(err, total, already);
       if (const int status = measureShard(-1, &progress); status != engine::kToolSuccess) return status;
-    } else if (!runWorkers(o, args, already, total, err)) {
+    } else if (!runWorkers(o, workerProgram, args, already, total, err)) {
       err << "spire-tune: error: a worker failed (its messages are above); rerun to resume\n";
       return engine::kToolInputError;
     }

@@ -12,7 +12,10 @@
 namespace spire::tune {
 
 // Exit status: 0 success, 1 errors in the input or while measuring, 2 bad
-// usage, 3 no usable Vulkan device.
-int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+// usage, 3 no usable Vulkan device. `workerProgram` is the spire-tune
+// executable that --jobs starts as worker processes; without one (a caller
+// that is not spire-tune) every variant is measured in this process.
+int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+            const std::string& workerProgram = {});
 
 }  // namespace spire::tune

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -176,6 +177,29 @@ TEST_F(TuneRun, WritesEveryOutputAndResumes) {
   std::ostringstream again;
   ASSERT_EQ(runTune(args, again, err), 0) << err.str();
   EXPECT_NE(again.str().find("resuming with 12 measured"), std::string::npos) << again.str();
+
+  // Two worker processes (the spire-tune executable, one lavapipe thread
+  // each) measure the same errors as the serial run.
+  const fs::path parallelDir = dir / "parallel";
+  // Under the asan preset the child processes unload lavapipe at exit and
+  // LeakSanitizer can no longer name its frames (tests/lsan.supp), so leak
+  // checking stays with this process.
+  std::string command = "ASAN_OPTIONS=detect_leaks=0 " + std::string(SPIRE_TUNE_EXE);
+  for (size_t i = 0; i < args.size(); ++i) {
+    const bool jobs = args[i] == "--jobs" || (i > 0 && args[i - 1] == "--jobs");
+    if (!jobs) command += " '" + (args[i] == dir.string() ? parallelDir.string() : args[i]) + "'";
+  }
+  command += " --jobs 2 > /dev/null 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  const auto parallel = readResults(parallelDir / "variants.csv", {"albedo", "lighting"}, error);
+  ASSERT_TRUE(parallel) << error;
+  ASSERT_EQ(parallel->size(), rows->size());
+  for (size_t i = 0; i < rows->size(); ++i) {
+    EXPECT_EQ((*parallel)[i].index, (*rows)[i].index);
+    EXPECT_EQ((*parallel)[i].status, (*rows)[i].status);
+    EXPECT_EQ((*parallel)[i].rmse, (*rows)[i].rmse) << "variant " << (*rows)[i].index;
+    EXPECT_EQ((*parallel)[i].nanPixels, (*rows)[i].nanPixels);
+  }
   fs::remove_all(dir);
 }
 
