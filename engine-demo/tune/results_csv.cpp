@@ -12,7 +12,7 @@ namespace spire::tune {
 namespace {
 
 constexpr const char* kTrailing[] = {"status",  "frame_ms",   "first_frame_ms", "prebake_ms", "rmse", "psnr",
-                                     "max_error", "nan_pixels", "inf_pixels",     "same_as",    "kernels"};
+                                     "max_error", "nan_pixels", "inf_pixels",     "same_as",    "kernels", "hazard_inputs"};
 
 std::string quote(const std::string& field) {
   if (field.find_first_of(",\"\n") == std::string::npos) return field;
@@ -81,9 +81,10 @@ std::string csvHeader(const std::vector<std::string>& components) {
 std::string csvRow(const VariantResult& r) {
   std::string row = std::to_string(r.index);
   for (const std::string& p : r.placements) row += "," + quote(p);
-  row += fmt::format(",{},{},{},{},{},{},{},{},{},{},{}\n", quote(r.status), number(r.frameMs), number(r.firstFrameMs),
-                     number(r.prebakeMs), number(r.rmse), number(r.psnr), number(r.maxError), r.nanPixels, r.infPixels,
-                     r.sameAs ? std::to_string(*r.sameAs) : "", quote(r.kernels));
+  row += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{}\n", quote(r.status), number(r.frameMs),
+                     number(r.firstFrameMs), number(r.prebakeMs), number(r.rmse), number(r.psnr), number(r.maxError),
+                     r.nanPixels, r.infPixels, r.sameAs ? std::to_string(*r.sameAs) : "", quote(r.kernels),
+                     quote(r.hazardInputs));
   return row;
 }
 
@@ -133,6 +134,7 @@ std::optional<std::vector<VariantResult>> readResults(const std::filesystem::pat
     r.infPixels = *inf;
     if (!f[i + 9].empty()) r.sameAs = parseCount(f[i + 9]);
     r.kernels = f[i + 10];
+    r.hazardInputs = f[i + 11];
     results.push_back(std::move(r));
   }
   return results;

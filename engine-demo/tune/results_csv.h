@@ -28,6 +28,10 @@ struct VariantResult {
   uint64_t infPixels = 0;
   std::optional<uint64_t> sameAs;  // measured once: the variant whose kernels are identical
   std::string kernels;             // "World=hash;..." of every kernel
+  // The inputs under which NaN/Inf pixels first appeared: "camera view V"
+  // plus the parameter sample's values ("roughness=0 shininess=1"); empty
+  // without hazards.
+  std::string hazardInputs;
 
   bool ok() const { return status == "ok"; }
 };

@@ -532,6 +532,12 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     report += fmt::format("| {} | {} | {:.3f} | {:.4g} | ![]({}) |\n", r.index, fmt::join(r.placements, " | "), r.frameMs,
                           r.rmse, thumb);
   }
+  for (const VariantResult& r : results) {
+    if (r.nanPixels + r.infPixels > 0 && !r.sameAs) {
+      report += fmt::format("\nHazard: variant {} ({}) has {} NaN and {} Inf pixels, first under {}.",
+                            r.index, placementsText(components, r), r.nanPixels, r.infPixels, r.hazardInputs);
+    }
+  }
   report += fmt::format("\n{} variants had NaN or Inf pixels (infinite error, never on the front); {} were infeasible; "
                         "{} had kernels identical to an earlier variant and were measured once.\n\n"
                         "Time: compile {:.1f} s, first-use shader compilation {:.1f} s, render {:.1f} s, error {:.1f} s "
@@ -544,6 +550,12 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   }
   if (auto failed = writeFileAtomically((fs::path(o.outputDir) / "report.md").string(), report)) {
     return reporter.fail({*failed, {}, {}});
+  }
+  for (const VariantResult& r : results) {
+    if (r.nanPixels + r.infPixels > 0 && !r.sameAs) {
+      err << fmt::format("spire-tune: warning: variant {} ({}) produced {} NaN and {} Inf pixels, first under {}\n",
+                         r.index, placementsText(components, r), r.nanPixels, r.infPixels, r.hazardInputs);
+    }
   }
   out << fmt::format("front: {} variants; {} with NaN/Inf pixels; {} infeasible; {} measured once for identical kernels\n",
                      front.size(), hazards, infeasible, reused);

@@ -1,6 +1,7 @@
 #include "tune/tuner.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "measure/image_metrics.h"
 #include "vk/timer.h"
@@ -123,6 +124,12 @@ VariantResult Tuner::measure(const TunePoint& point) {
         return result;
       }
       accumulated.add(*error);
+      if (result.hazardInputs.empty() && error->nanPixels + error->infPixels > 0) {
+        result.hazardInputs = fmt::format("camera view {}", v);
+        for (const auto& [component, values] : parameterSamples[s]) {
+          result.hazardInputs += fmt::format(" {}={}", component, fmt::join(values, ","));
+        }
+      }
     }
   }
   split_.errorMs += errorMs;

@@ -203,5 +203,34 @@ TEST_F(TuneRun, WritesEveryOutputAndResumes) {
   fs::remove_all(dir);
 }
 
+// A user's component that divides by a uniform: sampling the uniform's range
+// hits 0, every variant gets infinite error and the inputs are named; none can
+// be on the front.
+TEST_F(TuneRun, NamesTheInputsOfAHazardAndKeepsItOffTheFront) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_hazard_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  std::ostringstream out;
+  std::ostringstream err;
+  ASSERT_EQ(runTune({"tests/data/engine/stability/user_divide.json", "--shader", "UserDivide", "--param", "divisor=0:1",
+                     "--param-samples", "0", "--validation", "-o", dir.string()},
+                    out, err),
+            0)
+      << err.str();
+  std::string error;
+  const auto rows = readResults(dir / "variants.csv", {"scaled"}, error);
+  ASSERT_TRUE(rows) << error;
+  ASSERT_FALSE(rows->empty());
+  for (const VariantResult& r : *rows) {
+    EXPECT_GT(r.nanPixels + r.infPixels, 0U) << r.placements[0];
+    EXPECT_TRUE(std::isinf(r.rmse));
+    EXPECT_EQ(r.hazardInputs, "camera view 0 divisor=0");
+  }
+  const auto front = readResults(dir / "pareto.csv", {"scaled"}, error);
+  ASSERT_TRUE(front) << error;
+  EXPECT_TRUE(front->empty());
+  EXPECT_NE(err.str().find("first under camera view 0 divisor=0"), std::string::npos) << err.str();
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace spire::tune
