@@ -13,6 +13,7 @@
 #include "measure/image_metrics.h"
 #include "measure/report_table.h"
 #include "renderer/error_report.h"
+#include "renderer/tool_arguments.h"
 #include "renderer/host_allocator.h"
 #include "renderer/scene_renderer.h"
 #include "scene/texture.h"
@@ -116,16 +117,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   app.add_flag("--window", options.window,
                "Show the variants in a window instead of measuring them (needs a display): keys 1-9 switch "
                "variants, dragging orbits the camera, Space pauses it, Escape quits");
-  std::vector<std::string> reversed(args.rbegin(), args.rend());
-  try {
-    app.parse(reversed);
-  } catch (const CLI::Success&) {
-    out << app.help();
-    return engine::kToolSuccess;
-  } catch (const CLI::ParseError& e) {
-    err << fmt::format("spire-demo: error: {}\nRun 'spire-demo --help' for usage.\n", e.what());
-    return engine::kToolUsageError;
-  }
+  if (const auto status = engine::parseToolArguments(app, args, "spire-demo", out, err)) return *status;
   if (options.listDevices) return listDevices(options, out, err);
   engine::stabilizeHostAllocator();
   if (options.scenePath.empty()) {

@@ -20,6 +20,7 @@
 
 #include "measure/image_metrics.h"
 #include "renderer/error_report.h"
+#include "renderer/tool_arguments.h"
 #include "renderer/host_allocator.h"
 #include "renderer/scene_renderer.h"
 #include "support/file_io.h"
@@ -310,16 +311,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       ->check(CLI::Range(0U, 100U))
       ->type_name("N");
   app.add_option("--worker", o.worker, "Internal: measure shard K")->group("");
-  std::vector<std::string> reversed(args.rbegin(), args.rend());
-  try {
-    app.parse(reversed);
-  } catch (const CLI::Success&) {
-    out << app.help();
-    return engine::kToolSuccess;
-  } catch (const CLI::ParseError& e) {
-    err << fmt::format("spire-tune: error: {}\nRun 'spire-tune --help' for usage.\n", e.what());
-    return engine::kToolUsageError;
-  }
+  if (const auto status = engine::parseToolArguments(app, args, "spire-tune", out, err)) return *status;
   const vk::HostTimer wall;
   engine::stabilizeHostAllocator();
 
