@@ -314,7 +314,7 @@ Expected<Capture> SceneRenderer::capture(const PreparedScene& prepared, const sc
   if (!color) return color.error();
   auto coverage = target_->readCoverage(ctx_);
   if (!coverage) return coverage.error();
-  return Capture{std::move(color).value(), std::move(coverage).value()};
+  return Capture{std::move(color).value(), std::move(coverage).value(), *timing};
 }
 
 }  // namespace spire::engine

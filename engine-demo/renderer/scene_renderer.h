@@ -40,6 +40,7 @@ FrameStats summarizeFrames(double firstFrameMs, const std::vector<FrameTiming>& 
 struct Capture {
   measure::FloatImage color;
   std::vector<uint8_t> coverage;
+  FrameTiming timing;  // of the frame read back
 };
 
 class SceneRenderer {

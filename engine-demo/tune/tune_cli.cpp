@@ -9,7 +9,10 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cerrno>
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +31,7 @@
 #include "tune/format_selection.h"
 #include "tune/pareto.h"
 #include "tune/tuner.h"
+#include "tune/work_queue.h"
 #include "vk/context.h"
 #include "vk/timer.h"
 
@@ -57,6 +61,7 @@ struct Options {
   std::string device;
   bool validation = false;
   int worker = -1;
+  std::string shaderCache = "run";
   std::vector<std::string> params;  // NAME=MIN:MAX
   uint32_t paramSamples = 1;
 };
@@ -124,8 +129,63 @@ std::optional<ParameterRange> parseParameter(const std::string& text, const scen
   return std::nullopt;
 }
 
+// lavapipe's (Mesa's) on-disk shader cache for one run. In mode "run", a
+// fresh directory that every worker shares and that is removed at the end:
+// kernels that many variants share (the vertex and bake kernels) then reach
+// LLVM once per run rather than once per variant, while nothing that an
+// earlier run or another program cached can make a first use look cheap.
+// "off" compiles every pipeline in full; "inherit" leaves the environment
+// alone. Mesa reads the variables when a Vulkan device is created, so this
+// comes first; the workers inherit them; the destructor restores what the
+// environment had, for callers that run the tuner in their own process.
+class ShaderCacheSetting {
+ public:
+  ShaderCacheSetting() = default;
+  ShaderCacheSetting(const ShaderCacheSetting&) = delete;
+  ShaderCacheSetting& operator=(const ShaderCacheSetting&) = delete;
+  ~ShaderCacheSetting() {
+    for (const auto& [name, value] : saved_) {
+      if (value) ::setenv(name.c_str(), value->c_str(), 1);
+      else ::unsetenv(name.c_str());
+    }
+    std::error_code ec;
+    if (!directory_.empty()) fs::remove_all(directory_, ec);
+  }
+
+  std::optional<std::string> apply(const std::string& mode) {
+    if (mode == "inherit") return std::nullopt;
+    if (mode == "off") {
+      set("MESA_SHADER_CACHE_DISABLE", "true");
+      return std::nullopt;
+    }
+    std::string pattern = (fs::temp_directory_path() / "spire-tune-shader-cache.XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) {
+      return fmt::format("cannot create a shader cache directory like '{}': {}", pattern, std::strerror(errno));
+    }
+    directory_ = pattern;
+    set("MESA_SHADER_CACHE_DISABLE", "false");
+    set("MESA_SHADER_CACHE_DIR", pattern);
+    return std::nullopt;
+  }
+
+ private:
+  void set(const std::string& name, const std::string& value) {
+    const char* old = std::getenv(name.c_str());
+    saved_.emplace_back(name, old ? std::optional<std::string>(old) : std::nullopt);
+    ::setenv(name.c_str(), value.c_str(), 1);
+  }
+
+  std::vector<std::pair<std::string, std::optional<std::string>>> saved_;
+  fs::path directory_;
+};
+
 fs::path shardPath(const Options& o, int worker) { return fs::path(o.outputDir) / fmt::format("shard-{}.csv", worker); }
 fs::path splitPath(const Options& o, int worker) { return fs::path(o.outputDir) / fmt::format("shard-{}.time", worker); }
+fs::path queuePath(const Options& o) { return fs::path(o.outputDir) / "work-queue"; }
+
+// The points that differ only in the last component form a chunk (see
+// WorkQueue).
+size_t chunkSize(const TuneSpace& space) { return space.axes.empty() ? 1 : space.axes.back().placements.size(); }
 
 std::vector<std::string> componentNames(const TuneSpace& space) {
   std::vector<std::string> names;
@@ -198,8 +258,8 @@ size_t countRows(const fs::path& path) {
   return lines == 0 ? 0 : lines - 1;
 }
 
-// Runs `jobs` copies of this program as workers, each on every jobs-th
-// point, with lavapipe limited to one thread so the workers share the cores
+// Runs `jobs` copies of this program as workers, which take chunks of the
+// points from the work queue, with lavapipe limited to one thread so the workers share the cores
 // instead of fighting over them.
 bool runWorkers(const Options& o, const std::string& program, const std::vector<std::string>& args, size_t already,
                 size_t total, std::ostream& err) {
@@ -291,7 +351,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   app.add_option("--frames", o.frames, "Measured frames per variant (median; at least 3)")
       ->check(CLI::Range(3U, 1000U))
       ->type_name("N");
-  app.add_option("--warmup", o.warmup, "Unmeasured frames first")->check(CLI::Range(1U, 100U))->type_name("N");
+  app.add_option("--warmup", o.warmup, "Unmeasured frames before the measured ones (the captures of the camera views count)")->check(CLI::Range(1U, 100U))->type_name("N");
   app.add_option("-j,--jobs", o.jobs, "Worker processes (default: one per core)")->check(CLI::Range(1U, 64U))->type_name("N");
   app.add_option("--bake-size", o.bakeSize, "PrebakeTex size without a TextureSize hint")
       ->check(CLI::Range(1U, 8192U))
@@ -310,10 +370,24 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   app.add_option("--param-samples", o.paramSamples, "Random samples besides the minimum and maximum")
       ->check(CLI::Range(0U, 100U))
       ->type_name("N");
+  app.add_option("--shader-cache", o.shaderCache,
+                 "lavapipe's shader cache: 'run' (default) a fresh one for this run, shared by its workers, so a kernel "
+                 "that variants share is compiled once; 'off' compiles every pipeline in full; 'inherit' keeps the "
+                 "environment's MESA_SHADER_CACHE_* settings")
+      ->check(CLI::IsMember({"run", "off", "inherit"}))
+      ->type_name("MODE");
   app.add_option("--worker", o.worker, "Internal: measure shard K")->group("");
   if (const auto status = engine::parseToolArguments(app, args, "spire-tune", out, err)) return *status;
   const vk::HostTimer wall;
   engine::stabilizeHostAllocator();
+  // Workers inherit the coordinator's setting.
+  ShaderCacheSetting shaderCache;
+  if (o.worker < 0) {
+    if (const auto failed = shaderCache.apply(o.shaderCache)) {
+      err << fmt::format("spire-tune: error: {}\n", *failed);
+      return engine::kToolInputError;
+    }
+  }
 
   SourceManager sources;
   DiagnosticList diags;
@@ -381,14 +455,28 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   auto done = loadDone(o, *space, error);
   if (!done) return reporter.fail({error, {}, {}});
 
+  // Measures the points not done yet: all of them in a serial run, a worker's
+  // chunks from the queue otherwise.
   const auto measureShard = [&](int worker, Progress* progress) -> int {
     if (auto ok = tuner.renderReference(reference); !ok) return reporter.fail(ok.error());
     size_t finished = done->size();
-    for (const TunePoint& point : space->points) {
-      if (done->contains(point.index)) continue;
-      if (worker >= 0 && point.index % o.jobs != static_cast<uint64_t>(worker)) continue;
-      appendRow(shardPath(o, std::max(worker, 0)), components, tuner.measure(point));
-      if (progress) progress->update(++finished);
+    const auto measureRange = [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < std::min(end, space->points.size()); ++i) {
+        const TunePoint& point = space->points[i];
+        if (done->contains(point.index)) continue;
+        appendRow(shardPath(o, std::max(worker, 0)), components, tuner.measure(point));
+        if (progress) progress->update(++finished);
+      }
+    };
+    if (worker < 0) {
+      measureRange(0, space->points.size());
+    } else {
+      const size_t chunk = chunkSize(*space);
+      const size_t chunks = (space->points.size() + chunk - 1) / chunk;
+      WorkQueue queue(queuePath(o));
+      std::string queueError;
+      while (const auto next = queue.next(chunks, queueError)) measureRange(*next * chunk, (*next + 1) * chunk);
+      if (!queueError.empty()) return reporter.fail({queueError, {}, {}});
     }
     const TimeSplit& s = tuner.timeSplit();
     if (auto failed = writeFileAtomically(splitPath(o, std::max(worker, 0)).string(),
@@ -413,6 +501,8 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (o.jobs == 1 || workerProgram.empty()) {
       Progress progress(err, total, already);
       if (const int status = measureShard(-1, &progress); status != engine::kToolSuccess) return status;
+    } else if (const auto failed = WorkQueue::create(queuePath(o))) {
+      return reporter.fail({*failed, {}, {}});
     } else if (!runWorkers(o, workerProgram, args, already, total, err)) {
       err << "spire-tune: error: a worker failed (its messages are above); rerun to resume\n";
       return engine::kToolInputError;
@@ -444,6 +534,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     fs::remove(shardPath(o, static_cast<int>(k)), ec);
     fs::remove(splitPath(o, static_cast<int>(k)), ec);
   }
+  fs::remove(queuePath(o), ec);
 
   std::vector<Measured> measured;
   size_t hazards = 0;
@@ -507,10 +598,11 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   for (size_t i = 0; i < components.size(); ++i) separators += "---|";
   std::string report = fmt::format(
       "# spire-tune report\n\nShader `{}` on `{}` ({}), {} variants of {} components{}; error is RMSE against the "
-      "reference over {} camera view(s); time is the median GPU frame time of {} frames after {} warm-up.\n\n"
+      "reference over {} camera view(s); time is the median GPU frame time of {} frames after {} unmeasured ones (the captures of the camera views first).\n\n"
       "![error against time](plot.png)\n\n## Pareto front\n\n| variant | {} | frame ms | RMSE | image |\n|---|{}---|---|---|\n",
       o.shader, o.scenePath, ctx->selectedDevice().name, results.size(), components.size(),
-      space->sampled ? " (sampled)" : "", scene->camera.views.size(), o.frames, o.warmup, fmt::join(components, " | "),
+      space->sampled ? " (sampled)" : "", scene->camera.views.size(), o.frames,
+      std::max<size_t>(o.warmup, scene->camera.views.size()), fmt::join(components, " | "),
       separators);
   fs::create_directories(fs::path(o.outputDir) / "front", ec);
   for (size_t i : front) {

@@ -86,6 +86,7 @@ VariantResult Tuner::measure(const TunePoint& point) {
   timer.restart();
   measure::ErrorAccumulator accumulated;
   double errorMs = 0.0;
+  const auto& views = renderer_.scene().camera.views;
   const std::vector<ParameterSample> parameterSamples = samples();
   for (size_t s = 0; s < parameterSamples.size(); ++s) {
     renderer_.setParameterOverrides(parameterSamples[s]);
@@ -97,21 +98,18 @@ VariantResult Tuner::measure(const TunePoint& point) {
     }
     if (s == 0) {
       for (const engine::BakeRecord& bake : prepared->bakes) result.prebakeMs += bake.reused ? 0.0 : bake.milliseconds;
-      auto stats = renderer_.measure(*prepared, options_.warmupFrames, options_.frames);
-      if (!stats) {
-        result.status = "failed: " + stats.error().message;
-        return result;
-      }
-      result.frameMs = stats->medianGpuMs;
-      result.firstFrameMs = stats->firstFrameMs;
-      split_.firstUseMs += stats->firstFrameMs;
     }
-    const auto& views = renderer_.scene().camera.views;
     for (size_t v = 0; v < views.size(); ++v) {
       auto capture = renderer_.capture(*prepared, views[v]);
       if (!capture) {
         result.status = "failed: " + capture.error().message;
         return result;
+      }
+      // The first frame of a variant is its first use: lavapipe compiles the
+      // kernels at the first draw.
+      if (s == 0 && v == 0) {
+        result.firstFrameMs = capture->timing.hostMs;
+        split_.firstUseMs += capture->timing.hostMs;
       }
       const vk::HostTimer errorTimer;
       const engine::Capture& reference = reference_[s][v];
@@ -130,6 +128,19 @@ VariantResult Tuner::measure(const TunePoint& point) {
           result.hazardInputs += fmt::format(" {}={}", component, fmt::join(values, ","));
         }
       }
+    }
+    if (s == 0) {
+      // The captures above were the warm-up: only what the option asks for
+      // beyond them is rendered before the measured frames.
+      const uint32_t warmup = options_.warmupFrames > views.size()
+                                  ? options_.warmupFrames - static_cast<uint32_t>(views.size())
+                                  : 0;
+      auto stats = renderer_.measure(*prepared, warmup, options_.frames);
+      if (!stats) {
+        result.status = "failed: " + stats.error().message;
+        return result;
+      }
+      result.frameMs = stats->medianGpuMs;
     }
   }
   split_.errorMs += errorMs;

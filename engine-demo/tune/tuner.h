@@ -28,6 +28,9 @@ struct TimeSplit {
 using ParameterSample = std::map<std::string, std::vector<double>>;
 
 struct TunerOptions {
+  // Unmeasured frames before the measured ones. The captures of the camera
+  // views come first and count: the first frame pays lavapipe's shader
+  // compilation whatever it is used for.
   uint32_t warmupFrames = 1;
   uint32_t frames = 3;
   // Error is measured over every sample (and every camera view); time over

@@ -37,37 +37,29 @@ float lighting;
 vec4 albedo;
 vec4 output_;
 
-#line 12 "stdlib/common.spire"
+#line 21 "stdlib/common.spire"
 vec3 normalizeOr(vec3 v, vec3 fallback) {
     float lengthSquared = dot(v, v);
-#line 15 "stdlib/common.spire"
-    if (lengthSquared > 1e-30 && lengthSquared < 1e30) {
-        return v * inversesqrt(lengthSquared);
-    }
-#line 22 "stdlib/common.spire"
-    vec3 scaled = v * 1e20;
-    if (lengthSquared >= 1e30) {
-        scaled = clamp(v, -3.4e38, 3.4e38) * 1e-20;
-    }
+    bool overflows = lengthSquared >= 1e30;
+    vec3 finite = overflows ? clamp(v, -3.4e38, 3.4e38) : v;
+    float scale = overflows ? 1e-20 : lengthSquared > 1e-30 ? 1.0 : 1e20;
+    vec3 scaled = finite * scale;
     float scaledLengthSquared = dot(scaled, scaled);
-    if (scaledLengthSquared < 1e-36) {
-        return fallback;
-    }
-    return scaled * inversesqrt(scaledLengthSquared);
+    return scaledLengthSquared < 1e-36 ? fallback : scaled * inversesqrt(scaledLengthSquared);
 }
-#line 59 "Fragment.glsl"
+#line 51 "Fragment.glsl"
 
-#line 34 "stdlib/common.spire"
+#line 32 "stdlib/common.spire"
 vec3 safeNormalize(vec3 v) {
     return normalizeOr(v, vec3(0.0, 0.0, 1.0));
 }
-#line 65 "Fragment.glsl"
+#line 57 "Fragment.glsl"
 
 #line 16 "stdlib/lighting.spire"
 vec3 unpackNormal(vec4 texel) {
     return safeNormalize(texel.xyz * 2.0 - 1.0);
 }
-#line 71 "Fragment.glsl"
+#line 63 "Fragment.glsl"
 
 #line 25 "stdlib/lighting.spire"
 vec3 perturbNormal(vec3 tangentNormal, vec3 normal, vec4 tangent) {
@@ -84,20 +76,20 @@ vec3 perturbNormal(vec3 tangentNormal, vec3 normal, vec4 tangent) {
     vec3 b = cross(n, t) * handedness;
     return normalizeOr(t * tangentNormal.x + b * tangentNormal.y + n * tangentNormal.z, n);
 }
-#line 88 "Fragment.glsl"
+#line 80 "Fragment.glsl"
 
 #line 11 "stdlib/lighting.spire"
 float clamp01(float x) {
     return clamp(x, 0.0, 1.0);
 }
-#line 94 "Fragment.glsl"
+#line 86 "Fragment.glsl"
 
-#line 39 "stdlib/common.spire"
+#line 37 "stdlib/common.spire"
 float pow5(float x) {
     float x2 = x * x;
     return x2 * x2 * x;
 }
-#line 101 "Fragment.glsl"
+#line 93 "Fragment.glsl"
 
 #line 61 "stdlib/lighting.spire"
 float ggx(vec3 lightDir, vec3 normal, vec3 viewDir, float roughness) {
@@ -138,7 +130,7 @@ float ggx(vec3 lightDir, vec3 normal, vec3 viewDir, float roughness) {
 #line 101 "stdlib/lighting.spire"
     return (diffuse + specular) * nDotL * PI;
 }
-#line 142 "Fragment.glsl"
+#line 134 "Fragment.glsl"
 
 #line 40 "examples/terrain.spire"
 vec4 spire_albedo() {
@@ -146,7 +138,7 @@ vec4 spire_albedo() {
     vec4 c2 = texture(albedoMap2, vert_uv * 5.0);
     return mix(c1, c2, mixFactor);
 }
-#line 150 "Fragment.glsl"
+#line 142 "Fragment.glsl"
 
 #line 50 "examples/terrain.spire"
 vec3 spire_normal() {
@@ -155,7 +147,7 @@ vec3 spire_normal() {
     vec3 n = unpackNormal(mix(n1, n2, mixFactor));
     return perturbNormal(n, vert_normal, vert_tangent);
 }
-#line 159 "Fragment.glsl"
+#line 151 "Fragment.glsl"
 
 void main() {
 #line 37 "examples/terrain.spire"
@@ -168,6 +160,6 @@ void main() {
     albedo = spire_albedo();
 #line 62 "examples/terrain.spire"
     output_ = albedo * lighting;
-#line 172 "Fragment.glsl"
+#line 164 "Fragment.glsl"
     spire_out_output_ = output_;
 }

@@ -24,37 +24,29 @@ layout(location = 0) out vec4 spire_out_output_;
 float lighting;
 vec4 output_;
 
-#line 12 "stdlib/common.spire"
+#line 21 "stdlib/common.spire"
 vec3 normalizeOr(vec3 v, vec3 fallback) {
     float lengthSquared = dot(v, v);
-#line 15 "stdlib/common.spire"
-    if (lengthSquared > 1e-30 && lengthSquared < 1e30) {
-        return v * inversesqrt(lengthSquared);
-    }
-#line 22 "stdlib/common.spire"
-    vec3 scaled = v * 1e20;
-    if (lengthSquared >= 1e30) {
-        scaled = clamp(v, -3.4e38, 3.4e38) * 1e-20;
-    }
+    bool overflows = lengthSquared >= 1e30;
+    vec3 finite = overflows ? clamp(v, -3.4e38, 3.4e38) : v;
+    float scale = overflows ? 1e-20 : lengthSquared > 1e-30 ? 1.0 : 1e20;
+    vec3 scaled = finite * scale;
     float scaledLengthSquared = dot(scaled, scaled);
-    if (scaledLengthSquared < 1e-36) {
-        return fallback;
-    }
-    return scaled * inversesqrt(scaledLengthSquared);
+    return scaledLengthSquared < 1e-36 ? fallback : scaled * inversesqrt(scaledLengthSquared);
 }
-#line 46 "Fragment.glsl"
+#line 38 "Fragment.glsl"
 
-#line 34 "stdlib/common.spire"
+#line 32 "stdlib/common.spire"
 vec3 safeNormalize(vec3 v) {
     return normalizeOr(v, vec3(0.0, 0.0, 1.0));
 }
-#line 52 "Fragment.glsl"
+#line 44 "Fragment.glsl"
 
 #line 11 "stdlib/lighting.spire"
 float clamp01(float x) {
     return clamp(x, 0.0, 1.0);
 }
-#line 58 "Fragment.glsl"
+#line 50 "Fragment.glsl"
 
 #line 44 "stdlib/lighting.spire"
 float phong(vec3 lightDir, vec3 normal, vec3 viewDir, float shininess) {
@@ -70,13 +62,13 @@ float phong(vec3 lightDir, vec3 normal, vec3 viewDir, float shininess) {
     float specular = pow(clamp01(dot(r, v)), max(shininess, 1.0));
     return nDotL + specular;
 }
-#line 74 "Fragment.glsl"
+#line 66 "Fragment.glsl"
 
 void main() {
 #line 57 "examples/terrain_five_world.spire"
     lighting = phong(lightDir, normal, safeNormalize(cameraPos - vert_pos), shininess);
 #line 61 "examples/terrain_five_world.spire"
     output_ = albedo * lighting;
-#line 81 "Fragment.glsl"
+#line 73 "Fragment.glsl"
     spire_out_output_ = output_;
 }

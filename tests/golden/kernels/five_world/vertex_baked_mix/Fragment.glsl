@@ -36,37 +36,29 @@ float lighting;
 vec4 albedo;
 vec4 output_;
 
-#line 12 "stdlib/common.spire"
+#line 21 "stdlib/common.spire"
 vec3 normalizeOr(vec3 v, vec3 fallback) {
     float lengthSquared = dot(v, v);
-#line 15 "stdlib/common.spire"
-    if (lengthSquared > 1e-30 && lengthSquared < 1e30) {
-        return v * inversesqrt(lengthSquared);
-    }
-#line 22 "stdlib/common.spire"
-    vec3 scaled = v * 1e20;
-    if (lengthSquared >= 1e30) {
-        scaled = clamp(v, -3.4e38, 3.4e38) * 1e-20;
-    }
+    bool overflows = lengthSquared >= 1e30;
+    vec3 finite = overflows ? clamp(v, -3.4e38, 3.4e38) : v;
+    float scale = overflows ? 1e-20 : lengthSquared > 1e-30 ? 1.0 : 1e20;
+    vec3 scaled = finite * scale;
     float scaledLengthSquared = dot(scaled, scaled);
-    if (scaledLengthSquared < 1e-36) {
-        return fallback;
-    }
-    return scaled * inversesqrt(scaledLengthSquared);
+    return scaledLengthSquared < 1e-36 ? fallback : scaled * inversesqrt(scaledLengthSquared);
 }
-#line 58 "Fragment.glsl"
+#line 50 "Fragment.glsl"
 
-#line 34 "stdlib/common.spire"
+#line 32 "stdlib/common.spire"
 vec3 safeNormalize(vec3 v) {
     return normalizeOr(v, vec3(0.0, 0.0, 1.0));
 }
-#line 64 "Fragment.glsl"
+#line 56 "Fragment.glsl"
 
 #line 16 "stdlib/lighting.spire"
 vec3 unpackNormal(vec4 texel) {
     return safeNormalize(texel.xyz * 2.0 - 1.0);
 }
-#line 70 "Fragment.glsl"
+#line 62 "Fragment.glsl"
 
 #line 25 "stdlib/lighting.spire"
 vec3 perturbNormal(vec3 tangentNormal, vec3 normal, vec4 tangent) {
@@ -83,20 +75,20 @@ vec3 perturbNormal(vec3 tangentNormal, vec3 normal, vec4 tangent) {
     vec3 b = cross(n, t) * handedness;
     return normalizeOr(t * tangentNormal.x + b * tangentNormal.y + n * tangentNormal.z, n);
 }
-#line 87 "Fragment.glsl"
+#line 79 "Fragment.glsl"
 
 #line 11 "stdlib/lighting.spire"
 float clamp01(float x) {
     return clamp(x, 0.0, 1.0);
 }
-#line 93 "Fragment.glsl"
+#line 85 "Fragment.glsl"
 
-#line 39 "stdlib/common.spire"
+#line 37 "stdlib/common.spire"
 float pow5(float x) {
     float x2 = x * x;
     return x2 * x2 * x;
 }
-#line 100 "Fragment.glsl"
+#line 92 "Fragment.glsl"
 
 #line 61 "stdlib/lighting.spire"
 float ggx(vec3 lightDir, vec3 normal, vec3 viewDir, float roughness) {
@@ -137,7 +129,7 @@ float ggx(vec3 lightDir, vec3 normal, vec3 viewDir, float roughness) {
 #line 101 "stdlib/lighting.spire"
     return (diffuse + specular) * nDotL * PI;
 }
-#line 141 "Fragment.glsl"
+#line 133 "Fragment.glsl"
 
 #line 39 "examples/terrain_five_world.spire"
 vec4 spire_albedo() {
@@ -145,7 +137,7 @@ vec4 spire_albedo() {
     vec4 c2 = texture(albedoMap2, vert_uv * 5.0);
     return mix(c1, c2, mixFactor);
 }
-#line 149 "Fragment.glsl"
+#line 141 "Fragment.glsl"
 
 #line 49 "examples/terrain_five_world.spire"
 vec3 spire_normal() {
@@ -154,7 +146,7 @@ vec3 spire_normal() {
     vec3 n = unpackNormal(mix(n1, n2, mixFactor));
     return perturbNormal(n, vert_normal, vert_tangent);
 }
-#line 158 "Fragment.glsl"
+#line 150 "Fragment.glsl"
 
 void main() {
 #line 49 "examples/terrain_five_world.spire"
@@ -165,6 +157,6 @@ void main() {
     albedo = spire_albedo();
 #line 61 "examples/terrain_five_world.spire"
     output_ = albedo * lighting;
-#line 169 "Fragment.glsl"
+#line 161 "Fragment.glsl"
     spire_out_output_ = output_;
 }
