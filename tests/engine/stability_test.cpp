@@ -442,10 +442,11 @@ const std::vector<ProbeCase>& probeCases() {
   return cases;
 }
 
-// The Terrain example (examples/terrain.spire) at the extremes: `material`
-// replaces the bindings of kTerrainMaterial with the same names, or adds
-// bindings of the engine-supplied lightDir and cameraPos, which then win.
-struct TerrainCase {
+// An example shader at an extreme. For the Terrain example
+// (examples/terrain.spire), `material` replaces the bindings of
+// kTerrainMaterial with the same names, or adds bindings of the
+// engine-supplied lightDir and cameraPos, which then win.
+struct ExampleCase {
   std::string_view extreme;
   std::map<std::string, std::string> material;  // component -> JSON value
   std::string_view mesh = "plane";
@@ -465,8 +466,8 @@ std::map<std::string, std::string> allTextures(const std::string& texture) {
   return bindings;
 }
 
-const std::vector<TerrainCase>& terrainCases() {
-  static const std::vector<TerrainCase> cases = {
+const std::vector<ExampleCase>& terrainCases() {
+  static const std::vector<ExampleCase> cases = {
       {.extreme = "the scene's own values", .material = {}},
       // The plane's central vertex is the origin (the test scene's plane has
       // an even number of quads per side).
@@ -693,7 +694,7 @@ TEST(StabilityTable, CoversEveryStdlibFunction) {
 class TerrainStabilityTest : public StabilityTest, public ::testing::WithParamInterface<fs::path> {};
 
 TEST_P(TerrainStabilityTest, FiniteAtTheExtremes) {
-  for (const TerrainCase& terrain : terrainCases()) {
+  for (const ExampleCase& terrain : terrainCases()) {
     std::map<std::string, std::string> material = kTerrainMaterial;
     for (const auto& [name, value] : terrain.material) material[name] = value;
     const std::string bindings = materialJson(material);
@@ -705,6 +706,92 @@ TEST_P(TerrainStabilityTest, FiniteAtTheExtremes) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Terrain, TerrainStabilityTest, ::testing::ValuesIn(terrainDecisions()),
+                         [](const ::testing::TestParamInfo<fs::path>& param) { return param.param.stem().string(); });
+
+// The Couch example (examples/couch.spire) at the extremes, as Terrain
+// above: `material` replaces bindings of kCouchMaterial or adds the
+// engine-supplied lightDir and cameraPos. Its parameters with a natural range
+// (amounts, roughness) are driven to both ends of it; sizes and densities to
+// zero and far beyond any sensible value.
+const std::map<std::string, std::string> kCouchMaterial = {
+    {"leatherColorMap", R"("rock")"}, {"grainNormalMap", R"("normals")"}, {"wearMap", R"("noise")"},
+    {"wearNormalMap", R"("normals")"}, {"dirtMap", R"("noise")"},      {"ggxLut", R"("ggxLut")"},
+    {"leatherTint", "[1, 1, 1]"},     {"wornTint", "[0.62, 0.42, 0.27]"}, {"dirtColor", "[0.07, 0.05, 0.04]"},
+    {"threadColor", "[0.7, 0.62, 0.48]"}, {"studColor", "[0.95, 0.76, 0.42]"}, {"panelCount", "2"},
+    {"grainTiling", "8"},             {"grainStrength", "0.4"},       {"wearAmount", "0.4"},
+    {"dirtAmount", "0.5"},            {"seamWidth", "0.02"},          {"stitchDensity", "24"},
+    {"studSize", "0.08"},             {"leatherRoughness", "0.38"},   {"wornRoughness", "0.28"},
+    {"studRoughness", "0.3"},         {"occlusionStrength", "0.8"},   {"sheenColor", "[0.3, 0.24, 0.18]"},
+    {"skyColor", "[0.5, 0.55, 0.65]"}, {"groundColor", "[0.2, 0.17, 0.14]"}};
+
+std::map<std::string, std::string> couchValues(std::initializer_list<const char*> names, const std::string& value) {
+  std::map<std::string, std::string> bindings;
+  for (const char* name : names) bindings[name] = value;
+  return bindings;
+}
+
+const std::vector<ExampleCase>& couchCases() {
+  static const std::vector<ExampleCase> cases = {
+      {.extreme = "the test's own values", .material = {}},
+      {.extreme = "camera exactly at a vertex: cameraPos = (0, 0, 0)", .material = {{"cameraPos", "[0, 0, 0]"}}},
+      {.extreme = "eye below the surface: cameraPos = (0, -2, 0)", .material = {{"cameraPos", "[0, -2, 0]"}}},
+      {.extreme = "light below the horizon: lightDir = (0, -1, 0)", .material = {{"lightDir", "[0, -1, 0]"}}},
+      {.extreme = "grazing light: lightDir = (1, 1e-7, 0)", .material = {{"lightDir", "[1, 1e-7, 0]"}}},
+      {.extreme = "lightDir = (0, 0, 0)", .material = {{"lightDir", "[0, 0, 0]"}}},
+      {.extreme = "lightDir and cameraPos of length 1e30 and 3e38",
+       .material = {{"lightDir", "[0, 1e30, 0]"}, {"cameraPos", "[0, 3e38, 0]"}}},
+      {.extreme = "every roughness exactly 0",
+       .material = couchValues({"leatherRoughness", "wornRoughness", "studRoughness"}, "0")},
+      {.extreme = "every roughness exactly 1",
+       .material = couchValues({"leatherRoughness", "wornRoughness", "studRoughness"}, "1")},
+      {.extreme = "no wear, dirt, occlusion or grain",
+       .material = couchValues({"wearAmount", "dirtAmount", "occlusionStrength", "grainStrength"}, "0")},
+      {.extreme = "full wear, dirt and occlusion",
+       .material = couchValues({"wearAmount", "dirtAmount", "occlusionStrength"}, "1")},
+      {.extreme = "no panels, seams, stitches or studs",
+       .material = couchValues({"panelCount", "seamWidth", "stitchDensity", "studSize", "grainTiling"}, "0")},
+      {.extreme = "panels, stitches and grain repeats of 1e30, seams and studs of 1e-30",
+       .material = {{"panelCount", "1e30"}, {"stitchDensity", "1e30"}, {"grainTiling", "1e30"},
+                    {"seamWidth", "1e-30"}, {"studSize", "1e-30"}}},
+      {.extreme = "seams and studs of 3e38: the whole surface is seam",
+       .material = couchValues({"seamWidth", "studSize"}, "3e38")},
+      {.extreme = "grain strength 3e38", .material = {{"grainStrength", "3e38"}}},
+      {.extreme = "all-black textures",
+       .material = couchValues({"leatherColorMap", "grainNormalMap", "wearMap", "wearNormalMap", "dirtMap"},
+                               R"("black")")},
+      {.extreme = "all-white textures",
+       .material = couchValues({"leatherColorMap", "grainNormalMap", "wearMap", "wearNormalMap", "dirtMap"},
+                               R"("white")")},
+      {.extreme = "UVs in [-3.25, 4.25] (uv_outside.gltf), repeat addressing", .material = {}, .mesh = "uvOutside"},
+  };
+  return cases;
+}
+
+class CouchStabilityTest : public StabilityTest, public ::testing::WithParamInterface<fs::path> {};
+
+TEST_P(CouchStabilityTest, FiniteAtTheExtremes) {
+  for (const ExampleCase& couch : couchCases()) {
+    std::map<std::string, std::string> material = kCouchMaterial;
+    for (const auto& [name, value] : couch.material) material[name] = value;
+    const std::string bindings = materialJson(material);
+    SCOPED_TRACE("Couch, " + std::string(couch.extreme) + ": " + bindings);
+    const auto capture =
+        render(sceneJson(couch.mesh, "../../../../examples/couch.spire", "Couch", bindings), GetParam());
+    if (capture) expectFiniteEverywhere(*capture, couch.value);
+  }
+}
+
+// The example's four decision files: every surface component per fragment
+// with GGX or the GGX lookup table, per vertex, and baked with Blinn-Phong.
+std::vector<fs::path> couchDecisions() {
+  std::vector<fs::path> files;
+  for (const char* name : {"full_quality", "ggx_lut", "vertex_surface", "baked_phong"}) {
+    files.push_back(kSourceDir / "examples/decisions/couch" / (std::string(name) + ".decisions"));
+  }
+  return files;
+}
+
+INSTANTIATE_TEST_SUITE_P(Couch, CouchStabilityTest, ::testing::ValuesIn(couchDecisions()),
                          [](const ::testing::TestParamInfo<fs::path>& param) { return param.param.stem().string(); });
 
 // A user's component divides by a uniform bound to 0 (user_divide.json): no
