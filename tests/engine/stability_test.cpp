@@ -631,6 +631,22 @@ class StabilityTest : public vk::testing::DeviceTest {
     }
     return std::move(capture).value();
   }
+
+  // Renders an example shader (`source`, relative to the test data) under
+  // `decisions` once per case, its material `base` with the case's bindings
+  // over it, and expects every covered pixel finite.
+  static void expectFiniteCases(std::string_view shader, std::string_view source,
+                                const std::map<std::string, std::string>& base, const std::vector<ExampleCase>& cases,
+                                const fs::path& decisions) {
+    for (const ExampleCase& example : cases) {
+      std::map<std::string, std::string> material = base;
+      for (const auto& [name, value] : example.material) material[name] = value;
+      const std::string bindings = materialJson(material);
+      SCOPED_TRACE(std::string(shader) + ", " + std::string(example.extreme) + ": " + bindings);
+      const auto capture = render(sceneJson(example.mesh, source, shader, bindings), decisions);
+      if (capture) expectFiniteEverywhere(*capture, example.value);
+    }
+  }
 };
 
 // One test per stdlib function, running every case of the table for it.
@@ -694,15 +710,7 @@ TEST(StabilityTable, CoversEveryStdlibFunction) {
 class TerrainStabilityTest : public StabilityTest, public ::testing::WithParamInterface<fs::path> {};
 
 TEST_P(TerrainStabilityTest, FiniteAtTheExtremes) {
-  for (const ExampleCase& terrain : terrainCases()) {
-    std::map<std::string, std::string> material = kTerrainMaterial;
-    for (const auto& [name, value] : terrain.material) material[name] = value;
-    const std::string bindings = materialJson(material);
-    SCOPED_TRACE("Terrain, " + std::string(terrain.extreme) + ": " + bindings);
-    const auto capture =
-        render(sceneJson(terrain.mesh, "../../../../examples/terrain.spire", "Terrain", bindings), GetParam());
-    if (capture) expectFiniteEverywhere(*capture, terrain.value);
-  }
+  expectFiniteCases("Terrain", "../../../../examples/terrain.spire", kTerrainMaterial, terrainCases(), GetParam());
 }
 
 INSTANTIATE_TEST_SUITE_P(Terrain, TerrainStabilityTest, ::testing::ValuesIn(terrainDecisions()),
@@ -770,15 +778,7 @@ const std::vector<ExampleCase>& couchCases() {
 class CouchStabilityTest : public StabilityTest, public ::testing::WithParamInterface<fs::path> {};
 
 TEST_P(CouchStabilityTest, FiniteAtTheExtremes) {
-  for (const ExampleCase& couch : couchCases()) {
-    std::map<std::string, std::string> material = kCouchMaterial;
-    for (const auto& [name, value] : couch.material) material[name] = value;
-    const std::string bindings = materialJson(material);
-    SCOPED_TRACE("Couch, " + std::string(couch.extreme) + ": " + bindings);
-    const auto capture =
-        render(sceneJson(couch.mesh, "../../../../examples/couch.spire", "Couch", bindings), GetParam());
-    if (capture) expectFiniteEverywhere(*capture, couch.value);
-  }
+  expectFiniteCases("Couch", "../../../../examples/couch.spire", kCouchMaterial, couchCases(), GetParam());
 }
 
 // The example's four decision files: every surface component per fragment
