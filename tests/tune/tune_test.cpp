@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include <unistd.h>
@@ -16,6 +17,7 @@
 #include "tune/results_csv.h"
 #include "tune/tune_cli.h"
 #include "tune/tune_space.h"
+#include "tune/work_queue.h"
 
 namespace spire::tune {
 namespace {
@@ -142,7 +144,40 @@ TEST(ResultsCsv, RoundTripsAndRejectsOtherRuns) {
   fs::remove(path);
 }
 
+// Two workers' queues over one file take every chunk exactly once, in order.
+TEST(WorkQueue, HandsOutEveryChunkOnceThenStops) {
+  const fs::path path = fs::temp_directory_path() / ("spire_work_queue_" + std::to_string(::getpid()));
+  ASSERT_FALSE(WorkQueue::create(path));
+  WorkQueue first(path);
+  WorkQueue second(path);
+  std::string error;
+  std::vector<uint64_t> taken;
+  for (size_t k = 0; k < 12; ++k) {
+    const auto chunk = (k % 2 == 0 ? first : second).next(11, error);
+    if (!chunk) break;
+    taken.push_back(*chunk);
+  }
+  EXPECT_TRUE(error.empty()) << error;
+  ASSERT_EQ(taken.size(), 11U);
+  for (uint64_t k = 0; k < taken.size(); ++k) EXPECT_EQ(taken[k], k);
+  EXPECT_FALSE(second.next(11, error));
+  EXPECT_TRUE(error.empty()) << error;
+
+  std::ofstream(path) << "garbage\n";
+  EXPECT_FALSE(first.next(11, error));
+  EXPECT_NE(error.find("corrupt"), std::string::npos) << error;
+  fs::remove(path);
+  error.clear();
+  EXPECT_FALSE(first.next(11, error));
+  EXPECT_NE(error.find("cannot use the work queue"), std::string::npos) << error;
+}
+
 class TuneRun : public vk::testing::DeviceTest {};
+
+std::optional<std::string> environment(const char* name) {
+  const char* value = std::getenv(name);
+  return value ? std::optional<std::string>(value) : std::nullopt;
+}
 
 // The Terrain scene's four choices at a tiny size: a whole run, then a rerun
 // that resumes from the CSV and measures nothing again.
@@ -154,7 +189,12 @@ TEST_F(TuneRun, WritesEveryOutputAndResumes) {
                                       "-o", dir.string()};
   std::ostringstream out;
   std::ostringstream err;
+  const auto cacheDir = environment("MESA_SHADER_CACHE_DIR");
+  const auto cacheDisable = environment("MESA_SHADER_CACHE_DISABLE");
   ASSERT_EQ(runTune(args, out, err), 0) << err.str();
+  // The run's own shader cache does not outlive it, in this process either.
+  EXPECT_EQ(environment("MESA_SHADER_CACHE_DIR"), cacheDir);
+  EXPECT_EQ(environment("MESA_SHADER_CACHE_DISABLE"), cacheDisable);
   for (const char* file : {"variants.csv", "pareto.csv", "plot.png", "report.md", "best_error_budget.decisions"}) {
     EXPECT_TRUE(fs::exists(dir / file)) << file;
   }
@@ -194,6 +234,9 @@ TEST_F(TuneRun, WritesEveryOutputAndResumes) {
   const auto parallel = readResults(parallelDir / "variants.csv", {"albedo", "lighting"}, error);
   ASSERT_TRUE(parallel) << error;
   ASSERT_EQ(parallel->size(), rows->size());
+  for (const char* file : {"work-queue", "shard-0.csv", "shard-1.csv", "shard-0.time"}) {
+    EXPECT_FALSE(fs::exists(parallelDir / file)) << file << " outlived the run";
+  }
   for (size_t i = 0; i < rows->size(); ++i) {
     EXPECT_EQ((*parallel)[i].index, (*rows)[i].index);
     EXPECT_EQ((*parallel)[i].status, (*rows)[i].status);
