@@ -14,8 +14,10 @@ PACKAGES=(
   libglfw3-dev libglm-dev libtinygltf-dev libstb-dev
   # libraries used by the compiler
   nlohmann-json3-dev libcli11-dev libfmt-dev
-  # tests and benchmarks (python3-jsonschema: the reflection schema test)
-  libgtest-dev libgmock-dev libbenchmark-dev xvfb python3-jsonschema
+  # tests and benchmarks (python3-jsonschema: the reflection schema test;
+  # xvfb and xauth, which xvfb-run needs but xvfb only recommends: the
+  # window tests without a display)
+  libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth python3-jsonschema
   # libFuzzer target (fuzz preset)
   clang libclang-rt-14-dev
 )

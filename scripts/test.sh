@@ -18,9 +18,10 @@ export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$ROOT/tests/lsan.supp}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 
 # The window tests need a display: without one, an Xvfb server stands in
-# (xvfb comes with install-deps.sh), so CI covers them too.
+# (xvfb and xauth come with install-deps.sh), so CI covers them too.
 runner=()
-if [[ -z "${DISPLAY:-}" && -z "${WAYLAND_DISPLAY:-}" ]] && command -v xvfb-run >/dev/null 2>&1; then
+if [[ -z "${DISPLAY:-}" && -z "${WAYLAND_DISPLAY:-}" ]] && command -v xvfb-run >/dev/null 2>&1 &&
+  command -v xauth >/dev/null 2>&1; then
   runner=(xvfb-run --auto-servernum --server-args="-screen 0 1280x1024x24")
 fi
 

@@ -306,6 +306,9 @@ TEST(Swapchain, PresentsAndRebuildsInAWindow) {
   auto ctx = vk::Context::create(options, [&](VkInstance instance) { return window->createSurface(instance); });
   if (!ctx && vk::testing::vulkanUnavailable(ctx.error())) GTEST_SKIP() << ctx.error().message();
   ASSERT_TRUE(ctx.ok()) << ctx.error().message();
+#if defined(__SANITIZE_ADDRESS__)
+  vk::testing::pinLoadedLibraries();  // as the device fixture does, for the same reason
+#endif
   ASSERT_NE(ctx->surface(), VK_NULL_HANDLE);
   {
     auto frame = vk::Image::create(*ctx, {32, 24, VK_FORMAT_R32G32B32A32_SFLOAT,
