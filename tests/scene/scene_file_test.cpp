@@ -70,7 +70,7 @@ TEST(SceneFile, TerrainExampleParses) {
   EXPECT_EQ(scene->directory, examples / "scenes");
   EXPECT_EQ(scene->width, 640u);
   EXPECT_EQ(scene->height, 480u);
-  EXPECT_EQ(scene->frames, 10u);
+  EXPECT_EQ(scene->frames, 30u);
   EXPECT_EQ(scene->warmupFrames, 2u);
   ASSERT_EQ(scene->camera.views.size(), 3u);
   for (const CameraView& view : scene->camera.views) {

@@ -49,21 +49,19 @@ float clamp01(float x) {
 }
 #line 51 "Fragment.glsl"
 
-#line 44 "stdlib/lighting.spire"
+#line 46 "stdlib/lighting.spire"
 float phong(vec3 lightDir, vec3 normal, vec3 viewDir, float shininess) {
     vec3 n = safeNormalize(normal);
     vec3 l = safeNormalize(lightDir);
     vec3 v = safeNormalize(viewDir);
     float nDotL = dot(n, l);
-    if (nDotL <= 0.0) {
-        return 0.0;
-    }
     vec3 r = reflect(-l, n);
-#line 54 "stdlib/lighting.spire"
+#line 53 "stdlib/lighting.spire"
     float specular = pow(clamp01(dot(r, v)), max(shininess, 1.0));
-    return nDotL + specular;
+#line 55 "stdlib/lighting.spire"
+    return nDotL <= 0.0 ? 0.0 : nDotL + specular;
 }
-#line 67 "Fragment.glsl"
+#line 65 "Fragment.glsl"
 
 void main() {
     albedo = texture(spire_tex_albedo, vert_uv);
@@ -71,6 +69,6 @@ void main() {
     lighting = phong(lightDir, normal, safeNormalize(cameraPos - vert_pos), shininess);
 #line 62 "examples/terrain.spire"
     output_ = albedo * lighting;
-#line 75 "Fragment.glsl"
+#line 73 "Fragment.glsl"
     spire_out_output_ = output_;
 }

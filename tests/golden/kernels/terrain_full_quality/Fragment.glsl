@@ -68,13 +68,13 @@ vec3 perturbNormal(vec3 tangentNormal, vec3 normal, vec4 tangent) {
     vec3 t = normalizeOr(tangent.xyz, vec3(0.0));
     t = t - n * dot(n, t);
     float tangentLengthSquared = dot(t, t);
-    if (tangentLengthSquared < 1e-12) {
-        return n;
-    }
-    t = t * inversesqrt(tangentLengthSquared);
+    bool degenerate = tangentLengthSquared < 1e-12;
+#line 37 "stdlib/lighting.spire"
+    t = t * inversesqrt(max(tangentLengthSquared, 1e-12));
     float handedness = tangent.w < 0.0 ? -1.0 : 1.0;
     vec3 b = cross(n, t) * handedness;
-    return normalizeOr(t * tangentNormal.x + b * tangentNormal.y + n * tangentNormal.z, n);
+    vec3 perturbed = normalizeOr(t * tangentNormal.x + b * tangentNormal.y + n * tangentNormal.z, n);
+    return degenerate ? n : perturbed;
 }
 #line 80 "Fragment.glsl"
 
@@ -102,35 +102,32 @@ float ggx(vec3 lightDir, vec3 normal, vec3 viewDir, float roughness) {
     vec3 l = safeNormalize(lightDir);
     vec3 v = safeNormalize(viewDir);
     float rawNDotL = dot(n, l);
-    if (rawNDotL <= 0.0) {
-        return 0.0;
-    }
     vec3 h = safeNormalize(l + v);
     float nDotL = clamp(rawNDotL, EPSILON, 1.0);
     float nDotV = clamp(dot(n, v), EPSILON, 1.0);
     float nDotH = clamp01(dot(n, h));
     float vDotH = clamp01(dot(v, h));
-#line 81 "stdlib/lighting.spire"
+#line 78 "stdlib/lighting.spire"
     float r = clamp01(roughness);
     float alpha = max(r * r, MIN_ALPHA);
     float alpha2 = alpha * alpha;
-#line 86 "stdlib/lighting.spire"
+#line 83 "stdlib/lighting.spire"
     float denom = nDotH * nDotH * (alpha2 - 1.0) + 1.0;
     float distribution = alpha2 / (PI * denom * denom);
-#line 90 "stdlib/lighting.spire"
+#line 87 "stdlib/lighting.spire"
     float k = alpha * 0.5;
     float geometryL = nDotL / (nDotL * (1.0 - k) + k);
     float geometryV = nDotV / (nDotV * (1.0 - k) + k);
     float geometry = geometryL * geometryV;
-#line 96 "stdlib/lighting.spire"
+#line 93 "stdlib/lighting.spire"
     float fresnel = F0 + (1.0 - F0) * pow5(1.0 - vDotH);
-#line 98 "stdlib/lighting.spire"
+#line 95 "stdlib/lighting.spire"
     float specular = distribution * geometry * fresnel / (4.0 * nDotL * nDotV);
     float diffuse = (1.0 - fresnel) / PI;
 #line 101 "stdlib/lighting.spire"
-    return (diffuse + specular) * nDotL * PI;
+    return rawNDotL <= 0.0 ? 0.0 : (diffuse + specular) * nDotL * PI;
 }
-#line 134 "Fragment.glsl"
+#line 131 "Fragment.glsl"
 
 #line 40 "examples/terrain.spire"
 vec4 spire_albedo() {
@@ -138,7 +135,7 @@ vec4 spire_albedo() {
     vec4 c2 = texture(albedoMap2, vert_uv * 5.0);
     return mix(c1, c2, mixFactor);
 }
-#line 142 "Fragment.glsl"
+#line 139 "Fragment.glsl"
 
 #line 50 "examples/terrain.spire"
 vec3 spire_normal() {
@@ -147,7 +144,7 @@ vec3 spire_normal() {
     vec3 n = unpackNormal(mix(n1, n2, mixFactor));
     return perturbNormal(n, vert_normal, vert_tangent);
 }
-#line 151 "Fragment.glsl"
+#line 148 "Fragment.glsl"
 
 void main() {
 #line 37 "examples/terrain.spire"
@@ -160,6 +157,6 @@ void main() {
     albedo = spire_albedo();
 #line 62 "examples/terrain.spire"
     output_ = albedo * lighting;
-#line 164 "Fragment.glsl"
+#line 161 "Fragment.glsl"
     spire_out_output_ = output_;
 }

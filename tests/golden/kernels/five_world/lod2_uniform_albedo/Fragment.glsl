@@ -48,27 +48,25 @@ float clamp01(float x) {
 }
 #line 50 "Fragment.glsl"
 
-#line 44 "stdlib/lighting.spire"
+#line 46 "stdlib/lighting.spire"
 float phong(vec3 lightDir, vec3 normal, vec3 viewDir, float shininess) {
     vec3 n = safeNormalize(normal);
     vec3 l = safeNormalize(lightDir);
     vec3 v = safeNormalize(viewDir);
     float nDotL = dot(n, l);
-    if (nDotL <= 0.0) {
-        return 0.0;
-    }
     vec3 r = reflect(-l, n);
-#line 54 "stdlib/lighting.spire"
+#line 53 "stdlib/lighting.spire"
     float specular = pow(clamp01(dot(r, v)), max(shininess, 1.0));
-    return nDotL + specular;
+#line 55 "stdlib/lighting.spire"
+    return nDotL <= 0.0 ? 0.0 : nDotL + specular;
 }
-#line 66 "Fragment.glsl"
+#line 64 "Fragment.glsl"
 
 void main() {
 #line 57 "examples/terrain_five_world.spire"
     lighting = phong(lightDir, normal, safeNormalize(cameraPos - vert_pos), shininess);
 #line 61 "examples/terrain_five_world.spire"
     output_ = albedo * lighting;
-#line 73 "Fragment.glsl"
+#line 71 "Fragment.glsl"
     spire_out_output_ = output_;
 }
