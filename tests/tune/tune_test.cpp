@@ -213,6 +213,13 @@ TEST_F(TuneRun, WritesEveryOutputAndResumes) {
   }
   EXPECT_TRUE(sawReference);
   EXPECT_NE(out.str().find("12 variants in"), std::string::npos) << out.str();
+  // spirec takes the chosen variant's decision file without a warning.
+  const fs::path spirecErr = dir / "spirec.err";
+  const std::string spirec = std::string(SPIRE_SPIREC_EXE) + " examples/terrain.spire --shader Terrain --decisions '" +
+                             (dir / "best_error_budget.decisions").string() + "' --dump-placement > /dev/null 2> '" +
+                             spirecErr.string() + "'";
+  EXPECT_EQ(std::system(spirec.c_str()), 0) << spirec;
+  EXPECT_EQ(fs::file_size(spirecErr), 0U) << std::ifstream(spirecErr).rdbuf();
 
   std::ostringstream again;
   ASSERT_EQ(runTune(args, again, err), 0) << err.str();
