@@ -458,35 +458,44 @@ const std::map<std::string, std::string> kTerrainMaterial = {
     {"normalMap1", R"("normals")"}, {"normalMap2", R"("normals")"}, {"shininess", "32"},
     {"roughness", "0.4"}};
 
-std::map<std::string, std::string> allTextures(const std::string& texture) {
+// The same JSON value bound to every one of `names`.
+std::map<std::string, std::string> sameValue(std::initializer_list<const char*> names, const std::string& value) {
   std::map<std::string, std::string> bindings;
-  for (const char* map : {"mixMap", "albedoMap1", "albedoMap2", "normalMap1", "normalMap2"}) {
-    bindings[map] = "\"" + texture + "\"";
-  }
+  for (const char* name : names) bindings[name] = value;
   return bindings;
 }
 
-const std::vector<ExampleCase>& terrainCases() {
-  static const std::vector<ExampleCase> cases = {
-      {.extreme = "the scene's own values", .material = {}},
-      // The plane's central vertex is the origin (the test scene's plane has
-      // an even number of quads per side).
+// Camera and light extremes that every example shader is tested at. The
+// test plane's central vertex is the origin (it has an even number of quads
+// per side).
+std::vector<ExampleCase> withCameraAndLightCases(std::vector<ExampleCase> cases) {
+  const std::vector<ExampleCase> common = {
       {.extreme = "camera exactly at a vertex: cameraPos = (0, 0, 0)", .material = {{"cameraPos", "[0, 0, 0]"}}},
       {.extreme = "eye below the surface: cameraPos = (0, -2, 0)", .material = {{"cameraPos", "[0, -2, 0]"}}},
-      // Normal-mapped normals stay in the upper hemisphere, so no pixel is lit.
-      {.extreme = "light below the horizon: lightDir = (0, -1, 0)", .material = {{"lightDir", "[0, -1, 0]"}},
-       .value = Rgba{0, 0, 0, 0}},
       {.extreme = "grazing light: lightDir = (1, 1e-7, 0)", .material = {{"lightDir", "[1, 1e-7, 0]"}}},
       {.extreme = "lightDir = (0, 0, 0)", .material = {{"lightDir", "[0, 0, 0]"}}},
       {.extreme = "lightDir and cameraPos of length 1e30 and 3e38",
        .material = {{"lightDir", "[0, 1e30, 0]"}, {"cameraPos", "[0, 3e38, 0]"}}},
+      {.extreme = "UVs in [-3.25, 4.25] (uv_outside.gltf), repeat addressing", .material = {}, .mesh = "uvOutside"},
+  };
+  cases.insert(cases.begin(), common.begin(), common.end());
+  return cases;
+}
+
+const std::vector<ExampleCase>& terrainCases() {
+  static const std::vector<ExampleCase> cases = withCameraAndLightCases({
+      {.extreme = "the scene's own values", .material = {}},
+      // Normal-mapped normals stay in the upper hemisphere, so no pixel is lit.
+      {.extreme = "light below the horizon: lightDir = (0, -1, 0)", .material = {{"lightDir", "[0, -1, 0]"}},
+       .value = Rgba{0, 0, 0, 0}},
       {.extreme = "shininess = 3e38, roughness = 0", .material = {{"shininess", "3e38"}, {"roughness", "0"}}},
       {.extreme = "shininess = 1e-38, roughness = 1e-38", .material = {{"shininess", "1e-38"}, {"roughness", "1e-38"}}},
       {.extreme = "shininess = -3e38, roughness = 3e38", .material = {{"shininess", "-3e38"}, {"roughness", "3e38"}}},
       {.extreme = "roughness = 1", .material = {{"roughness", "1"}}},
-      {.extreme = "all-black textures", .material = allTextures("black")},
-      {.extreme = "all-white textures", .material = allTextures("white")},
-      {.extreme = "UVs in [-3.25, 4.25] (uv_outside.gltf), repeat addressing", .material = {}, .mesh = "uvOutside"},
+      {.extreme = "all-black textures",
+       .material = sameValue({"mixMap", "albedoMap1", "albedoMap2", "normalMap1", "normalMap2"}, R"("black")")},
+      {.extreme = "all-white textures",
+       .material = sameValue({"mixMap", "albedoMap1", "albedoMap2", "normalMap1", "normalMap2"}, R"("white")")},
       {.extreme = "UVs in [-3.25, 4.25] (uv_outside.gltf), clamp addressing",
        .material = {{"mixMap", R"("noiseClamped")"},
                     {"albedoMap1", R"("grassClamped")"},
@@ -494,7 +503,7 @@ const std::vector<ExampleCase>& terrainCases() {
                     {"normalMap1", R"("normalsClamped")"},
                     {"normalMap2", R"("normalsClamped")"}},
        .mesh = "uvOutside"},
-  };
+  });
   return cases;
 }
 
@@ -732,46 +741,33 @@ const std::map<std::string, std::string> kCouchMaterial = {
     {"studRoughness", "0.3"},         {"occlusionStrength", "0.8"},   {"sheenColor", "[0.3, 0.24, 0.18]"},
     {"skyColor", "[0.5, 0.55, 0.65]"}, {"groundColor", "[0.2, 0.17, 0.14]"}};
 
-std::map<std::string, std::string> couchValues(std::initializer_list<const char*> names, const std::string& value) {
-  std::map<std::string, std::string> bindings;
-  for (const char* name : names) bindings[name] = value;
-  return bindings;
-}
-
 const std::vector<ExampleCase>& couchCases() {
-  static const std::vector<ExampleCase> cases = {
+  static const std::vector<ExampleCase> cases = withCameraAndLightCases({
       {.extreme = "the test's own values", .material = {}},
-      {.extreme = "camera exactly at a vertex: cameraPos = (0, 0, 0)", .material = {{"cameraPos", "[0, 0, 0]"}}},
-      {.extreme = "eye below the surface: cameraPos = (0, -2, 0)", .material = {{"cameraPos", "[0, -2, 0]"}}},
       {.extreme = "light below the horizon: lightDir = (0, -1, 0)", .material = {{"lightDir", "[0, -1, 0]"}}},
-      {.extreme = "grazing light: lightDir = (1, 1e-7, 0)", .material = {{"lightDir", "[1, 1e-7, 0]"}}},
-      {.extreme = "lightDir = (0, 0, 0)", .material = {{"lightDir", "[0, 0, 0]"}}},
-      {.extreme = "lightDir and cameraPos of length 1e30 and 3e38",
-       .material = {{"lightDir", "[0, 1e30, 0]"}, {"cameraPos", "[0, 3e38, 0]"}}},
       {.extreme = "every roughness exactly 0",
-       .material = couchValues({"leatherRoughness", "wornRoughness", "studRoughness"}, "0")},
+       .material = sameValue({"leatherRoughness", "wornRoughness", "studRoughness"}, "0")},
       {.extreme = "every roughness exactly 1",
-       .material = couchValues({"leatherRoughness", "wornRoughness", "studRoughness"}, "1")},
+       .material = sameValue({"leatherRoughness", "wornRoughness", "studRoughness"}, "1")},
       {.extreme = "no wear, dirt, occlusion or grain",
-       .material = couchValues({"wearAmount", "dirtAmount", "occlusionStrength", "grainStrength"}, "0")},
+       .material = sameValue({"wearAmount", "dirtAmount", "occlusionStrength", "grainStrength"}, "0")},
       {.extreme = "full wear, dirt and occlusion",
-       .material = couchValues({"wearAmount", "dirtAmount", "occlusionStrength"}, "1")},
+       .material = sameValue({"wearAmount", "dirtAmount", "occlusionStrength"}, "1")},
       {.extreme = "no panels, seams, stitches or studs",
-       .material = couchValues({"panelCount", "seamWidth", "stitchDensity", "studSize", "grainTiling"}, "0")},
+       .material = sameValue({"panelCount", "seamWidth", "stitchDensity", "studSize", "grainTiling"}, "0")},
       {.extreme = "panels, stitches and grain repeats of 1e30, seams and studs of 1e-30",
        .material = {{"panelCount", "1e30"}, {"stitchDensity", "1e30"}, {"grainTiling", "1e30"},
                     {"seamWidth", "1e-30"}, {"studSize", "1e-30"}}},
       {.extreme = "seams and studs of 3e38: the whole surface is seam",
-       .material = couchValues({"seamWidth", "studSize"}, "3e38")},
+       .material = sameValue({"seamWidth", "studSize"}, "3e38")},
       {.extreme = "grain strength 3e38", .material = {{"grainStrength", "3e38"}}},
       {.extreme = "all-black textures",
-       .material = couchValues({"leatherColorMap", "grainNormalMap", "wearMap", "wearNormalMap", "dirtMap"},
-                               R"("black")")},
+       .material = sameValue({"leatherColorMap", "grainNormalMap", "wearMap", "wearNormalMap", "dirtMap"},
+                             R"("black")")},
       {.extreme = "all-white textures",
-       .material = couchValues({"leatherColorMap", "grainNormalMap", "wearMap", "wearNormalMap", "dirtMap"},
-                               R"("white")")},
-      {.extreme = "UVs in [-3.25, 4.25] (uv_outside.gltf), repeat addressing", .material = {}, .mesh = "uvOutside"},
-  };
+       .material = sameValue({"leatherColorMap", "grainNormalMap", "wearMap", "wearNormalMap", "dirtMap"},
+                             R"("white")")},
+  });
   return cases;
 }
 
