@@ -72,13 +72,20 @@ scene::Expected<scene::Image> makeComparisonImage(const std::vector<Panel>& pane
   canvas.rgba8.resize(static_cast<size_t>(width) * height * 4);
   fillRect(canvas, 0, 0, canvas.width, canvas.height, kBackground);
   auto stripTop = static_cast<uint32_t>(layout.gap + tallest);
+  const auto textSpaceOf = [&](const Panel& panel) {
+    return static_cast<uint32_t>(panel.image.width > 2 * padding ? panel.image.width - 2 * padding : 0);
+  };
+  // One text size for every caption, the largest at which all fit, so that
+  // captions read as a row rather than as a short one shouting.
+  uint32_t captionScale = scale;
+  for (const Panel& panel : panels) {
+    while (captionScale > 1 && textWidth(panel.caption, captionScale) > textSpaceOf(panel)) --captionScale;
+  }
   uint32_t left = layout.gap;
   for (const Panel& panel : panels) {
     blitOpaque(canvas, panel.image, left, layout.gap);
     fillRect(canvas, left, stripTop, panel.image.width, static_cast<uint32_t>(stripHeight), kStrip);
-    auto textSpace = static_cast<uint32_t>(panel.image.width > 2 * padding ? panel.image.width - 2 * padding : 0);
-    uint32_t captionScale = scale;
-    while (captionScale > 1 && textWidth(panel.caption, captionScale) > textSpace) --captionScale;
+    const uint32_t textSpace = textSpaceOf(panel);
     uint64_t textTop = stripTop + (stripHeight - uint64_t{kGlyphHeight} * captionScale) / 2;
     drawText(canvas, left + static_cast<uint32_t>(padding), static_cast<uint32_t>(textTop),
              fitCaption(panel.caption, textSpace, captionScale), captionScale, kText);

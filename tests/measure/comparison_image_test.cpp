@@ -106,6 +106,24 @@ TEST(ComparisonImageTest, WideCaptionIsDrawnSmallerFirst) {
   }
 }
 
+// A caption too wide for scale 2 in one panel sets the size of all: the
+// short caption beside it is drawn at scale 1 too.
+TEST(ComparisonImageTest, EveryCaptionHasTheSizeOfTheSmallest) {
+  Image panel = solid(44, 2, Rgba8(0, 0, 0, 255));
+  Image out = compose({{panel, "I"}, {panel, "IIIIII"}}, {.gap = 4, .textScale = 2});
+  const auto inkRows = [&](uint32_t left) {
+    uint32_t rows = 0;
+    for (uint32_t y = 0; y < out.height; ++y) {
+      bool ink = false;
+      for (uint32_t x = left; x < left + 44; ++x) ink = ink || out.pixel(x, y) == kText;
+      rows += ink ? 1 : 0;
+    }
+    return rows;
+  };
+  EXPECT_EQ(inkRows(4), 7u) << "the short caption is drawn at scale 1";
+  EXPECT_EQ(inkRows(4 + 44 + 4), 7u);
+}
+
 TEST(ComparisonImageTest, ScaleEnlargesTheText) {
   EXPECT_EQ(textWidth("AB", 1), 11u);
   EXPECT_EQ(textWidth("AB", 3), 33u);
