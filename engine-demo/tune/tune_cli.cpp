@@ -259,8 +259,8 @@ size_t countRows(const fs::path& path) {
 }
 
 // Runs `jobs` copies of this program as workers, which take chunks of the
-// points from the work queue, with lavapipe limited to one thread so the workers share the cores
-// instead of fighting over them.
+// points from the work queue, with lavapipe limited to one thread so that
+// the workers share the cores instead of fighting over them.
 bool runWorkers(const Options& o, const std::string& program, const std::vector<std::string>& args, size_t already,
                 size_t total, std::ostream& err) {
   std::vector<std::string> env;
@@ -351,7 +351,10 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   app.add_option("--frames", o.frames, "Measured frames per variant (median; at least 3)")
       ->check(CLI::Range(3U, 1000U))
       ->type_name("N");
-  app.add_option("--warmup", o.warmup, "Unmeasured frames before the measured ones (the captures of the camera views count)")->check(CLI::Range(1U, 100U))->type_name("N");
+  app.add_option("--warmup", o.warmup,
+                 "Unmeasured frames before the measured ones (the captures of the camera views count)")
+      ->check(CLI::Range(1U, 100U))
+      ->type_name("N");
   app.add_option("-j,--jobs", o.jobs, "Worker processes (default: one per core)")->check(CLI::Range(1U, 64U))->type_name("N");
   app.add_option("--bake-size", o.bakeSize, "PrebakeTex size without a TextureSize hint")
       ->check(CLI::Range(1U, 8192U))
@@ -598,11 +601,12 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   for (size_t i = 0; i < components.size(); ++i) separators += "---|";
   std::string report = fmt::format(
       "# spire-tune report\n\nShader `{}` on `{}` ({}), {} variants of {} components{}; error is RMSE against the "
-      "reference over {} camera view(s); time is the median GPU frame time of {} frames after {} unmeasured ones (the captures of the camera views first).\n\n"
+      "reference over {} camera view(s); time is the median GPU frame time of {} frames after {} unmeasured ones "
+      "(the captures of the camera views first).\n\n"
       "![error against time](plot.png)\n\n## Pareto front\n\n| variant | {} | frame ms | RMSE | image |\n|---|{}---|---|---|\n",
       o.shader, o.scenePath, ctx->selectedDevice().name, results.size(), components.size(),
       space->sampled ? " (sampled)" : "", scene->camera.views.size(), o.frames,
-      std::max<size_t>(o.warmup, scene->camera.views.size()), fmt::join(components, " | "),
+      tuner.unmeasuredFrames(), fmt::join(components, " | "),
       separators);
   fs::create_directories(fs::path(o.outputDir) / "front", ec);
   for (size_t i : front) {

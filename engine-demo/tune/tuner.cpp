@@ -1,5 +1,7 @@
 #include "tune/tuner.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -132,9 +134,7 @@ VariantResult Tuner::measure(const TunePoint& point) {
     if (s == 0) {
       // The captures above were the warm-up: only what the option asks for
       // beyond them is rendered before the measured frames.
-      const uint32_t warmup = options_.warmupFrames > views.size()
-                                  ? options_.warmupFrames - static_cast<uint32_t>(views.size())
-                                  : 0;
+      const uint32_t warmup = unmeasuredFrames() - static_cast<uint32_t>(views.size());
       auto stats = renderer_.measure(*prepared, warmup, options_.frames);
       if (!stats) {
         result.status = "failed: " + stats.error().message;
@@ -153,6 +153,10 @@ VariantResult Tuner::measure(const TunePoint& point) {
   result.infPixels = total.infPixels;
   byKernels_[result.kernels] = result;
   return result;
+}
+
+uint32_t Tuner::unmeasuredFrames() const {
+  return std::max(options_.warmupFrames, static_cast<uint32_t>(renderer_.scene().camera.views.size()));
 }
 
 engine::Expected<engine::Capture> Tuner::capture(const TunePoint& point) {

@@ -55,6 +55,10 @@ class Tuner {
 
   const TimeSplit& timeSplit() const { return split_; }
 
+  // Frames rendered before the measured ones: the captures of every camera
+  // view, then more if the options ask for more warm-up than that.
+  uint32_t unmeasuredFrames() const;
+
  private:
   engine::Expected<std::vector<engine::VariantProgram>> programsFor(const TunePoint& point, std::vector<std::string>* skipped);
 

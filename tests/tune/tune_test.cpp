@@ -282,5 +282,41 @@ TEST_F(TuneRun, NamesTheInputsOfAHazardAndKeepsItOffTheFront) {
   fs::remove_all(dir);
 }
 
+// The run's shader cache lives in the temporary directory while the run
+// lasts and is gone after it; "off" and "inherit" leave the environment as
+// they found it; anything else is a usage error.
+TEST_F(TuneRun, ShaderCacheModesCleanUpAfterThemselves) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_cache_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const fs::path temp = dir / "tmp";
+  fs::create_directories(temp);
+  const auto tmpdir = environment("TMPDIR");
+  ::setenv("TMPDIR", temp.c_str(), 1);
+  const auto cacheDir = environment("MESA_SHADER_CACHE_DIR");
+  const auto cacheDisable = environment("MESA_SHADER_CACHE_DISABLE");
+  for (const char* mode : {"run", "off", "inherit"}) {
+    std::ostringstream out;
+    std::ostringstream err;
+    EXPECT_EQ(runTune({"tests/data/engine/stability/user_divide.json", "--shader", "UserDivide", "--shader-cache",
+                       mode, "--validation", "-o", (dir / mode).string()},
+                      out, err),
+              0)
+        << mode << ": " << err.str();
+    EXPECT_TRUE(fs::is_empty(temp)) << mode << " left " << fs::directory_iterator(temp)->path();
+    EXPECT_EQ(environment("MESA_SHADER_CACHE_DIR"), cacheDir) << mode;
+    EXPECT_EQ(environment("MESA_SHADER_CACHE_DISABLE"), cacheDisable) << mode;
+  }
+  std::ostringstream out;
+  std::ostringstream err;
+  EXPECT_EQ(runTune({"tests/data/engine/stability/user_divide.json", "--shader", "UserDivide", "--shader-cache",
+                     "sometimes", "-o", (dir / "bad").string()},
+                    out, err),
+            2);
+  EXPECT_NE(err.str().find("--shader-cache"), std::string::npos) << err.str();
+  if (tmpdir) ::setenv("TMPDIR", tmpdir->c_str(), 1);
+  else ::unsetenv("TMPDIR");
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace spire::tune
