@@ -35,7 +35,8 @@ Expected<std::vector<std::string>> fragmentOutputs(const KernelProgram& fragment
 }
 
 Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
-                                  const BindingSources& sources, const glm::mat4& model, const TargetFormats& formats) {
+                                  const BindingSources& sources, const DrawPlacement& placement,
+                                  const TargetFormats& formats) {
   const KernelProgram* vertex = kernelWithRole(program, WorldRole::VertexStage);
   const KernelProgram* fragment = kernelWithRole(program, WorldRole::FragmentStage);
   if (!vertex || !fragment) {
@@ -52,7 +53,7 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
 
   DrawItem item;
   item.mesh = sources.mesh;
-  item.model = model;
+  item.model = placement.model;
   for (const KernelProgram* kernel : {vertex, fragment}) {
     auto bound = bindKernel(ctx, *kernel, sources);
     if (!bound) return bound.error();
@@ -79,6 +80,9 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
   }
   for (VkFormat format : formats.colors) builder.colorFormat(format);
   builder.depthFormat(formats.depth).descriptorSetLayout(item.descriptors.layout.get());
+  // Meshes are wound counter-clockwise seen from the front, and the
+  // projection's y flip keeps that winding on screen.
+  builder.cullMode(placement.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT, VK_FRONT_FACE_COUNTER_CLOCKWISE);
   auto pipeline = builder.build(ctx);
   if (!pipeline) return Error::fromVk(pipeline.error());
   item.pipeline = std::move(pipeline).value();

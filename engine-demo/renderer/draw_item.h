@@ -17,6 +17,12 @@ struct TargetFormats {
   VkFormat depth = VK_FORMAT_D32_SFLOAT;
 };
 
+// Where and how an instance draws its mesh.
+struct DrawPlacement {
+  glm::mat4 model{1.0F};
+  bool doubleSided = false;  // otherwise back faces (clockwise on screen) are culled
+};
+
 struct DrawItem {
   const GpuMesh* mesh = nullptr;
   glm::mat4 model{1.0F};
@@ -30,7 +36,8 @@ struct DrawItem {
 Expected<std::vector<std::string>> fragmentOutputs(const KernelProgram& fragment);
 
 Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
-                                  const BindingSources& sources, const glm::mat4& model, const TargetFormats& formats);
+                                  const BindingSources& sources, const DrawPlacement& placement,
+                                  const TargetFormats& formats);
 
 void updateFrameValues(const DrawItem& item, const FrameState& frame);
 void recordDraw(VkCommandBuffer cmd, const DrawItem& item);

@@ -190,6 +190,8 @@ Expected<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf::Pr
 
   Mesh mesh;
   mesh.name = std::move(name);
+  mesh.doubleSided = primitive.material >= 0 && static_cast<size_t>(primitive.material) < model.materials.size() &&
+                     model.materials[static_cast<size_t>(primitive.material)].doubleSided;
   if (primitive.indices >= 0) {
     auto indices = readIndices(model, primitive.indices, vertexCount);
     if (!indices) return Error{indices.error()};

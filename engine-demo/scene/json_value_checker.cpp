@@ -103,6 +103,11 @@ std::optional<uint32_t> JsonValueChecker::integer(const JsonValue& value, std::s
   return static_cast<uint32_t>(*x);
 }
 
+std::optional<bool> JsonValueChecker::flag(const JsonValue& value, std::string_view what) {
+  if (!expectKind(value, JsonKind::Bool, what)) return std::nullopt;
+  return value.boolean;
+}
+
 std::optional<std::string> JsonValueChecker::text(const JsonValue& value, std::string_view what) {
   if (!expectKind(value, JsonKind::String, what)) return std::nullopt;
   if (value.string.empty()) {

@@ -70,6 +70,8 @@ class JsonValueChecker {
   std::optional<float> real(const JsonValue& value, std::string_view what, const Bounds& bounds = {});
   // 1.5 where a count is expected is a type error, 0 a range error.
   std::optional<uint32_t> integer(const JsonValue& value, std::string_view what, uint32_t min, uint32_t max);
+  // true or false.
+  std::optional<bool> flag(const JsonValue& value, std::string_view what);
   // A string that is not empty.
   std::optional<std::string> text(const JsonValue& value, std::string_view what);
   // [x, y, z], each component within `bounds`.

@@ -25,7 +25,10 @@ struct Vertex {
 struct Mesh {
   std::string name;
   std::vector<Vertex> vertices;
-  std::vector<uint32_t> indices;  // triangle list
+  std::vector<uint32_t> indices;  // triangle list, counter-clockwise seen from the front
+  // Seen from both sides, so the engine draws its back faces too; every
+  // other mesh has its back faces culled. Only a glTF material says so.
+  bool doubleSided = false;
 };
 
 // Square in the XZ plane centred at the origin, facing +Y, with

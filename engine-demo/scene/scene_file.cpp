@@ -26,7 +26,7 @@ const KeyList kSceneKeys = {"resolution", "frames",   "warmupFrames", "clearColo
 const KeyList kCameraKeys = {"fovY", "near", "far", "up", "views"};
 const KeyList kViewKeys = {"position", "target"};
 const KeyList kLightKeys = {"direction", "color"};
-const KeyList kInstanceKeys = {"mesh", "source", "shader", "decisions", "kernels", "transform", "material"};
+const KeyList kInstanceKeys = {"mesh", "source", "shader", "decisions", "kernels", "transform", "material", "doubleSided"};
 const KeyList kTransformKeys = {"translate", "rotate", "scale"};
 const KeyList kVariantKeys = {"name", "decisions"};
 
@@ -445,6 +445,8 @@ class SceneReader {
       } else if (member.key == "material") {
         instance.materialRange = v.range;
         readMaterial(v, instance.material);
+      } else if (member.key == "doubleSided") {
+        instance.doubleSided = check_.flag(v, "'doubleSided'");
       } else {
         check_.unknownKey(member, kInstanceKeys, "an instance");
       }

@@ -96,6 +96,9 @@ struct InstanceDesc {
   glm::mat4 transform{1.0F};
   std::vector<MaterialBinding> material;
   SourceRange materialRange;  // the "material" object, or the instance when absent
+  // Whether back faces are drawn too; when absent, the mesh decides (only a
+  // glTF material can make a mesh double-sided).
+  std::optional<bool> doubleSided;
 };
 
 struct CameraView {

@@ -43,7 +43,8 @@ std::optional<std::string> checkGrid(const MeshDesc& desc, uint64_t vertices) {
 }
 
 // All primitives of the file in one mesh, their indices rebased onto the
-// concatenated vertex array.
+// concatenated vertex array; double-sided when any of them is, since one
+// draw culls all of its faces or none.
 Expected<Mesh> mergeGltf(const MeshDesc& desc) {
   auto parts = loadGltf(desc.file);
   if (!parts) return Error{parts.error()};
@@ -56,6 +57,7 @@ Expected<Mesh> mergeGltf(const MeshDesc& desc) {
       return Error{"glTF '" + desc.file.string() + "' has more vertices than 32-bit indices can address"};
     }
     merged.vertices.insert(merged.vertices.end(), part.vertices.begin(), part.vertices.end());
+    merged.doubleSided = merged.doubleSided || part.doubleSided;
     for (uint32_t index : part.indices) merged.indices.push_back(index + static_cast<uint32_t>(base));
   }
   return merged;

@@ -154,6 +154,40 @@ TEST_F(RendererTest, FlatPlaneHasExactlyItsMaterialColor) {
   EXPECT_TRUE(rendered->prepared.bakes.empty());
 }
 
+// Back faces are culled: a plane seen from below is not drawn unless the
+// instance is double-sided, and then it shows its one color from below too.
+// A closed sphere looks the same either way, so culling dropped only faces
+// the depth test would have hidden, and the sphere's winding is right.
+TEST_F(RendererTest, BackFacesAreCulledUnlessDoubleSided) {
+  const std::string material = R"({"color": [0.2, 0.4, 0.6, 1.0]})";
+  const auto fromBelow = [&](const std::string& instanceExtra) {
+    std::string json = planeScene("flat_plane.spire", "FlatPlane", material + instanceExtra);
+    const std::string above = R"("position": [0, 2.2, 0.01])";
+    json.replace(json.find(above), above.size(), R"("position": [0, -2.2, 0.01])");
+    return render(json, std::nullopt);
+  };
+  const auto culled = fromBelow("");
+  ASSERT_TRUE(culled);
+  EXPECT_EQ(coveredFraction(culled->capture), 0.0);
+  const auto drawn = fromBelow(R"(, "doubleSided": true)");
+  ASSERT_TRUE(drawn);
+  EXPECT_GT(coveredFraction(drawn->capture), 0.3);
+  EXPECT_NEAR(coveredMean(drawn->capture)[2], 0.6, 1e-6);
+
+  const auto sphere = [&](const std::string& instanceExtra) {
+    std::string json = planeScene("flat_plane.spire", "FlatPlane", material + instanceExtra);
+    const std::string plane = R"("mesh": "plane")";
+    json.replace(json.find(plane), plane.size(), R"("mesh": "ball")");
+    return render(json, std::nullopt);
+  };
+  const auto closed = sphere("");
+  const auto bothSides = sphere(R"(, "doubleSided": true)");
+  ASSERT_TRUE(closed && bothSides);
+  EXPECT_GT(coveredFraction(closed->capture), 0.3);
+  EXPECT_EQ(closed->capture.coverage, bothSides->capture.coverage);
+  EXPECT_EQ(closed->capture.color.rgba, bothSides->capture.color.rgba);
+}
+
 // The baked texture is sampled where the Fragment variant samples the source
 // texture directly, so the two differ by resampling: the error must shrink as
 // the bake resolution grows and stay within a bound proportional to the

@@ -140,6 +140,29 @@ TEST(GltfTest, MirroringTransformKeepsFrontFacesAndHandedness) {
   }
 }
 
+// glTF culls back faces unless the primitive's material is double-sided; a
+// primitive without a material gets the default material, single-sided.
+TEST(GltfTest, DoubleSidedComesFromThePrimitivesMaterial) {
+  TempDir dir;
+  tinygltf::Model model = makeQuadModel({}, "");
+  auto meshes = loadGltf(writeModel(model, dir.path() / "default.glb", true));
+  ASSERT_TRUE(meshes) << meshes.error();
+  EXPECT_FALSE(meshes->front().doubleSided);
+
+  tinygltf::Material material;
+  material.doubleSided = true;
+  model.materials.push_back(material);
+  model.meshes[0].primitives[0].material = 0;
+  meshes = loadGltf(writeModel(model, dir.path() / "double_sided.glb", true));
+  ASSERT_TRUE(meshes) << meshes.error();
+  EXPECT_TRUE(meshes->front().doubleSided);
+
+  model.materials[0].doubleSided = false;
+  meshes = loadGltf(writeModel(model, dir.path() / "single_sided.glb", true));
+  ASSERT_TRUE(meshes) << meshes.error();
+  EXPECT_FALSE(meshes->front().doubleSided);
+}
+
 TEST(GltfTest, MissingFileErrorNamesPath) {
   TempDir dir;
   auto path = dir.path() / "missing.gltf";

@@ -236,6 +236,18 @@ TEST(SceneFile, MaterialValues) {
   EXPECT_NE(loaded->scene->instances[0].materialRange, loaded->scene->instances[0].range);
 }
 
+TEST(SceneFile, DoubleSidedIsLeftToTheMeshUnlessGiven) {
+  const auto loaded = parseScene(withInstance(R"({"mesh": "ground", "kernels": "k"},
+      {"mesh": "ground", "kernels": "k", "doubleSided": true}, {"mesh": "ground", "kernels": "k", "doubleSided": false})"));
+  ASSERT_TRUE(loaded->scene) << loaded->rendered;
+  ASSERT_EQ(loaded->scene->instances.size(), 3u);
+  EXPECT_EQ(loaded->scene->instances[0].doubleSided, std::nullopt);
+  EXPECT_EQ(loaded->scene->instances[1].doubleSided, true);
+  EXPECT_EQ(loaded->scene->instances[2].doubleSided, false);
+  expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "doubleSided": 1})"), DiagCode::E7003,
+              "'doubleSided' must be a boolean, found a number");
+}
+
 TEST(SceneFile, LightDirectionIsNormalized) {
   const auto loaded = parseScene(scene(R"("light": {"direction": [0, 2, 0], "color": [0.5, 0.5, 0.5]})"));
   ASSERT_TRUE(loaded->scene) << loaded->rendered;
