@@ -39,9 +39,12 @@ SceneRenderer::SceneRenderer(const vk::Context& ctx, const scene::SceneFile& sce
                              TextureBakeOptions bakeOptions)
     : ctx_(ctx), scene_(scene), diags_(diags), bakes_(bakeOptions) {}
 
+SceneRenderer::SceneRenderer(SceneRenderer& other, DiagnosticList& diags, TextureBakeOptions bakeOptions)
+    : ctx_(other.ctx_), scene_(other.scene_), diags_(diags), bakes_(bakeOptions), assets_(other.assets_) {}
+
 Expected<ShaderLibrary*> SceneRenderer::libraryFor(const scene::InstanceDesc& instance) {
   const std::string key = instance.source.string();
-  if (const auto it = libraries_.find(key); it != libraries_.end()) return it->second.get();
+  if (const auto it = assets_->libraries.find(key); it != assets_->libraries.end()) return it->second.get();
   FrontEndOptions options;
   for (const auto& dir : scene_.includePaths) options.includeDirs.push_back(dir.string());
   auto library = std::make_unique<ShaderLibrary>(options);
@@ -52,7 +55,7 @@ Expected<ShaderLibrary*> SceneRenderer::libraryFor(const scene::InstanceDesc& in
     return Error{fmt::format("'{}' does not compile", key), instance.sourceRange,
                  renderDiagnostics(library->sources(), library->diagnostics(), DiagnosticFormat::Text)};
   }
-  return libraries_.emplace(key, std::move(library)).first->second.get();
+  return assets_->libraries.emplace(key, std::move(library)).first->second.get();
 }
 
 Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDesc& instance,
@@ -145,7 +148,7 @@ Expected<std::vector<VariantProgram>> SceneRenderer::compile(const std::optional
 }
 
 const GpuMesh* SceneRenderer::meshFor(const std::string& name, SourceRange range) {
-  if (const auto it = meshes_.find(name); it != meshes_.end()) return it->second.get();
+  if (const auto it = assets_->meshes.find(name); it != assets_->meshes.end()) return it->second.get();
   const scene::MeshDesc* desc = scene_.findMesh(name);
   if (!desc) {
     diags_.report(DiagCode::E7006, range, fmt::format("no mesh named '{}'", name));
@@ -161,11 +164,11 @@ const GpuMesh* SceneRenderer::meshFor(const std::string& name, SourceRange range
     diags_.report(DiagCode::E7101, desc->range, fmt::format("mesh '{}': {}", name, uploaded.error().message));
     return nullptr;
   }
-  return meshes_.emplace(name, std::move(uploaded).value()).first->second.get();
+  return assets_->meshes.emplace(name, std::move(uploaded).value()).first->second.get();
 }
 
 const GpuTexture* SceneRenderer::textureFor(const std::string& name, SourceRange range) {
-  if (const auto it = textures_.find(name); it != textures_.end()) return it->second.get();
+  if (const auto it = assets_->textures.find(name); it != assets_->textures.end()) return it->second.get();
   const scene::TextureDesc* desc = scene_.findTexture(name);
   if (!desc) {
     diags_.report(DiagCode::E7006, range, fmt::format("no texture named '{}'", name));
@@ -181,7 +184,7 @@ const GpuTexture* SceneRenderer::textureFor(const std::string& name, SourceRange
     diags_.report(DiagCode::E7101, desc->range, fmt::format("texture '{}': {}", name, uploaded.error().message));
     return nullptr;
   }
-  return textures_.emplace(name, std::move(uploaded).value()).first->second.get();
+  return assets_->textures.emplace(name, std::move(uploaded).value()).first->second.get();
 }
 
 Expected<RenderTarget*> SceneRenderer::targetFor(size_t colorTargets) {

@@ -49,6 +49,11 @@ class SceneRenderer {
   // the scene's values (with their file:line:col).
   SceneRenderer(const vk::Context& ctx, const scene::SceneFile& scene, DiagnosticList& diags,
                 TextureBakeOptions bakeOptions = {});
+  // A renderer of the same scene with other bake options that shares
+  // `other`'s meshes, textures and compiled libraries, which depend on the
+  // scene alone: building a scene's procedural textures again costs more
+  // than a frame.
+  SceneRenderer(SceneRenderer& other, DiagnosticList& diags, TextureBakeOptions bakeOptions);
 
   // The variant of every instance: its own decisions, or `decisions` (a
   // scene variant) for all of them. Compiler diagnostics come back as the
@@ -95,6 +100,7 @@ class SceneRenderer {
   const scene::SceneFile& scene() const { return scene_; }
   size_t shaderModuleCount() const { return modules_.size(); }
   size_t bakeCount() const { return bakes_.size(); }
+  size_t textureCount() const { return assets_->textures.size(); }
 
   // The frame state for `view` at `time` seconds.
   FrameState frameState(const scene::CameraView& view, float time) const;
@@ -113,10 +119,13 @@ class SceneRenderer {
   DiagnosticList& diags_;
   ModuleCache modules_;
   BakeCache bakes_;
-  std::map<std::string, std::unique_ptr<ShaderLibrary>> libraries_;
+  struct SceneAssets {
+    std::map<std::string, std::unique_ptr<ShaderLibrary>> libraries;
+    std::map<std::string, std::unique_ptr<GpuMesh>> meshes;
+    std::map<std::string, std::unique_ptr<GpuTexture>> textures;
+  };
+  std::shared_ptr<SceneAssets> assets_ = std::make_shared<SceneAssets>();
   std::map<std::string, VariantProgram> programs_;
-  std::map<std::string, std::unique_ptr<GpuMesh>> meshes_;
-  std::map<std::string, std::unique_ptr<GpuTexture>> textures_;
   std::optional<RenderTarget> target_;
   std::string compilerWarnings_;
   std::map<std::string, std::vector<double>> overrides_;

@@ -56,24 +56,25 @@ std::vector<std::pair<std::string, std::string>> attributesOf(const engine::Bake
 
 Expected<LayoutSelection> selectLayouts(engine::SceneRenderer& renderer, size_t instance, const TunePoint& point,
                                         uint32_t bakeSize) {
-  DiagnosticList analysisDiags;
-  engine::TextureBakeOptions analysisOptions;
-  analysisOptions.defaultSize = bakeSize;
-  analysisOptions.forceFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-  engine::SceneRenderer analysis(renderer.context(), renderer.scene(), analysisDiags, analysisOptions);
-  const engine::TextureBakeResult* baked = nullptr;
-  auto reference = renderViews(analysis, instance, point, {}, &baked);
-  if (!reference) return reference.error();
-  LayoutSelection selection;
-  if (!baked) return selection;
-  auto program = analysis.compileVariant(instance, point.decisions);
+  auto program = renderer.compileVariant(instance, point.decisions);
   if (!program) return program.error();
   const engine::KernelProgram* kernel = nullptr;
   for (const engine::KernelProgram& k : program->kernels) {
     const engine::WorldPass* pass = engine::findWorldPass(k.world);
     if (pass && pass->role == engine::WorldRole::TextureBake) kernel = &k;
   }
+  LayoutSelection selection;
+  // Nothing baked into a texture, no layout to choose: known before any bake.
   if (!kernel) return selection;
+  DiagnosticList analysisDiags;
+  engine::TextureBakeOptions analysisOptions;
+  analysisOptions.defaultSize = bakeSize;
+  analysisOptions.forceFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+  engine::SceneRenderer analysis(renderer, analysisDiags, analysisOptions);
+  const engine::TextureBakeResult* baked = nullptr;
+  auto reference = renderViews(analysis, instance, point, {}, &baked);
+  if (!reference) return reference.error();
+  if (!baked) return selection;
   auto layouts = engine::selectBakeLayouts(*kernel, *baked);
   if (!layouts) return layouts.error();
   selection.layouts = std::move(layouts).value();

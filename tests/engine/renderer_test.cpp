@@ -217,6 +217,32 @@ TEST_F(RendererTest, PrebakeTexMatchesFragmentWithinTexelTolerance) {
   }
 }
 
+// A renderer made from another shares its textures (it sees them before it
+// builds any) but bakes with its own options.
+TEST_F(RendererTest, ARendererWithOtherBakeOptionsSharesTheScenesTextures) {
+  const auto first = render(planeScene("tex_bake.spire", "TexBake", R"({"colorMap": "noise"})"),
+                            "tex_bake_prebake.decisions");
+  ASSERT_TRUE(first);
+  ASSERT_EQ(renderer_->textureCount(), 1U);
+  TextureBakeOptions options;
+  options.defaultSize = 16;
+  SceneRenderer sharing(*renderer_, *diags_, options);
+  EXPECT_EQ(sharing.textureCount(), 1U);
+  auto programs = sharing.compile(kDataDir / "tex_bake_prebake.decisions");
+  ASSERT_TRUE(programs) << programs.error().message;
+  auto prepared = sharing.prepare(*programs);
+  ASSERT_TRUE(prepared) << prepared.error().message;
+  auto capture = sharing.capture(*prepared, scene_->camera.views.front());
+  ASSERT_TRUE(capture);
+  EXPECT_EQ(renderer_->textureCount(), 1U);
+  ASSERT_EQ(prepared->bakes.size(), 1U);
+  EXPECT_EQ(sharing.bakeCount(), 1U);
+  // The coarser bake gives a different image of the same texture.
+  const measure::ImageError error = compare(first->capture, *capture);
+  EXPECT_GT(error.rmse, 0.0);
+  EXPECT_LT(error.rmse, 8.0 / 16);
+}
+
 TEST_F(RendererTest, PrebakeUniformEqualsFragmentForAConstantInput) {
   const std::string scene = planeScene("uniform_bake.spire", "UniformBake", R"({"baseColor": [0.3, 0.5, 0.7, 1.0]})");
   const auto fragment = render(scene, "uniform_bake_fragment.decisions");
