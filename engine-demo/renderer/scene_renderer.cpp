@@ -174,7 +174,7 @@ const GpuTexture* SceneRenderer::textureFor(const std::string& name, SourceRange
     diags_.report(DiagCode::E7006, range, fmt::format("no texture named '{}'", name));
     return nullptr;
   }
-  auto image = scene::buildTexture(*desc);
+  auto image = scene::buildTexture(*desc, scene_);
   if (!image) {
     diags_.report(DiagCode::E7101, desc->range, fmt::format("texture '{}': {}", name, image.error()));
     return nullptr;

@@ -53,6 +53,7 @@ const std::vector<KindKeys<TextureKind>> kTextureKinds = {
     {TextureKind::NormalMap, "normalMap", {"type", "size", "seed", "strength", "address"}},
     {TextureKind::Solid, "solid", {"type", "size", "color", "address"}},
     {TextureKind::GgxLut, "ggxLut", {"type", "size", "address"}},
+    {TextureKind::Pack, "pack", {"type", "channels", "address"}},
 };
 
 constexpr uint32_t kMaxImageSide = 8192;
@@ -101,6 +102,7 @@ class SceneReader {
     meshNames_ = namesIn(root.find("meshes"));
     textureNames_ = namesIn(root.find("textures"));
     for (const JsonMember& member : root.members) readSceneMember(member, scene);
+    checkPackSources(scene);
     // The default direction too: the renderer relies on a unit vector.
     scene.light.direction = glm::normalize(scene.light.direction);
     if (root.find("camera") == nullptr) {
@@ -163,12 +165,17 @@ class SceneReader {
   // suggestion.
   void checkReference(const JsonValue& value, const std::vector<std::string>& names, std::string_view kind,
                       std::string_view section) {
-    if (std::find(names.begin(), names.end(), value.string) != names.end()) return;
+    checkName(value.string, value.range, names, kind, section);
+  }
+
+  void checkName(const std::string& name, SourceRange range, const std::vector<std::string>& names,
+                 std::string_view kind, std::string_view section) {
+    if (std::find(names.begin(), names.end(), name) != names.end()) return;
     const std::vector<std::string_view> candidates(names.begin(), names.end());
-    const std::optional<std::string> suggestion = closestSpelling(value.string, candidates);
-    std::string message = fmt::format("unknown {} {}", kind, quotedForMessage(value.string));
+    const std::optional<std::string> suggestion = closestSpelling(name, candidates);
+    std::string message = fmt::format("unknown {} {}", kind, quotedForMessage(name));
     if (suggestion) message += fmt::format("; did you mean '{}'?", *suggestion);
-    Diagnostic& diagnostic = diags_.report(DiagCode::E7006, value.range, std::move(message));
+    Diagnostic& diagnostic = diags_.report(DiagCode::E7006, range, std::move(message));
     if (names.empty()) diagnostic.note({}, fmt::format("the scene has no '{}'", section));
   }
 
@@ -402,6 +409,7 @@ class SceneReader {
         const std::optional<bool> clamp = check_.choice<bool>(v, "address mode", {{"repeat", false}, {"clamp", true}});
         assign(texture.clamp, clamp);
       }
+      if (member.key == "channels") readChannels(v, texture.channels);
     }
     // A checker cell must be at least one pixel wide.
     if (cells != nullptr && texture.cells > texture.size) {
@@ -413,7 +421,48 @@ class SceneReader {
     if (needsFile && named.value.find("file") == nullptr) {
       check_.missing(named.value, fmt::format("{} texture {} has no 'file'", kind->name, quotedForMessage(named.key)));
     }
+    if (kind != nullptr && kind->kind == TextureKind::Pack && named.value.find("channels") == nullptr) {
+      check_.missing(named.value, fmt::format("pack texture {} has no 'channels'", quotedForMessage(named.key)));
+    }
     return texture;
+  }
+
+  // "channels": ["wear.r", "dirt.r", ...], one "texture.channel" each for R,
+  // G, B and A, 1 to 4 of them.
+  void readChannels(const JsonValue& value, std::vector<ChannelSource>& channels) {
+    if (!check_.expectArray(value, "'channels'", 1, 4, "an array of 1 to 4 channels such as \"wear.r\"")) return;
+    for (const JsonValue& element : value.elements) {
+      if (!check_.expectKind(element, JsonKind::String, "each element of 'channels'")) continue;
+      const std::string& text = element.string;
+      const size_t dot = text.rfind('.');
+      const std::string_view letter = dot == std::string::npos ? std::string_view() : std::string_view(text).substr(dot + 1);
+      constexpr std::string_view kLetters = "rgba";
+      if (dot == std::string::npos || dot == 0 || letter.size() != 1 || kLetters.find(letter[0]) == std::string_view::npos) {
+        diags_.report(DiagCode::E7004, element.range,
+                      fmt::format("channel {} must be a texture name, a dot and one of r, g, b or a, such as \"wear.r\"",
+                                  quotedForMessage(text)));
+        continue;
+      }
+      ChannelSource source{text.substr(0, dot), static_cast<uint32_t>(kLetters.find(letter[0])), element.range};
+      checkName(source.texture, element.range, textureNames_, "texture", "textures");
+      channels.push_back(std::move(source));
+    }
+  }
+
+  // A pack takes its channels from textures built from the scene alone, not
+  // from another pack, so building one never recurses.
+  void checkPackSources(const SceneFile& scene) {
+    for (const TextureDesc& texture : scene.textures) {
+      for (const ChannelSource& source : texture.channels) {
+        const TextureDesc* from = scene.findTexture(source.texture);
+        if (from != nullptr && from->kind == TextureKind::Pack) {
+          diags_.report(DiagCode::E7004, source.range,
+                        fmt::format("pack texture {} takes a channel of {}, another pack; name the textures that one "
+                                    "packs instead",
+                                    quotedForMessage(texture.name), quotedForMessage(source.texture)));
+        }
+      }
+    }
   }
 
   InstanceDesc readInstance(const JsonValue& value) {

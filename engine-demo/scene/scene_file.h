@@ -45,7 +45,15 @@ struct MeshDesc {
   std::filesystem::path file;
 };
 
-enum class TextureKind { File, Gltf, Noise, Checker, NormalMap, Solid, GgxLut };
+enum class TextureKind { File, Gltf, Noise, Checker, NormalMap, Solid, GgxLut, Pack };
+
+// One channel of a Pack texture: channel `channel` (0..3, RGBA) of the
+// texture named `texture`.
+struct ChannelSource {
+  std::string texture;
+  uint32_t channel = 0;
+  SourceRange range;  // the "name.c" string
+};
 
 struct TextureDesc {
   std::string name;
@@ -61,6 +69,7 @@ struct TextureDesc {
   glm::vec4 color{1.0F};       // Solid; Checker's first color (components in [0, 1])
   glm::vec4 color2{0.0F, 0.0F, 0.0F, 1.0F};  // Checker's second color
   bool clamp = false;          // sampler addressing: "address", default repeat (clamp for GgxLut)
+  std::vector<ChannelSource> channels;  // Pack: its R, G, B, A in order (1 to 4 of them)
 };
 
 // A material value for one shader input, by component name. Either the name

@@ -2,9 +2,12 @@
 
 #include "scene/gltf.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -120,8 +123,44 @@ Expected<Mesh> buildMesh(const MeshDesc& desc) {
   return mesh;
 }
 
-Expected<Image> buildTexture(const TextureDesc& desc) {
-  if (desc.kind != TextureKind::File && desc.kind != TextureKind::Gltf) {
+namespace {
+
+Expected<Image> packChannels(const TextureDesc& desc, const SceneFile& scene) {
+  std::map<std::string, Image> sources;
+  for (const ChannelSource& channel : desc.channels) {
+    if (sources.contains(channel.texture)) continue;
+    const TextureDesc* source = scene.findTexture(channel.texture);
+    if (source == nullptr || source->kind == TextureKind::Pack) {
+      return Error{"texture '" + desc.name + "': '" + channel.texture + "' is not a texture it can take channels of"};
+    }
+    auto image = buildTexture(*source, scene);
+    if (!image) return image;
+    sources.emplace(channel.texture, std::move(image).value());
+  }
+  if (sources.empty()) return Error{"texture '" + desc.name + "': no channels"};
+  const Image& first = sources.at(desc.channels.front().texture);
+  for (const auto& [name, image] : sources) {
+    if (image.width != first.width || image.height != first.height) {
+      return Error{fmt::format("texture '{}': its channels come from textures of different sizes ('{}' is {}x{}, '{}' "
+                               "{}x{})",
+                               desc.name, desc.channels.front().texture, first.width, first.height, name, image.width,
+                               image.height)};
+    }
+  }
+  Image packed{first.width, first.height, std::vector<uint8_t>(first.rgba8.size(), 0)};
+  for (size_t texel = 3; texel < packed.rgba8.size(); texel += 4) packed.rgba8[texel] = 255;
+  for (size_t c = 0; c < desc.channels.size(); ++c) {
+    const ChannelSource& channel = desc.channels[c];
+    const std::vector<uint8_t>& from = sources.at(channel.texture).rgba8;
+    for (size_t texel = 0; texel < packed.rgba8.size(); texel += 4) packed.rgba8[texel + c] = from[texel + channel.channel];
+  }
+  return packed;
+}
+
+}  // namespace
+
+Expected<Image> buildTexture(const TextureDesc& desc, const SceneFile& scene) {
+  if (desc.kind != TextureKind::File && desc.kind != TextureKind::Gltf && desc.kind != TextureKind::Pack) {
     if (auto error = checkProcedural(desc)) return Error{"texture '" + desc.name + "': " + *error};
   }
   switch (desc.kind) {
@@ -139,6 +178,8 @@ Expected<Image> buildTexture(const TextureDesc& desc) {
       return makeSolid(desc.size, toColor8(desc.color));
     case TextureKind::GgxLut:
       return makeGgxLut(desc.size);
+    case TextureKind::Pack:
+      return packChannels(desc, scene);
   }
   return Error{"texture '" + desc.name + "': unknown kind"};
 }

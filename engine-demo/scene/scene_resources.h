@@ -22,6 +22,9 @@ Expected<Mesh> buildMesh(const MeshDesc& desc);
 // each texel's value v in [0, 1] then becomes mix(color2, color, v) in every
 // channel, alpha included. Checker, NormalMap, Solid: their generators with
 // the description's colors. Colors are rounded to the nearest 8-bit value.
-Expected<Image> buildTexture(const TextureDesc& desc);
+// Pack: its channels taken from the textures of `scene` they name (built
+// here, each once), which must all have one size; a pack of fewer than four
+// channels has 0 in the missing colors and 1 in a missing alpha.
+Expected<Image> buildTexture(const TextureDesc& desc, const SceneFile& scene);
 
 }  // namespace spire::scene

@@ -154,6 +154,21 @@ const std::vector<ProbeCase>& probeCases() {
        .shader = "UnpackNormalProbe", .material = R"({"texel": [3e38, 3e38, 3e38, 1]})",
        .value = direction(kInvSqrt3, kInvSqrt3, kInvSqrt3)},
 
+      // unpackNormalXY
+      {.function = "unpackNormalXY", .extreme = "texel = (0.5, 0.5): straight up", .shader = "UnpackNormalXYProbe",
+       .material = R"({"texel": [0.5, 0.5]})", .value = direction(0, 0, 1)},
+      {.function = "unpackNormalXY", .extreme = "texel = (0, 0): all-black, x and y longer than 1",
+       .shader = "UnpackNormalXYProbe", .material = R"({"texel": [0, 0]})", .value = direction(-kHalfSqrt2, -kHalfSqrt2, 0)},
+      {.function = "unpackNormalXY", .extreme = "texel = (1, 1): all-white", .shader = "UnpackNormalXYProbe",
+       .material = R"({"texel": [1, 1]})", .value = direction(kHalfSqrt2, kHalfSqrt2, 0)},
+      {.function = "unpackNormalXY", .extreme = "texel = (1, 0.5): x exactly 1, so z is 0", .shader = "UnpackNormalXYProbe",
+       .material = R"({"texel": [1, 0.5]})", .value = direction(1, 0, 0)},
+      {.function = "unpackNormalXY", .extreme = "texel = (0.5, 1e30): x^2 + y^2 overflows",
+       .shader = "UnpackNormalXYProbe", .material = R"({"texel": [0.5, 1e30]})", .value = direction(0, 1, 0)},
+      {.function = "unpackNormalXY", .extreme = "texel = (3e38, 3e38): texel * 2 overflows to Inf",
+       .shader = "UnpackNormalXYProbe", .material = R"({"texel": [3e38, 3e38]})",
+       .value = direction(kHalfSqrt2, kHalfSqrt2, 0)},
+
       // perturbNormal; normal +Y and tangent +X unless the extreme says otherwise
       {.function = "perturbNormal", .extreme = "tangent = (0, 0, 0): falls back to the normal",
        .shader = "PerturbNormalProbe",
@@ -545,6 +560,7 @@ std::string sceneJson(std::string_view mesh, std::string_view source, std::strin
     "grassClamped": {"type": "noise", "size": 32, "seed": 11, "octaves": 3, "color": [0.42, 0.62, 0.2], "color2": [0.12, 0.3, 0.08], "address": "clamp"},
     "rockClamped": {"type": "noise", "size": 32, "seed": 23, "octaves": 3, "color": [0.58, 0.53, 0.48], "color2": [0.3, 0.25, 0.2], "address": "clamp"},
     "normalsClamped": {"type": "normalMap", "size": 32, "seed": 5, "strength": 2.5, "address": "clamp"},
+    "surface": {"type": "pack", "channels": ["normals.r", "normals.g", "noise.r", "rock.r"]},
     "ggxLut": {"type": "ggxLut", "size": 64}
   },
   "instances": [{"mesh": ")"
@@ -731,8 +747,8 @@ INSTANTIATE_TEST_SUITE_P(Terrain, TerrainStabilityTest, ::testing::ValuesIn(terr
 // (amounts, roughness) are driven to both ends of it; sizes and densities to
 // zero and far beyond any sensible value.
 const std::map<std::string, std::string> kCouchMaterial = {
-    {"leatherColorMap", R"("rock")"}, {"grainNormalMap", R"("normals")"}, {"wearMap", R"("noise")"},
-    {"wearNormalMap", R"("normals")"}, {"dirtMap", R"("noise")"},      {"ggxLut", R"("ggxLut")"},
+    {"leatherColorMap", R"("rock")"}, {"grainNormalMap", R"("normals")"}, {"surfaceMaps", R"("surface")"},
+    {"ggxLut", R"("ggxLut")"},
     {"leatherTint", "[1, 1, 1]"},     {"wornTint", "[0.62, 0.42, 0.27]"}, {"dirtColor", "[0.07, 0.05, 0.04]"},
     {"threadColor", "[0.7, 0.62, 0.48]"}, {"studColor", "[0.95, 0.76, 0.42]"}, {"panelCount", "2"},
     {"grainTiling", "8"},             {"grainStrength", "0.4"},       {"wearAmount", "0.4"},
@@ -762,11 +778,9 @@ const std::vector<ExampleCase>& couchCases() {
        .material = sameValue({"seamWidth", "studSize"}, "3e38")},
       {.extreme = "grain strength 3e38", .material = {{"grainStrength", "3e38"}}},
       {.extreme = "all-black textures",
-       .material = sameValue({"leatherColorMap", "grainNormalMap", "wearMap", "wearNormalMap", "dirtMap"},
-                             R"("black")")},
+       .material = sameValue({"leatherColorMap", "grainNormalMap", "surfaceMaps"}, R"("black")")},
       {.extreme = "all-white textures",
-       .material = sameValue({"leatherColorMap", "grainNormalMap", "wearMap", "wearNormalMap", "dirtMap"},
-                             R"("white")")},
+       .material = sameValue({"leatherColorMap", "grainNormalMap", "surfaceMaps"}, R"("white")")},
   });
   return cases;
 }

@@ -248,6 +248,42 @@ TEST(SceneFile, DoubleSidedIsLeftToTheMeshUnlessGiven) {
               "'doubleSided' must be a boolean, found a number");
 }
 
+TEST(SceneFile, PackTakesNamedChannelsOfOtherTextures) {
+  const auto loaded = parseScene(scene(
+      R"("textures": {"masks": {"type": "pack", "channels": ["my.wear.g", "dirt.a"], "address": "clamp"},
+                      "my.wear": {"type": "noise"}, "dirt": {"type": "solid"}})"));
+  ASSERT_TRUE(loaded->scene) << loaded->rendered;
+  const TextureDesc* masks = loaded->scene->findTexture("masks");
+  ASSERT_NE(masks, nullptr);
+  EXPECT_EQ(masks->kind, TextureKind::Pack);
+  EXPECT_TRUE(masks->clamp);
+  ASSERT_EQ(masks->channels.size(), 2u);
+  EXPECT_EQ(masks->channels[0].texture, "my.wear");
+  EXPECT_EQ(masks->channels[0].channel, 1u);
+  EXPECT_EQ(masks->channels[1].texture, "dirt");
+  EXPECT_EQ(masks->channels[1].channel, 3u);
+  EXPECT_EQ(loaded->sources.text(masks->channels[1].range), "\"dirt.a\"");
+
+  expectError(scene(R"("textures": {"m": {"type": "pack"}})"), DiagCode::E7005, "pack texture 'm' has no 'channels'");
+  expectError(scene(R"("textures": {"m": {"type": "pack", "channels": []}})"), DiagCode::E7003,
+              "'channels' must be an array of 1 to 4 channels such as \"wear.r\", found an empty array");
+  expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["t.r", "t.g", "t.b", "t.a", "t.r"]},
+                                    "t": {"type": "solid"}})"),
+              DiagCode::E7003,
+              "'channels' must be an array of 1 to 4 channels such as \"wear.r\", found an array of 5 elements");
+  expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["t.x"]}, "t": {"type": "solid"}})"),
+              DiagCode::E7004, "channel 't.x' must be a texture name, a dot and one of r, g, b or a, such as \"wear.r\"");
+  expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["t"]}, "t": {"type": "solid"}})"),
+              DiagCode::E7004, "channel 't' must be a texture name, a dot and one of r, g, b or a, such as \"wear.r\"");
+  expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["tt.r"]}, "t": {"type": "solid"}})"),
+              DiagCode::E7006, "unknown texture 'tt'; did you mean 't'?");
+  expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["n.r"]}, "n": {"type": "pack", "channels": ["t.r"]},
+                                    "t": {"type": "solid"}})"),
+              DiagCode::E7004, "pack texture 'm' takes a channel of 'n', another pack; name the textures that one packs instead");
+  expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["t.r"], "size": 4}, "t": {"type": "solid"}})"),
+              DiagCode::E7002, "key 'size' does not apply to a pack texture (its keys are 'type', 'channels' and 'address')");
+}
+
 TEST(SceneFile, LightDirectionIsNormalized) {
   const auto loaded = parseScene(scene(R"("light": {"direction": [0, 2, 0], "color": [0.5, 0.5, 0.5]})"));
   ASSERT_TRUE(loaded->scene) << loaded->rendered;

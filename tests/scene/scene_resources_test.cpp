@@ -64,9 +64,41 @@ TextureDesc textureDesc(TextureKind kind) {
 }
 
 Image build(const TextureDesc& desc) {
-  auto image = buildTexture(desc);
+  auto image = buildTexture(desc, SceneFile{});
   EXPECT_TRUE(image) << image.error();
   return image ? std::move(image).value() : Image{};
+}
+
+// A pack's R, G, B, A are the named channels of other textures; missing
+// colors are 0 and a missing alpha 1; the sources must share one size.
+TEST(SceneResourcesTest, PackCopiesTheNamedChannels) {
+  SceneFile scene;
+  scene.textures.push_back(textureDesc(TextureKind::Noise));
+  scene.textures.back().name = "noise";
+  scene.textures.push_back(textureDesc(TextureKind::Checker));
+  scene.textures.back().name = "checker";
+  TextureDesc pack;
+  pack.name = "masks";
+  pack.kind = TextureKind::Pack;
+  pack.channels = {{"checker", 2, {}}, {"noise", 0, {}}};
+  auto packed = buildTexture(pack, scene);
+  ASSERT_TRUE(packed) << packed.error();
+  const Image noise = build(scene.textures[0]);
+  const Image checker = build(scene.textures[1]);
+  ASSERT_EQ(packed->width, noise.width);
+  ASSERT_EQ(packed->rgba8.size(), noise.rgba8.size());
+  for (size_t texel = 0; texel < packed->rgba8.size(); texel += 4) {
+    ASSERT_EQ(packed->rgba8[texel], checker.rgba8[texel + 2]) << texel;
+    ASSERT_EQ(packed->rgba8[texel + 1], noise.rgba8[texel]) << texel;
+    ASSERT_EQ(packed->rgba8[texel + 2], 0) << texel;
+    ASSERT_EQ(packed->rgba8[texel + 3], 255) << texel;
+  }
+
+  scene.textures[1].size = 8;
+  auto mismatched = buildTexture(pack, scene);
+  ASSERT_FALSE(mismatched);
+  EXPECT_EQ(mismatched.error(),
+            "texture 'masks': its channels come from textures of different sizes ('checker' is 8x8, 'noise' 16x16)");
 }
 
 TEST(SceneResourcesTest, ProceduralMeshesComeFromTheGenerators) {
@@ -223,34 +255,34 @@ TEST(SceneResourcesTest, TextureErrors) {
   TempDir dir;
   TextureDesc file = textureDesc(TextureKind::File);
   file.file = dir.path() / "missing.png";
-  auto missing = buildTexture(file);
+  auto missing = buildTexture(file, SceneFile{});
   ASSERT_FALSE(missing);
   expectContains(missing.error(), file.file.string());
 
   TextureDesc gltf = textureDesc(TextureKind::Gltf);
   gltf.file = dir.path() / "missing.gltf";
-  auto noFile = buildTexture(gltf);
+  auto noFile = buildTexture(gltf, SceneFile{});
   ASSERT_FALSE(noFile);
   expectContains(noFile.error(), gltf.file.string());
 
   gltf.file = writeModel(makeQuadModel({}, ""), dir.path() / "untextured.glb", true);
-  auto noImage = buildTexture(gltf);
+  auto noImage = buildTexture(gltf, SceneFile{});
   ASSERT_FALSE(noImage);
   expectContains(noImage.error(), "has 0 image");
 
   TextureDesc empty = textureDesc(TextureKind::Checker);
   empty.size = 0;
-  auto zero = buildTexture(empty);
+  auto zero = buildTexture(empty, SceneFile{});
   ASSERT_FALSE(zero);
   expectContains(zero.error(), "texture 'albedo': size 0");
 
   TextureDesc octaves = textureDesc(TextureKind::Noise);
   octaves.octaves = 1000;
-  EXPECT_FALSE(buildTexture(octaves));
+  EXPECT_FALSE(buildTexture(octaves, SceneFile{}));
 
   TextureDesc strength = textureDesc(TextureKind::NormalMap);
   strength.strength = INFINITY;
-  EXPECT_FALSE(buildTexture(strength));
+  EXPECT_FALSE(buildTexture(strength, SceneFile{}));
 }
 
 }  // namespace

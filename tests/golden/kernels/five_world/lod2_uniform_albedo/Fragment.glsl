@@ -48,16 +48,16 @@ float clamp01(float x) {
 }
 #line 50 "Fragment.glsl"
 
-#line 46 "stdlib/lighting.spire"
+#line 55 "stdlib/lighting.spire"
 float phong(vec3 lightDir, vec3 normal, vec3 viewDir, float shininess) {
     vec3 n = safeNormalize(normal);
     vec3 l = safeNormalize(lightDir);
     vec3 v = safeNormalize(viewDir);
     float nDotL = dot(n, l);
     vec3 r = reflect(-l, n);
-#line 53 "stdlib/lighting.spire"
+#line 62 "stdlib/lighting.spire"
     float specular = pow(clamp01(dot(r, v)), max(shininess, 1.0));
-#line 55 "stdlib/lighting.spire"
+#line 64 "stdlib/lighting.spire"
     return nDotL <= 0.0 ? 0.0 : nDotL + specular;
 }
 #line 64 "Fragment.glsl"

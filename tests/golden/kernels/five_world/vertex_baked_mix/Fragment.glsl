@@ -60,15 +60,15 @@ vec3 unpackNormal(vec4 texel) {
 }
 #line 62 "Fragment.glsl"
 
-#line 25 "stdlib/lighting.spire"
+#line 34 "stdlib/lighting.spire"
 vec3 perturbNormal(vec3 tangentNormal, vec3 normal, vec4 tangent) {
     vec3 n = safeNormalize(normal);
-#line 30 "stdlib/lighting.spire"
+#line 39 "stdlib/lighting.spire"
     vec3 t = normalizeOr(tangent.xyz, vec3(0.0));
     t = t - n * dot(n, t);
     float tangentLengthSquared = dot(t, t);
     bool degenerate = tangentLengthSquared < 1e-12;
-#line 37 "stdlib/lighting.spire"
+#line 46 "stdlib/lighting.spire"
     t = t * inversesqrt(max(tangentLengthSquared, 1e-12));
     float handedness = tangent.w < 0.0 ? -1.0 : 1.0;
     vec3 b = cross(n, t) * handedness;
@@ -90,13 +90,13 @@ float pow5(float x) {
 }
 #line 92 "Fragment.glsl"
 
-#line 61 "stdlib/lighting.spire"
+#line 70 "stdlib/lighting.spire"
 float ggx(vec3 lightDir, vec3 normal, vec3 viewDir, float roughness) {
     const float PI = 3.14159265;
     const float EPSILON = 1e-4;
     const float MIN_ALPHA = 2e-3;
     const float F0 = 0.04;
-#line 67 "stdlib/lighting.spire"
+#line 76 "stdlib/lighting.spire"
     vec3 n = safeNormalize(normal);
     vec3 l = safeNormalize(lightDir);
     vec3 v = safeNormalize(viewDir);
@@ -106,24 +106,24 @@ float ggx(vec3 lightDir, vec3 normal, vec3 viewDir, float roughness) {
     float nDotV = clamp(dot(n, v), EPSILON, 1.0);
     float nDotH = clamp01(dot(n, h));
     float vDotH = clamp01(dot(v, h));
-#line 78 "stdlib/lighting.spire"
+#line 87 "stdlib/lighting.spire"
     float r = clamp01(roughness);
     float alpha = max(r * r, MIN_ALPHA);
     float alpha2 = alpha * alpha;
-#line 83 "stdlib/lighting.spire"
+#line 92 "stdlib/lighting.spire"
     float denom = nDotH * nDotH * (alpha2 - 1.0) + 1.0;
     float distribution = alpha2 / (PI * denom * denom);
-#line 87 "stdlib/lighting.spire"
+#line 96 "stdlib/lighting.spire"
     float k = alpha * 0.5;
     float geometryL = nDotL / (nDotL * (1.0 - k) + k);
     float geometryV = nDotV / (nDotV * (1.0 - k) + k);
     float geometry = geometryL * geometryV;
-#line 93 "stdlib/lighting.spire"
+#line 102 "stdlib/lighting.spire"
     float fresnel = F0 + (1.0 - F0) * pow5(1.0 - vDotH);
-#line 95 "stdlib/lighting.spire"
+#line 104 "stdlib/lighting.spire"
     float specular = distribution * geometry * fresnel / (4.0 * nDotL * nDotV);
     float diffuse = (1.0 - fresnel) / PI;
-#line 101 "stdlib/lighting.spire"
+#line 110 "stdlib/lighting.spire"
     return rawNDotL <= 0.0 ? 0.0 : (diffuse + specular) * nDotL * PI;
 }
 #line 130 "Fragment.glsl"
