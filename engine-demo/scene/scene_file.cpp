@@ -26,7 +26,8 @@ const KeyList kSceneKeys = {"resolution", "frames",   "warmupFrames", "clearColo
 const KeyList kCameraKeys = {"fovY", "near", "far", "up", "views"};
 const KeyList kViewKeys = {"position", "target"};
 const KeyList kLightKeys = {"direction", "color"};
-const KeyList kInstanceKeys = {"mesh", "source", "shader", "decisions", "kernels", "transform", "material", "doubleSided"};
+const KeyList kInstanceKeys = {"mesh",    "source",    "shader",   "decisions",
+                               "kernels", "transform", "material", "doubleSided"};
 const KeyList kTransformKeys = {"translate", "rotate", "scale"};
 const KeyList kVariantKeys = {"name", "decisions"};
 
@@ -435,15 +436,16 @@ class SceneReader {
       if (!check_.expectKind(element, JsonKind::String, "each element of 'channels'")) continue;
       const std::string& text = element.string;
       const size_t dot = text.rfind('.');
-      const std::string_view letter = dot == std::string::npos ? std::string_view() : std::string_view(text).substr(dot + 1);
       constexpr std::string_view kLetters = "rgba";
-      if (dot == std::string::npos || dot == 0 || letter.size() != 1 || kLetters.find(letter[0]) == std::string_view::npos) {
+      const bool named = dot != std::string::npos && dot > 0 && dot + 2 == text.size();
+      if (!named || kLetters.find(text.back()) == std::string_view::npos) {
         diags_.report(DiagCode::E7004, element.range,
-                      fmt::format("channel {} must be a texture name, a dot and one of r, g, b or a, such as \"wear.r\"",
+                      fmt::format("channel {} must be a texture name, a dot and one of r, g, b or a, such as "
+                                  "\"wear.r\"",
                                   quotedForMessage(text)));
         continue;
       }
-      ChannelSource source{text.substr(0, dot), static_cast<uint32_t>(kLetters.find(letter[0])), element.range};
+      ChannelSource source{text.substr(0, dot), static_cast<uint32_t>(kLetters.find(text.back())), element.range};
       checkName(source.texture, element.range, textureNames_, "texture", "textures");
       channels.push_back(std::move(source));
     }

@@ -152,7 +152,9 @@ Expected<Image> packChannels(const TextureDesc& desc, const SceneFile& scene) {
   for (size_t c = 0; c < desc.channels.size(); ++c) {
     const ChannelSource& channel = desc.channels[c];
     const std::vector<uint8_t>& from = sources.at(channel.texture).rgba8;
-    for (size_t texel = 0; texel < packed.rgba8.size(); texel += 4) packed.rgba8[texel + c] = from[texel + channel.channel];
+    for (size_t texel = 0; texel < packed.rgba8.size(); texel += 4) {
+      packed.rgba8[texel + c] = from[texel + channel.channel];
+    }
   }
   return packed;
 }

@@ -238,7 +238,8 @@ TEST(SceneFile, MaterialValues) {
 
 TEST(SceneFile, DoubleSidedIsLeftToTheMeshUnlessGiven) {
   const auto loaded = parseScene(withInstance(R"({"mesh": "ground", "kernels": "k"},
-      {"mesh": "ground", "kernels": "k", "doubleSided": true}, {"mesh": "ground", "kernels": "k", "doubleSided": false})"));
+      {"mesh": "ground", "kernels": "k", "doubleSided": true},
+      {"mesh": "ground", "kernels": "k", "doubleSided": false})"));
   ASSERT_TRUE(loaded->scene) << loaded->rendered;
   ASSERT_EQ(loaded->scene->instances.size(), 3u);
   EXPECT_EQ(loaded->scene->instances[0].doubleSided, std::nullopt);
@@ -272,16 +273,20 @@ TEST(SceneFile, PackTakesNamedChannelsOfOtherTextures) {
               DiagCode::E7003,
               "'channels' must be an array of 1 to 4 channels such as \"wear.r\", found an array of 5 elements");
   expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["t.x"]}, "t": {"type": "solid"}})"),
-              DiagCode::E7004, "channel 't.x' must be a texture name, a dot and one of r, g, b or a, such as \"wear.r\"");
+              DiagCode::E7004,
+              "channel 't.x' must be a texture name, a dot and one of r, g, b or a, such as \"wear.r\"");
   expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["t"]}, "t": {"type": "solid"}})"),
-              DiagCode::E7004, "channel 't' must be a texture name, a dot and one of r, g, b or a, such as \"wear.r\"");
+              DiagCode::E7004,
+              "channel 't' must be a texture name, a dot and one of r, g, b or a, such as \"wear.r\"");
   expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["tt.r"]}, "t": {"type": "solid"}})"),
               DiagCode::E7006, "unknown texture 'tt'; did you mean 't'?");
-  expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["n.r"]}, "n": {"type": "pack", "channels": ["t.r"]},
-                                    "t": {"type": "solid"}})"),
-              DiagCode::E7004, "pack texture 'm' takes a channel of 'n', another pack; name the textures that one packs instead");
+  expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["n.r"]},
+                                    "n": {"type": "pack", "channels": ["t.r"]}, "t": {"type": "solid"}})"),
+              DiagCode::E7004,
+              "pack texture 'm' takes a channel of 'n', another pack; name the textures that one packs instead");
   expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["t.r"], "size": 4}, "t": {"type": "solid"}})"),
-              DiagCode::E7002, "key 'size' does not apply to a pack texture (its keys are 'type', 'channels' and 'address')");
+              DiagCode::E7002,
+              "key 'size' does not apply to a pack texture (its keys are 'type', 'channels' and 'address')");
 }
 
 TEST(SceneFile, LightDirectionIsNormalized) {
