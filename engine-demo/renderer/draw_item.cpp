@@ -6,18 +6,6 @@
 
 namespace spire::engine {
 
-namespace {
-
-const KernelProgram* kernelWithRole(const VariantProgram& program, WorldRole role) {
-  for (const KernelProgram& kernel : program.kernels) {
-    const WorldPass* pass = findWorldPass(kernel.world);
-    if (pass && pass->role == role) return &kernel;
-  }
-  return nullptr;
-}
-
-}  // namespace
-
 Expected<std::vector<std::string>> fragmentOutputs(const KernelProgram& fragment) {
   std::vector<std::string> outputs;
   for (const KernelOutput& output : fragment.outputs) {
@@ -37,8 +25,8 @@ Expected<std::vector<std::string>> fragmentOutputs(const KernelProgram& fragment
 Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
                                   const BindingSources& sources, const DrawPlacement& placement,
                                   const TargetFormats& formats) {
-  const KernelProgram* vertex = kernelWithRole(program, WorldRole::VertexStage);
-  const KernelProgram* fragment = kernelWithRole(program, WorldRole::FragmentStage);
+  const KernelProgram* vertex = program.kernelWithRole(WorldRole::VertexStage);
+  const KernelProgram* fragment = program.kernelWithRole(WorldRole::FragmentStage);
   if (!vertex || !fragment) {
     return Error{fmt::format("'{}' has no {} kernel to draw with", program.shader, vertex ? "fragment" : "vertex"), {}, {}};
   }

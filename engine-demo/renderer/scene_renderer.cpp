@@ -217,10 +217,7 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
 
   size_t colorTargets = 0;
   for (const VariantProgram& program : programs) {
-    const KernelProgram* fragment = nullptr;
-    for (const KernelProgram& kernel : program.kernels) {
-      if (const WorldPass* pass = findWorldPass(kernel.world); pass && pass->role == WorldRole::FragmentStage) fragment = &kernel;
-    }
+    const KernelProgram* fragment = program.kernelWithRole(WorldRole::FragmentStage);
     if (!fragment) return Error{fmt::format("'{}' has no fragment kernel", program.shader), {}, {}};
     auto outputs = fragmentOutputs(*fragment);
     if (!outputs) return outputs.error();

@@ -28,6 +28,14 @@ const KernelProgram* VariantProgram::kernel(std::string_view world) const {
   return it == kernels.end() ? nullptr : &*it;
 }
 
+const KernelProgram* VariantProgram::kernelWithRole(WorldRole role) const {
+  const auto it = std::find_if(kernels.begin(), kernels.end(), [&](const KernelProgram& k) {
+    const WorldPass* pass = findWorldPass(k.world);
+    return pass && pass->role == role;
+  });
+  return it == kernels.end() ? nullptr : &*it;
+}
+
 std::string VariantProgram::fingerprint() const {
   std::string key;
   for (const KernelProgram& k : kernels) key += fmt::format("{}={};", k.world, k.hash);

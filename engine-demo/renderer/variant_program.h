@@ -16,6 +16,7 @@
 
 #include "codegen/kernel_generator.h"
 #include "renderer/error.h"
+#include "renderer/world_roles.h"
 
 namespace spire::engine {
 
@@ -84,6 +85,9 @@ struct VariantProgram {
   std::vector<std::pair<std::string, std::string>> placement;
 
   const KernelProgram* kernel(std::string_view world) const;
+  // The kernel of the world this engine runs as `role` (worldPassTable()),
+  // or nullptr.
+  const KernelProgram* kernelWithRole(WorldRole role) const;
   // Hashes of every kernel, joined: equal for variants with identical code.
   std::string fingerprint() const;
 };

@@ -58,11 +58,7 @@ Expected<LayoutSelection> selectLayouts(engine::SceneRenderer& renderer, size_t 
                                         uint32_t bakeSize) {
   auto program = renderer.compileVariant(instance, point.decisions);
   if (!program) return program.error();
-  const engine::KernelProgram* kernel = nullptr;
-  for (const engine::KernelProgram& k : program->kernels) {
-    const engine::WorldPass* pass = engine::findWorldPass(k.world);
-    if (pass && pass->role == engine::WorldRole::TextureBake) kernel = &k;
-  }
+  const engine::KernelProgram* kernel = program->kernelWithRole(engine::WorldRole::TextureBake);
   LayoutSelection selection;
   // Nothing baked into a texture, no layout to choose: known before any bake.
   if (!kernel) return selection;

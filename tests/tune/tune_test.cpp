@@ -7,12 +7,15 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <optional>
 #include <sstream>
 
 #include <unistd.h>
 
 #include "engine/device_fixture.h"
+#include "scene/scene_file.h"
+#include "tune/format_selection.h"
 #include "tune/pareto.h"
 #include "tune/results_csv.h"
 #include "tune/tune_cli.h"
@@ -177,6 +180,46 @@ class TuneRun : public vk::testing::DeviceTest {};
 std::optional<std::string> environment(const char* name) {
   const char* value = std::getenv(name);
   return value ? std::optional<std::string>(value) : std::nullopt;
+}
+
+// Data-layout selection on Terrain: the baked albedo and the mix factor it
+// reads hold values in [0, 1], so they get 8 bits (one channel for the
+// factor), and the error that adds against the 32-bit bake is measured and
+// a few 8-bit steps at most (lavapipe also filters 8-bit textures in 8-bit
+// fixed point, which a 64-texel bake magnified on screen shows); a variant
+// that bakes nothing has nothing to select.
+TEST_F(TuneRun, SelectsLayoutsForTextureBakesOnly) {
+  SourceManager sources;
+  DiagnosticList diags;
+  const auto scene = scene::loadSceneFile("examples/scenes/terrain.json", sources, diags);
+  ASSERT_TRUE(scene);
+  engine::SceneRenderer renderer(ctx(), *scene, diags);
+  TunePoint baked;
+  baked.decisions = {{"mixFactor", "PrebakeTex"}, {"albedo", "PrebakeTex"}};
+  const auto selection = selectLayouts(renderer, 0, baked, 64);
+  ASSERT_TRUE(selection) << selection.error().message << selection.error().details;
+  std::map<std::string, std::string> formats;
+  for (const engine::BakeLayout& layout : selection->layouts) {
+    formats[layout.component] = layout.format;
+    EXPECT_FALSE(layout.unitVectors) << layout.component;
+    EXPECT_EQ(selection->attributes.at(layout.component).front(),
+              (std::pair<std::string, std::string>{"Format", layout.format}));
+  }
+  EXPECT_EQ(formats, (std::map<std::string, std::string>{{"albedo", "RGBA8"}, {"mixFactor", "R8"}}));
+  ASSERT_EQ(selection->addedRmse.size(), 2U);
+  for (const double added : selection->addedRmse) {
+    EXPECT_GT(added, 0.0);
+    EXPECT_LT(added, 5.0 / 255.0);
+  }
+  EXPECT_GT(selection->totalAddedRmse, 0.0);
+  EXPECT_LT(selection->totalAddedRmse, 5.0 / 255.0);
+
+  TunePoint unbaked;
+  unbaked.decisions = {{"albedo", "Fragment"}};
+  const auto none = selectLayouts(renderer, 0, unbaked, 64);
+  ASSERT_TRUE(none) << none.error().message;
+  EXPECT_TRUE(none->layouts.empty());
+  EXPECT_TRUE(none->attributes.empty());
 }
 
 // The Terrain scene's four choices at a tiny size: a whole run, then a rerun
