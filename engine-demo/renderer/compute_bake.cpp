@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "renderer/pipeline_descriptors.h"
 #include "vk/timer.h"
 
 namespace spire::engine {
@@ -28,23 +29,21 @@ Expected<ComputeOutput> dispatch(const vk::Context& ctx, ModuleCache& modules, c
                  {},
                  {}};
   }
-  const auto [binding, records] = *bound->outputs.begin();
-  const Block* layout = kernel.block(binding);
+  const auto [slot, records] = *bound->outputs.begin();
+  const Block* layout = kernel.block(slot);
   const BoundKernel* kernels[] = {&*bound};
   auto descriptors = createDescriptors(ctx, kernels);
   if (!descriptors) return descriptors.error();
   auto module = modules.get(ctx, kernel.hash, kernel.spirv);
   if (!module) return module.error();
-  const VkDescriptorSetLayout setLayout = descriptors->layout.get();
-  auto pipeline = vk::createComputePipeline(ctx, *module, std::span(&setLayout, 1));
+  auto pipeline = vk::createComputePipeline(ctx, *module, descriptors->layoutHandles());
   if (!pipeline) return Error::fromVk(pipeline.error());
 
   const uint32_t groups = (sources.mesh->vertexCount() + kWorkgroupSize - 1) / kWorkgroupSize;
   const vk::HostTimer timer;
   auto submitted = ctx.submitAndWait([&](VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline->pipeline.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline->layout.get(), 0, 1, &descriptors->set, 0,
-                            nullptr);
+    bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline->layout.get(), *descriptors);
     vkCmdDispatch(cmd, groups, 1, 1);
     VkMemoryBarrier toHost{};
     toHost.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;

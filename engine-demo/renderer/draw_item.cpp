@@ -67,7 +67,7 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
     builder.vertexAttribute(input.location, 0, attribute->format, attribute->offset);
   }
   for (VkFormat format : formats.colors) builder.colorFormat(format);
-  builder.depthFormat(formats.depth).descriptorSetLayout(item.descriptors.layout.get());
+  builder.depthFormat(formats.depth).descriptorSetLayouts(item.descriptors.layoutHandles());
   // Meshes are wound counter-clockwise seen from the front, and the
   // projection's y flip keeps that winding on screen.
   builder.cullMode(placement.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT, VK_FRONT_FACE_COUNTER_CLOCKWISE);
@@ -83,8 +83,7 @@ void updateFrameValues(const DrawItem& item, const FrameState& frame) {
 
 void recordDraw(VkCommandBuffer cmd, const DrawItem& item) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, item.pipeline.pipeline.get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, item.pipeline.layout.get(), 0, 1,
-                          &item.descriptors.set, 0, nullptr);
+  bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, item.pipeline.layout.get(), item.descriptors);
   const VkBuffer vertexBuffer = item.mesh->vertices.handle();
   const VkDeviceSize offset = 0;
   vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);

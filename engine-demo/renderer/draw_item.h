@@ -1,5 +1,5 @@
 // One mesh instance ready to draw every frame: the variant's Vertex and
-// Fragment kernels as a graphics pipeline, their descriptor set, and the
+// Fragment kernels as a graphics pipeline, their descriptor sets, and the
 // buffers behind it (per-frame values are rewritten before each frame).
 #pragma once
 
@@ -7,6 +7,7 @@
 
 #include "renderer/kernel_bindings.h"
 #include "renderer/module_cache.h"
+#include "renderer/pipeline_descriptors.h"
 #include "vk/pipeline.h"
 
 namespace spire::engine {

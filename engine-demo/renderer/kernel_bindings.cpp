@@ -41,6 +41,7 @@ class KernelBinder {
  public:
   KernelBinder(const vk::Context& ctx, const KernelProgram& kernel, const BindingSources& sources)
       : ctx_(ctx), kernel_(kernel), sources_(sources) {
+    bound_.world = kernel.world;
     bound_.stage = stageFlags(kernel.stage);
   }
 
@@ -70,7 +71,7 @@ class KernelBinder {
     auto buffer = newBuffer(block.size, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     if (!buffer) return buffer.error();
     for (const KernelInput& input : kernel_.inputs) {
-      if (input.kind != InputKind::UniformMember || input.binding != block.binding) continue;
+      if (input.kind != InputKind::UniformMember || input.slot != block.slot) continue;
       const BlockMember* member = block.member(input.component);
       const auto type = parseValueType(input.type);
       if (!member || !type) return missing(kernel_, input, "its block member or type is not in the reflection");
@@ -89,8 +90,8 @@ class KernelBinder {
       if (!bound) return missing(kernel_, input, "not bound in the material");
       writeValue(bytesOf(**buffer), *member, *type, bound->numbers);
     }
-    bound_.bindings.emplace_back(block.binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
-    bound_.writes.buffer(block.binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, (*buffer)->handle());
+    bound_.descriptors.push_back({block.slot, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, (*buffer)->handle(), VK_NULL_HANDLE,
+                                  VK_NULL_HANDLE, fmt::format("uniform block '{}'", block.name)});
     return {};
   }
 
@@ -110,21 +111,21 @@ class KernelBinder {
     if (!sources_.mesh) return Error{fmt::format("the {} kernel reads vertex records but has no mesh", kernel_.world), {}, {}};
     const uint32_t records = sources_.mesh->vertexCount();
     const bool written = std::any_of(kernel_.outputs.begin(), kernel_.outputs.end(), [&](const KernelOutput& o) {
-      return o.kind == OutputKind::BufferMember && o.binding == block.binding;
+      return o.kind == OutputKind::BufferMember && o.slot == block.slot;
     });
     auto buffer = newBuffer(VkDeviceSize{records} * block.recordStride, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     if (!buffer) return buffer.error();
     if (written) {
-      bound_.outputs[block.binding] = *buffer;
+      bound_.outputs[block.slot] = *buffer;
     } else {
       for (const KernelInput& input : kernel_.inputs) {
-        if (input.kind != InputKind::BufferMember || input.binding != block.binding) continue;
+        if (input.kind != InputKind::BufferMember || input.slot != block.slot) continue;
         auto filled = fillRecords(**buffer, block, input, records);
         if (!filled) return filled.error();
       }
     }
-    bound_.bindings.emplace_back(block.binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-    bound_.writes.buffer(block.binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, (*buffer)->handle());
+    bound_.descriptors.push_back({block.slot, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, (*buffer)->handle(), VK_NULL_HANDLE,
+                                  VK_NULL_HANDLE, fmt::format("storage block '{}'", block.name)});
     return {};
   }
 
@@ -175,9 +176,9 @@ class KernelBinder {
       view = bound->texture->image.view();
       sampler = bound->texture->sampler.get();
     }
-    bound_.bindings.emplace_back(input.binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-    bound_.writes.image(input.binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, view, sampler,
-                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    bound_.descriptors.push_back({input.slot, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, view, sampler,
+                                  fmt::format("{} '{}'", input.kind == InputKind::Texture ? "texture" : "sampler",
+                                              input.component)});
     return {};
   }
 
@@ -199,32 +200,6 @@ void writeFrameValues(const BoundKernel& kernel, const FrameState& frame, const 
       writeValue(bytesOf(*write.buffer), write.member, write.type, value->numbers);
     }
   }
-}
-
-Expected<DescriptorBundle> createDescriptors(const vk::Context& ctx, std::span<const BoundKernel* const> kernels) {
-  vk::DescriptorSetLayoutBuilder layoutBuilder;
-  std::map<VkDescriptorType, uint32_t> counts;
-  for (const BoundKernel* kernel : kernels) {
-    for (const auto& [binding, type] : kernel->bindings) {
-      layoutBuilder.binding(binding, type, kernel->stage);
-      ++counts[type];
-    }
-  }
-  DescriptorBundle bundle;
-  auto layout = layoutBuilder.build(ctx);
-  if (!layout) return Error::fromVk(layout.error());
-  bundle.layout = std::move(layout).value();
-  std::vector<VkDescriptorPoolSize> sizes;
-  for (const auto& [type, count] : counts) sizes.push_back({type, count});
-  if (sizes.empty()) sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1});
-  auto pool = vk::createDescriptorPool(ctx, 1, sizes);
-  if (!pool) return Error::fromVk(pool.error());
-  bundle.pool = std::move(pool).value();
-  auto set = vk::allocateDescriptorSet(ctx, bundle.pool.get(), bundle.layout.get());
-  if (!set) return Error::fromVk(set.error());
-  bundle.set = *set;
-  for (const BoundKernel* kernel : kernels) kernel->writes.update(ctx, bundle.set);
-  return bundle;
 }
 
 }  // namespace spire::engine

@@ -64,13 +64,30 @@ struct FrameWrite {
   std::string component;
 };
 
+// One descriptor a kernel binds: where, of which type, and the resource.
+struct BoundDescriptor {
+  DescriptorSlot slot;
+  VkDescriptorType type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  VkBuffer buffer = VK_NULL_HANDLE;   // uniform and storage buffers
+  VkImageView view = VK_NULL_HANDLE;  // combined image samplers
+  VkSampler sampler = VK_NULL_HANDLE;
+  std::string what;  // names the resource in messages: "uniform block 'spire_FrameUniform'"
+
+  bool sameResource(const BoundDescriptor& other) const {
+    return buffer == other.buffer && view == other.view && sampler == other.sampler;
+  }
+};
+
+// A kernel's buffers and descriptors; createDescriptors
+// (pipeline_descriptors.h) turns the descriptors of a pipeline's kernels into
+// its descriptor sets.
 struct BoundKernel {
+  std::string world;
   VkShaderStageFlags stage = 0;
-  std::vector<std::pair<uint32_t, VkDescriptorType>> bindings;
-  vk::DescriptorWriter writes;
+  std::vector<BoundDescriptor> descriptors;
   std::vector<std::unique_ptr<vk::Buffer>> buffers;
   std::vector<FrameWrite> frameWrites;
-  std::map<uint32_t, vk::Buffer*> outputs;  // storage blocks the kernel writes, by binding
+  std::map<DescriptorSlot, vk::Buffer*> outputs;  // storage blocks the kernel writes
 };
 
 // Creates and fills the buffers of `kernel`'s bindings. Values are assumed
@@ -80,14 +97,5 @@ Expected<BoundKernel> bindKernel(const vk::Context& ctx, const KernelProgram& ke
 
 // Writes this frame's values into the kernel's per-frame uniform members.
 void writeFrameValues(const BoundKernel& kernel, const FrameState& frame, const glm::mat4& model);
-
-// One descriptor set for the kernels of one pipeline (bindings are unique
-// across a variant, so the kernels' bindings never collide).
-struct DescriptorBundle {
-  vk::DescriptorSetLayout layout;
-  vk::DescriptorPool pool;
-  VkDescriptorSet set = VK_NULL_HANDLE;
-};
-Expected<DescriptorBundle> createDescriptors(const vk::Context& ctx, std::span<const BoundKernel* const> kernels);
 
 }  // namespace spire::engine

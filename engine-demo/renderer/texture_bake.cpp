@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "codegen/spirv_compiler.h"
+#include "renderer/pipeline_descriptors.h"
 #include "renderer/supplied_values.h"
 #include "renderer/world_roles.h"
 #include "vk/timer.h"
@@ -164,7 +165,9 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
   }
   builder.vertexAttribute(uvLocation, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(scene::Vertex, uv));
   for (const BakeTarget& target : targets) builder.colorFormat(target.format);
-  builder.depthFormat(VK_FORMAT_D32_SFLOAT).descriptorSetLayout(descriptors->layout.get());
+  // The engine's vertex shader binds nothing, so the sets are the kernel's
+  // (set 0 stays empty when the kernel's resources are in set 1).
+  builder.depthFormat(VK_FORMAT_D32_SFLOAT).descriptorSetLayouts(descriptors->layoutHandles());
   auto pipeline = builder.build(ctx);
   if (!pipeline) return Error::fromVk(pipeline.error());
 
@@ -189,8 +192,7 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
     depth->transition(cmd, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
     vk::beginRendering(ctx, cmd, {size, size}, colors, vk::DepthTarget{depth->view(), 1.0F});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->layout.get(), 0, 1, &descriptors->set, 0,
-                            nullptr);
+    bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->layout.get(), *descriptors);
     const VkBuffer vertexBuffer = sources.mesh->vertices.handle();
     const VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);

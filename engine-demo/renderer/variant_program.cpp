@@ -18,8 +18,8 @@ const BlockMember* Block::member(std::string_view component) const {
   return it == members.end() ? nullptr : &*it;
 }
 
-const Block* KernelProgram::block(uint32_t binding) const {
-  const auto it = std::find_if(blocks.begin(), blocks.end(), [&](const Block& b) { return b.binding == binding; });
+const Block* KernelProgram::block(DescriptorSlot slot) const {
+  const auto it = std::find_if(blocks.begin(), blocks.end(), [&](const Block& b) { return b.slot == slot; });
   return it == blocks.end() ? nullptr : &*it;
 }
 
@@ -51,11 +51,37 @@ std::optional<codegen::ShaderStage> parseStage(const std::string& name) {
   return std::nullopt;
 }
 
-Block parseBlock(const Json& json) {
+// One descriptor index ("set" or "binding") of `entry`; `what` names the entry
+// in errors. Checked here because nlohmann would truncate 1.5 and wrap -1.
+Expected<uint32_t> descriptorIndex(const Json& entry, const char* key, const std::string& what) {
+  if (!entry.contains(key)) return Error{fmt::format("{} has no \"{}\"", what, key), {}};
+  const Json& value = entry.at(key);
+  const bool valid = value.is_number_unsigned()
+                         ? value.get<uint64_t>() <= UINT32_MAX
+                         : value.is_number_integer() && value.get<int64_t>() >= 0 && value.get<int64_t>() <= UINT32_MAX;
+  if (!valid) {
+    return Error{fmt::format("{}: \"{}\" must be a whole number from 0 to {}, not {}", what, key, UINT32_MAX,
+                             value.dump()),
+                 {}};
+  }
+  return static_cast<uint32_t>(value.get<uint64_t>());
+}
+
+Expected<DescriptorSlot> parseSlot(const Json& entry, const std::string& what) {
+  const auto set = descriptorIndex(entry, "set", what);
+  if (!set) return set.error();
+  const auto binding = descriptorIndex(entry, "binding", what);
+  if (!binding) return binding.error();
+  return DescriptorSlot{*set, *binding};
+}
+
+Expected<Block> parseBlock(const Json& json, const std::string& world) {
   Block block;
   block.name = json.at("name").get<std::string>();
   block.storage = json.at("kind").get<std::string>() == "storage";
-  block.binding = json.at("binding").get<uint32_t>();
+  const auto slot = parseSlot(json, fmt::format("kernel '{}', block '{}'", world, block.name));
+  if (!slot) return slot.error();
+  block.slot = *slot;
   block.size = json.value("size", 0U);
   block.recordStride = json.value("recordStride", 0U);
   for (const Json& m : json.at("members")) {
@@ -72,7 +98,7 @@ Block parseBlock(const Json& json) {
 }
 
 // The kind of an input follows from its fields (docs/reflection.md, Inputs).
-KernelInput parseInput(const Json& json) {
+Expected<KernelInput> parseInput(const Json& json, const std::string& world) {
   KernelInput input;
   input.component = json.at("component").get<std::string>();
   input.type = json.at("type").get<std::string>();
@@ -82,7 +108,9 @@ KernelInput parseInput(const Json& json) {
     input.location = json.at("location").get<uint32_t>();
     return input;
   }
-  input.binding = json.at("binding").get<uint32_t>();
+  const auto slot = parseSlot(json, fmt::format("kernel '{}', input '{}'", world, input.component));
+  if (!slot) return slot.error();
+  input.slot = *slot;
   if (json.contains("sampler")) {
     input.kind = InputKind::Texture;
     input.channels = json.at("channels").get<uint32_t>();
@@ -96,7 +124,7 @@ KernelInput parseInput(const Json& json) {
   return input;
 }
 
-KernelOutput parseOutput(const Json& json) {
+Expected<KernelOutput> parseOutput(const Json& json, const std::string& world) {
   KernelOutput output;
   if (json.contains("builtin")) {
     output.kind = OutputKind::BuiltIn;
@@ -110,12 +138,53 @@ KernelOutput parseOutput(const Json& json) {
     output.location = json.at("location").get<uint32_t>();
   } else {
     output.kind = OutputKind::BufferMember;
-    output.binding = json.at("binding").get<uint32_t>();
+    const auto slot = parseSlot(json, fmt::format("kernel '{}', output '{}'", world, output.component));
+    if (!slot) return slot.error();
+    output.slot = *slot;
   }
   if (json.contains("hints")) {
     for (const auto& [key, value] : json.at("hints").items()) output.hints[key] = value.get<std::string>();
   }
   return output;
+}
+
+// Appends what `parse` makes of each element of `list` to `into`.
+template <class T, class Parse>
+Expected<void> parseEach(const Json& list, const std::string& world, std::vector<T>& into, Parse parse) {
+  for (const Json& element : list) {
+    auto parsed = parse(element, world);
+    if (!parsed) return parsed.error();
+    into.push_back(std::move(parsed).value());
+  }
+  return {};
+}
+
+// One entry of "kernels"; `spirv` supplies its words by world.
+Expected<KernelProgram> parseKernel(const Json& k, const std::map<std::string, std::vector<uint32_t>>& spirv) {
+  KernelProgram kernel;
+  kernel.world = k.at("world").get<std::string>();
+  const auto stage = parseStage(k.at("stage").get<std::string>());
+  if (!stage) return Error{fmt::format("kernel '{}' has an unknown stage", kernel.world), {}};
+  kernel.stage = *stage;
+  kernel.hash = k.at("hash").get<std::string>();
+  const auto words = spirv.find(kernel.world);
+  if (words == spirv.end() || words->second.empty()) {
+    return Error{fmt::format("no SPIR-V for kernel '{}'", kernel.world), {}};
+  }
+  kernel.spirv = words->second;
+  // Errors from the entries name the kernel and the entry; the prefix matches
+  // the one nlohmann's exceptions get.
+  const auto malformed = [](const Error& error) { return Error{"malformed reflection: " + error.message, {}}; };
+  if (auto parsed = parseEach(k.at("inputs"), kernel.world, kernel.inputs, parseInput); !parsed) {
+    return malformed(parsed.error());
+  }
+  if (auto parsed = parseEach(k.at("outputs"), kernel.world, kernel.outputs, parseOutput); !parsed) {
+    return malformed(parsed.error());
+  }
+  if (auto parsed = parseEach(k.at("blocks"), kernel.world, kernel.blocks, parseBlock); !parsed) {
+    return malformed(parsed.error());
+  }
+  return kernel;
 }
 
 }  // namespace
@@ -135,21 +204,9 @@ Expected<VariantProgram> parseReflection(const Json& reflection,
       program.placement.emplace_back(component, world.get<std::string>());
     }
     for (const Json& k : reflection.at("kernels")) {
-      KernelProgram kernel;
-      kernel.world = k.at("world").get<std::string>();
-      const auto stage = parseStage(k.at("stage").get<std::string>());
-      if (!stage) return Error{fmt::format("kernel '{}' has an unknown stage", kernel.world), {}};
-      kernel.stage = *stage;
-      kernel.hash = k.at("hash").get<std::string>();
-      const auto words = spirv.find(kernel.world);
-      if (words == spirv.end() || words->second.empty()) {
-        return Error{fmt::format("no SPIR-V for kernel '{}'", kernel.world), {}};
-      }
-      kernel.spirv = words->second;
-      for (const Json& input : k.at("inputs")) kernel.inputs.push_back(parseInput(input));
-      for (const Json& output : k.at("outputs")) kernel.outputs.push_back(parseOutput(output));
-      for (const Json& block : k.at("blocks")) kernel.blocks.push_back(parseBlock(block));
-      program.kernels.push_back(std::move(kernel));
+      auto kernel = parseKernel(k, spirv);
+      if (!kernel) return kernel.error();
+      program.kernels.push_back(std::move(kernel).value());
     }
     return program;
   } catch (const nlohmann::json::exception& e) {

@@ -5,6 +5,7 @@
 // (the path for build pipelines); both give the same program.
 #pragma once
 
+#include <compare>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -20,6 +21,15 @@
 
 namespace spire::engine {
 
+// Where a kernel's resource is bound: a descriptor set and a binding in it
+// (docs/reflection.md, Descriptor bindings). Bindings may restart at 0 in each
+// kernel, so a binding number alone does not identify a resource.
+struct DescriptorSlot {
+  uint32_t set = 0;
+  uint32_t binding = 0;
+  auto operator<=>(const DescriptorSlot&) const = default;
+};
+
 // One member of a uniform block or of a storage buffer's record.
 struct BlockMember {
   std::string component;
@@ -33,7 +43,7 @@ struct BlockMember {
 struct Block {
   std::string name;
   bool storage = false;  // storage buffer of records; otherwise a uniform block
-  uint32_t binding = 0;
+  DescriptorSlot slot;
   uint32_t size = 0;          // uniform blocks
   uint32_t recordStride = 0;  // storage blocks
   std::vector<BlockMember> members;
@@ -48,7 +58,7 @@ struct KernelInput {
   std::string component;
   std::string type;
   std::string from;  // the producing world
-  uint32_t binding = 0;   // UniformMember, Sampler, Texture, BufferMember
+  DescriptorSlot slot;    // UniformMember, Sampler, Texture, BufferMember
   uint32_t location = 0;  // Varying
   uint32_t channels = 4;  // Texture
 };
@@ -60,7 +70,7 @@ struct KernelOutput {
   std::string component;
   std::string type;
   uint32_t location = 0;  // Varying
-  uint32_t binding = 0;   // BufferMember
+  DescriptorSlot slot;    // BufferMember
   std::map<std::string, std::string> hints;
 };
 
@@ -73,7 +83,7 @@ struct KernelProgram {
   std::vector<KernelOutput> outputs;
   std::vector<Block> blocks;
 
-  const Block* block(uint32_t binding) const;
+  const Block* block(DescriptorSlot slot) const;
 };
 
 struct VariantProgram {

@@ -83,6 +83,11 @@ GraphicsPipelineBuilder& GraphicsPipelineBuilder::descriptorSetLayout(VkDescript
   return *this;
 }
 
+GraphicsPipelineBuilder& GraphicsPipelineBuilder::descriptorSetLayouts(std::span<const VkDescriptorSetLayout> layouts) {
+  setLayouts_.insert(setLayouts_.end(), layouts.begin(), layouts.end());
+  return *this;
+}
+
 Expected<Pipeline> GraphicsPipelineBuilder::build(const Context& ctx) const {
   if (vertex_.module == VK_NULL_HANDLE || fragment_.module == VK_NULL_HANDLE) {
     return VkError{VK_ERROR_INITIALIZATION_FAILED, "GraphicsPipelineBuilder::build",

@@ -40,7 +40,9 @@ class GraphicsPipelineBuilder {
   GraphicsPipelineBuilder& colorFormat(VkFormat format);
   GraphicsPipelineBuilder& depthFormat(VkFormat format, bool write = true, VkCompareOp compare = VK_COMPARE_OP_LESS);
   GraphicsPipelineBuilder& pushConstants(VkShaderStageFlags stages, uint32_t offset, uint32_t size);
+  // Set layouts in set order: each call appends the next set number.
   GraphicsPipelineBuilder& descriptorSetLayout(VkDescriptorSetLayout layout);
+  GraphicsPipelineBuilder& descriptorSetLayouts(std::span<const VkDescriptorSetLayout> layouts);
 
   // Viewport and scissor are dynamic state: set them per draw (beginRendering
   // does it for the full render area).
