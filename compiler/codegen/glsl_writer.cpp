@@ -124,7 +124,7 @@ std::string GlslWriter::expr(const ast::Expr& e, Precedence minPrecedence) {
 
 void GlslWriter::mapLine(GlslOutput& out, const SourceRange& range) {
   if (!range.valid()) return;
-  out.mapTo(sources_.file(range.file).path, sources_.begin(range).line);
+  out.mapTo(sources_.file(range.file).logicalName, sources_.begin(range).line);
 }
 
 // `[const] T a = x, b[2]`: one declaration, as GLSL wants it in a `for`

@@ -33,20 +33,9 @@ struct KernelValue {
   std::vector<std::pair<std::string, std::string>> attributes;
 };
 
-// Binding numbers are unique across all kernels of a variant (all in set 0),
-// so an engine can put the stages of one pipeline in one descriptor set.
-class BindingAllocator {
- public:
-  uint32_t next() { return next_++; }
-
- private:
-  uint32_t next_ = 0;
-};
-
 class KernelBuilder {
  public:
-  KernelBuilder(std::string world, ShaderStage stage, BindingAllocator& bindings)
-      : world_(std::move(world)), stage_(stage), bindings_(bindings) {}
+  KernelBuilder(std::string world, ShaderStage stage) : world_(std::move(world)), stage_(stage) {}
 
   const std::string& world() const { return world_; }
   ShaderStage stage() const { return stage_; }
@@ -55,8 +44,12 @@ class KernelBuilder {
   std::string declaration(const sem::Type* type, const std::string& name) const {
     return declareVariable(type, name, structNames_);
   }
-  uint32_t allocateBinding() { return bindings_.next(); }
-  static constexpr uint32_t kDescriptorSet = 0;
+  // Bindings are numbered from 0 in each kernel, and each stage of a GPU
+  // pipeline has its own descriptor set (vertex and compute 0, fragment 1),
+  // so a kernel's resources depend on nothing outside its world and the
+  // stages of one pipeline never collide.
+  uint32_t allocateBinding() { return nextBinding_++; }
+  uint32_t descriptorSet() const { return stage_ == ShaderStage::Fragment ? 1 : 0; }
 
   // Interface declarations (in/out variables, blocks, samplers, buffers).
   void declare(std::string text) { declarations_.push_back(std::move(text)); }
@@ -86,7 +79,7 @@ class KernelBuilder {
  private:
   std::string world_;
   ShaderStage stage_;
-  BindingAllocator& bindings_;
+  uint32_t nextBinding_ = 0;
   NameTable names_;
   std::map<std::string, std::string, std::less<>> structNames_;
   std::vector<std::string> declarations_;

@@ -6,37 +6,14 @@
 #include <cctype>
 #include <functional>
 #include <map>
+#include <queue>
 #include <set>
 
 #include "codegen/glsl_writer.h"
+#include "codegen/interface_allocation.h"
 
 namespace spire::codegen {
 namespace {
-
-struct Located {
-  sem::ComponentId component;
-  uint32_t location;
-};
-
-// What world `w` exports: values other worlds import from it, and the
-// pipeline's exports computed there, ordered by component and given
-// consecutive locations. Producer and consumers both derive locations from
-// this list, so `out` and `in` variables always match.
-std::vector<Located> worldOutputs(const graph::Variant& variant, sem::WorldId w) {
-  const graph::ShaderGraph& g = variant.graph();
-  std::set<sem::ComponentId> ids;
-  for (const graph::Transfer& t : variant.world(w).outputs) ids.insert(t.component);
-  for (const graph::Sink& sink : g.sinks()) {
-    if (sink.world == w && g.node(sink.component).component->isExport) ids.insert(sink.component);
-  }
-  std::vector<Located> result;
-  uint32_t location = 0;
-  for (sem::ComponentId id : ids) {
-    result.push_back({id, location});
-    location += locationSlots(g.node(id).component->type);
-  }
-  return result;
-}
 
 std::optional<ShaderStage> stageFromAttribute(const ast::WorldDecl& decl) {
   for (const ast::Attribute& a : decl.attributes) {
@@ -63,7 +40,7 @@ class KernelGenerator {
   KernelGenerator(const sem::Model& model, const SourceManager& sources, const graph::Variant& variant,
                   const StrategyRegistry& strategies, DiagnosticList& diags)
       : model_(model), sources_(sources), variant_(variant), graph_(variant.graph()),
-        pipeline_(graph_.pipeline()), strategies_(strategies), diags_(diags) {}
+        pipeline_(graph_.pipeline()), strategies_(strategies), diags_(diags), interfaces_(variant) {}
 
   std::optional<Kernel> generate(sem::WorldId world);
 
@@ -74,6 +51,8 @@ class KernelGenerator {
                               graph_.shader().name, message));
   }
   KernelValue value(sem::ComponentId id, const std::map<sem::ComponentId, std::string>& names) const;
+  std::vector<sem::ComponentId> byName(const std::set<sem::ComponentId>& ids) const;
+  std::vector<sem::ComponentId> canonicalOrder(const std::vector<sem::ComponentId>& computed) const;
   std::vector<const sem::Function*> calledFunctions(const std::vector<sem::ComponentId>& computed) const;
   std::string structDeclarations(const std::string& code, const std::map<std::string, std::string, std::less<>>& names) const;
 
@@ -84,7 +63,7 @@ class KernelGenerator {
   const sem::Pipeline& pipeline_;
   const StrategyRegistry& strategies_;
   DiagnosticList& diags_;
-  BindingAllocator bindings_;
+  InterfaceAllocation interfaces_;
   std::string currentWorld_;
 };
 
@@ -94,6 +73,48 @@ KernelValue KernelGenerator::value(sem::ComponentId id, const std::map<sem::Comp
   for (const ast::Attribute* a : c.attributes) v.attributes.emplace_back(a->name, a->value.value_or(""));
   for (const auto& attribute : variant_.attributes(id)) v.attributes.push_back(attribute);
   return v;
+}
+
+std::vector<sem::ComponentId> KernelGenerator::byName(const std::set<sem::ComponentId>& ids) const {
+  std::vector<sem::ComponentId> sorted(ids.begin(), ids.end());
+  std::sort(sorted.begin(), sorted.end(), [&](sem::ComponentId a, sem::ComponentId b) {
+    return graph_.node(a).component->name < graph_.node(b).component->name;
+  });
+  return sorted;
+}
+
+// Producers first, ties by name: an order that depends only on what this
+// kernel computes, not on component ids, which differ between shaders that
+// share a locked world.
+std::vector<sem::ComponentId> KernelGenerator::canonicalOrder(const std::vector<sem::ComponentId>& computed) const {
+  const std::set<sem::ComponentId> pending(computed.begin(), computed.end());
+  std::map<sem::ComponentId, uint32_t> waiting;
+  std::map<sem::ComponentId, std::vector<sem::ComponentId>> consumers;
+  for (sem::ComponentId id : computed) {
+    waiting[id] = 0;
+    for (sem::ComponentId dep : graph_.node(id).alternatives[*variant_.choice(id)].definition->dependencies) {
+      if (!pending.count(dep)) continue;
+      ++waiting[id];
+      consumers[dep].push_back(id);
+    }
+  }
+  auto later = [&](sem::ComponentId a, sem::ComponentId b) {
+    return graph_.node(a).component->name > graph_.node(b).component->name;
+  };
+  std::priority_queue<sem::ComponentId, std::vector<sem::ComponentId>, decltype(later)> ready(later);
+  for (const auto& [id, count] : waiting) {
+    if (count == 0) ready.push(id);
+  }
+  std::vector<sem::ComponentId> order;
+  while (!ready.empty()) {
+    const sem::ComponentId id = ready.top();
+    ready.pop();
+    order.push_back(id);
+    for (sem::ComponentId consumer : consumers[id]) {
+      if (--waiting[consumer] == 0) ready.push(consumer);
+    }
+  }
+  return order;
 }
 
 std::vector<const sem::Function*> KernelGenerator::calledFunctions(const std::vector<sem::ComponentId>& computed) const {
@@ -147,7 +168,7 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
   const sem::World& world = pipeline_.worlds[w];
   currentWorld_ = world.name;
   const graph::WorldPlan& plan = variant_.world(w);
-  const std::vector<Located> outputs = worldOutputs(variant_, w);
+  const std::vector<Located>& outputs = interfaces_.outputs(w);
   if (plan.computed.empty() && outputs.empty()) return std::nullopt;
 
   const Strategy* exportStrategy = world.exportStrategy ? strategies_.find(world.exportStrategy->ref->name) : nullptr;
@@ -157,17 +178,18 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
     fail("its export strategy implies no pipeline stage; add [Stage: \"vertex\"], \"fragment\" or \"compute\"");
     return std::nullopt;
   }
-  KernelBuilder kernel(world.name, *stage, bindings_);
+  KernelBuilder kernel(world.name, *stage);
 
   // Names first, in a fixed order, so renaming is deterministic: structs,
   // then every component this kernel touches, then functions.
   for (const sem::Type* s : model_.structOrder) kernel.structNames()[s->structName] = kernel.names().claim(s->structName);
-  std::set<sem::ComponentId> touched(plan.computed.begin(), plan.computed.end());
+  const std::vector<sem::ComponentId> computed = canonicalOrder(plan.computed);
+  std::set<sem::ComponentId> touched(computed.begin(), computed.end());
   for (const graph::Transfer& t : plan.inputs) touched.insert(t.component);
   for (const Located& o : outputs) touched.insert(o.component);
   std::map<sem::ComponentId, std::string> names;
-  for (sem::ComponentId id : touched) names[id] = kernel.names().claim(graph_.node(id).component->name);
-  const std::vector<const sem::Function*> functions = calledFunctions(plan.computed);
+  for (sem::ComponentId id : byName(touched)) names[id] = kernel.names().claim(graph_.node(id).component->name);
+  const std::vector<const sem::Function*> functions = calledFunctions(computed);
   GlslNameMaps maps;
   for (const sem::Function* f : functions) maps.functions[f] = kernel.names().claim(f->name);
   maps.structs = &kernel.structNames();
@@ -190,17 +212,17 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
       fail(fmt::format("no code generator is registered for strategy '{}'", import.strategy.ref->name));
       return std::nullopt;
     }
-    std::sort(ids.begin(), ids.end());
-    const std::vector<Located> producerOutputs = worldOutputs(variant_, import.from);
-    ImportSite site{kernel, pipeline_, import, {}, {}, [&](sem::ComponentId id) {
-                      for (const Located& l : producerOutputs) {
-                        if (l.component == id) return l.location;
-                      }
-                      return 0u;
-                    },
-                    {}};
+    std::sort(ids.begin(), ids.end(), [&](sem::ComponentId a, sem::ComponentId b) {
+      return graph_.node(a).component->name < graph_.node(b).component->name;
+    });
+    const std::vector<Located>& producerOutputs = interfaces_.outputs(import.from);
+    ImportSite site{kernel, pipeline_, import, {}, {},
+                    [&, index = importIndex](sem::ComponentId id) { return interfaces_.inputLocation(index, id); }, {}};
     for (sem::ComponentId id : ids) site.values.push_back(value(id, names));
-    if (pipeline_.worlds[import.from].isAbstract) {
+    // A locked world sees only what it reads of a producer's record, so its
+    // kernel does not depend on what the producer writes for other worlds.
+    const auto& locked = graph_.shader().finalizedWorlds;
+    if (pipeline_.worlds[import.from].isAbstract || std::find(locked.begin(), locked.end(), w) != locked.end()) {
       site.producerOutputs = site.values;
     } else {
       for (const Located& l : producerOutputs) {
@@ -218,7 +240,7 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
   // The world's computations, producers first. A block body becomes a
   // function, so its locals and returns stay as written.
   std::map<sem::ComponentId, std::string> helpers;
-  for (sem::ComponentId id : plan.computed) {
+  for (sem::ComponentId id : computed) {
     kernel.declareGlobal(graph_.node(id).component->type, names.at(id));
     if (!graph_.node(id).alternatives[*variant_.choice(id)].definition->decl->init) {
       helpers[id] = kernel.names().generate(names.at(id));
@@ -258,9 +280,11 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
       writer.function(out, *f, maps.functions.at(f));
       out.line("");
     }
-    for (const auto& [id, helper] : helpers) {
+    for (sem::ComponentId id : computed) {
+      if (!helpers.count(id)) continue;
+      const std::string& helper = helpers.at(id);
       const ast::ComponentDecl& decl = *graph_.node(id).alternatives[*variant_.choice(id)].definition->decl;
-      out.mapTo(sources_.file(decl.range.file).path, sources_.begin(decl.range).line);
+      out.mapTo(sources_.file(decl.range.file).logicalName, sources_.begin(decl.range).line);
       out.line(fmt::format("{} {}() {{", writer.typeName(graph_.node(id).component->type), helper));
       writer.block(out, *decl.body, 1);
       out.line("}");
@@ -270,10 +294,10 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
     out.line("void main() {");
     for (const std::string& statement : kernel.entry()) out.line("    " + statement);
     for (const std::string& statement : kernel.fetches()) out.line("    " + statement);
-    for (sem::ComponentId id : plan.computed) {
+    for (sem::ComponentId id : computed) {
       const ast::ComponentDecl& decl = *graph_.node(id).alternatives[*variant_.choice(id)].definition->decl;
       const SourceRange where = decl.init ? decl.init->range : decl.range;
-      out.mapTo(sources_.file(where.file).path, sources_.begin(where).line);
+      out.mapTo(sources_.file(where.file).logicalName, sources_.begin(where).line);
       out.line(fmt::format("    {} = {};", names.at(id), decl.init ? writer.expr(*decl.init) : helpers.at(id) + "()"));
     }
     out.mapToKernel();
@@ -289,7 +313,9 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
   GlslOutput out(world.name + ".glsl");
   out.line("#version 450");
   out.line("#extension GL_GOOGLE_cpp_style_line_directive : require");
-  out.line(fmt::format("// Generated by spirec: shader '{}', world '{}' ({} stage). Do not edit.", graph_.shader().name,
+  // The header names no shader: shaders that share a locked world share
+  // this text byte for byte.
+  out.line(fmt::format("// Generated by spirec: pipeline '{}', world '{}' ({} stage). Do not edit.", pipeline_.name,
                        world.name, stageName(*stage)));
   out.line("");
   if (*stage == ShaderStage::Compute) {
@@ -315,10 +341,19 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
   r["inputs"] = kernel.inputs();
   r["outputs"] = kernel.outputs();
   r["blocks"] = kernel.blocks();
+  r["key"] = kernelKey(result.glsl, r);
   return result;
 }
 
 }  // namespace
+
+std::string kernelKey(std::string_view glsl, const nlohmann::ordered_json& reflection) {
+  // The interface is part of the key: two kernels with one text could still
+  // be fed from different worlds, and then one binding would not serve both.
+  nlohmann::ordered_json interface;
+  for (const char* field : {"world", "stage", "inputs", "outputs", "blocks"}) interface[field] = reflection.at(field);
+  return contentHash(std::string(glsl) + '\n' + interface.dump());
+}
 
 std::string contentHash(std::string_view text) {
   uint64_t hash = 14695981039346656037ull;

@@ -43,4 +43,10 @@ std::optional<GeneratedShader> generateKernels(const sem::Model& model, const So
 // Stable 64-bit FNV-1a hash of a kernel's text, as 16 hex digits.
 std::string contentHash(std::string_view text);
 
+// A kernel's content key (reflection "key"): the hash of its text and its
+// interface (world, stage, inputs, outputs, blocks). Kernels with equal keys
+// are interchangeable, so an engine can draw them in one batch: shaders
+// derived from a base that finalizes a world get equal keys for it.
+std::string kernelKey(std::string_view glsl, const nlohmann::ordered_json& reflection);
+
 }  // namespace spire::codegen

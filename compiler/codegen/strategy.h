@@ -31,7 +31,9 @@ struct ImportSite {
   std::function<uint32_t(sem::ComponentId)> producerLocation;
   // Everything the producer world exports, in its order: what a producer
   // writes as one record (bufferExport) and a consumer must read back with
-  // the same layout. For an abstract producer (the engine) it is `values`.
+  // the same layout. For an abstract producer (the engine), and for a
+  // consumer world the shader's bases finalize, it is `values`: the engine
+  // then lays the records out for this consumer.
   std::vector<KernelValue> producerOutputs;
 };
 

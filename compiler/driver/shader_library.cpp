@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "sema/group_members.h"
+
 namespace spire {
 
 ShaderLibrary::ShaderLibrary(FrontEndOptions options) : frontEnd_(std::move(options)) {}
@@ -11,18 +13,25 @@ bool ShaderLibrary::compile() {
   DiagnosticList& diags = frontEnd_.diagnostics();
   if (diags.hasErrors()) return false;
   for (const sem::Shader* shader : graph::concreteShaders(*model_)) {
-    auto g = graph::ShaderGraph::build(*shader, diags);
-    if (!g) continue;
-    auto space = std::make_unique<graph::ChoiceSpace>(*g);
-    if (!space->consistent()) {
-      diags.report(DiagCode::E4017, shader->decl->nameRange,
-                   fmt::format("shader '{}' has no valid variant: the pipeline's requirements cannot all be met",
-                               shader->name));
-      continue;
-    }
-    entries_.push_back({shader, std::move(g), std::move(space)});
+    // An optional group member's instance that fails here is left out with
+    // a warning (W4101) rather than failing the library.
+    sem::runMemberStage(*shader, diags, [&](DiagnosticList& stageDiags) { return addEntry(*shader, stageDiags); });
   }
   return !diags.hasErrors();
+}
+
+bool ShaderLibrary::addEntry(const sem::Shader& shader, DiagnosticList& diags) {
+  auto g = graph::ShaderGraph::build(shader, diags);
+  if (!g) return false;
+  auto space = std::make_unique<graph::ChoiceSpace>(*g);
+  if (!space->consistent()) {
+    diags.report(DiagCode::E4017, shader.decl->nameRange,
+                 fmt::format("shader '{}' has no valid variant: the pipeline's requirements cannot all be met",
+                             shader.name));
+    return false;
+  }
+  entries_.push_back({&shader, std::move(g), std::move(space)});
+  return true;
 }
 
 std::vector<std::string> ShaderLibrary::shaderNames() const {

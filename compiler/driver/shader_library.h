@@ -60,6 +60,8 @@ class ShaderLibrary {
     std::unique_ptr<graph::ChoiceSpace> space;
   };
   const Entry* find(std::string_view shader) const;
+  // Builds the shader's graph and choice space; false after errors.
+  bool addEntry(const sem::Shader& shader, DiagnosticList& diags);
 
   FrontEnd frontEnd_;
   const sem::Model* model_ = nullptr;

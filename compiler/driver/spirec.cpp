@@ -10,6 +10,7 @@
 #include "codegen/kernel_generator.h"
 #include "codegen/spirv_compiler.h"
 #include "graph/decision_file.h"
+#include "sema/group_members.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
 
@@ -71,6 +72,32 @@ void generateKernelFiles(ShaderLibrary& library, const graph::Variant& variant, 
                      std::string(reinterpret_cast<const char*>(spirv.words.data()), spirv.words.size() * sizeof(uint32_t))});
   }
   files.push_back({dir / "reflection.json", generated->reflection(variant).dump(2) + "\n"});
+}
+
+// Applies the decisions to one shader and adds its placement dump (with
+// --dump-placement) and kernel files (with -o) to `output` and `files`. An
+// optional group member's instance that fails here is left out with W4101
+// and adds nothing. False when the shader has no variant or kernels.
+bool buildVariantOutputs(ShaderLibrary& library, const graph::ChoiceSpace& space, const graph::DecisionFile& decisions,
+                         const Options& options, DiagnosticList& diags, std::string& output,
+                         std::vector<OutputFile>& files) {
+  std::string placement;
+  std::vector<OutputFile> kernels;
+  const sem::Shader& shader = space.graph().shader();
+  const bool ok = sem::runMemberStage(shader, diags, [&](DiagnosticList& stageDiags) {
+    const auto variant = graph::applyDecisions(decisions, space, stageDiags);
+    if (!variant) return false;
+    if (options.dumpPlacement) placement = fmt::format("// variant of {}\n{}", shader.name, variant->describe());
+    const uint32_t errorsBefore = stageDiags.errorCount();
+    if (!options.outputDir.empty()) {
+      generateKernelFiles(library, *variant, options.outputDir, options.emit, stageDiags, kernels);
+    }
+    return stageDiags.errorCount() == errorsBefore;
+  });
+  if (!ok) return false;
+  output += placement;
+  files.insert(files.end(), std::make_move_iterator(kernels.begin()), std::make_move_iterator(kernels.end()));
+  return true;
 }
 
 // Writes each file atomically, creating folders as needed.
@@ -157,9 +184,6 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
   std::string choicesText;
   std::string output;
   std::vector<OutputFile> kernelFiles;
-  if (!diags.hasErrors() && options.choices) {
-    for (const graph::ChoiceSpace* space : spaces) choicesText += graph::writeChoiceFile(*space);
-  }
   const bool generate = !options.outputDir.empty();
   if (!diags.hasErrors() && (!options.decisionsPath.empty() || options.dumpPlacement || generate)) {
     graph::DecisionFile decisions;
@@ -170,16 +194,13 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
       }
     }
     if (!diags.hasErrors()) {
-      for (const graph::ChoiceSpace* space : spaces) {
-        const auto variant = graph::applyDecisions(decisions, *space, diags);
-        if (variant && options.dumpPlacement) {
-          output += fmt::format("// variant of {}\n{}", space->graph().shader().name, variant->describe());
-        }
-        if (variant && generate) {
-          generateKernelFiles(library, *variant, options.outputDir, options.emit, diags, kernelFiles);
-        }
-      }
+      std::erase_if(spaces, [&](const graph::ChoiceSpace* space) {
+        return !buildVariantOutputs(library, *space, decisions, options, diags, output, kernelFiles);
+      });
     }
+  }
+  if (!diags.hasErrors() && options.choices) {
+    choicesText = graph::writeChoiceFile(spaces);
   }
 
   if (!diags.hasErrors()) writeFiles(kernelFiles, diags);

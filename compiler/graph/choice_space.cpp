@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <map>
 
 namespace spire::graph {
 namespace {
@@ -29,7 +30,7 @@ WorldMask ChoiceSpace::worldsOf(sem::ComponentId c) const {
   WorldMask mask = 0;
   const auto& alts = graph_->node(c).alternatives;
   for (AltId a = 0; a < alts.size(); ++a) {
-    if (alive_[c][a]) mask |= graph_->reachable(alts[a].world);
+    if (alive_[c][a]) mask |= graph_->readableFrom(c, alts[a].world);
   }
   return mask;
 }
@@ -103,7 +104,7 @@ bool ChoiceSpace::backwardPass() {
     for (const WorldMask required : requirements[c]) {
       bool killed = false;
       for (AltId a = 0; a < alts.size(); ++a) {
-        if (alive_[c][a] && !(graph_->reachable(alts[a].world) & required)) kill(c, a, killed);
+        if (alive_[c][a] && !(graph_->readableFrom(c, alts[a].world) & required)) kill(c, a, killed);
       }
       if (killed) {
         available_[c] = worldsOf(c);
@@ -167,26 +168,87 @@ std::vector<bool> ChoiceSpace::possiblyLive() const {
   return seen;
 }
 
-std::vector<Choice> enumerateChoices(const ChoiceSpace& space) {
+namespace {
+
+// Every possibly-live computed component with its remaining alternatives,
+// in declaration order; choices are those with more than one.
+std::vector<Choice> placements(const ChoiceSpace& space) {
   const ShaderGraph& graph = space.graph();
   const std::vector<bool> live = space.possiblyLive();
-  std::vector<Choice> choices;
+  std::vector<Choice> result;
   for (const ComponentNode& node : graph.nodes()) {
-    if (node.isInput || !live[node.id] || space.aliveCount(node.id) < 2) continue;
+    if (node.isInput || !live[node.id] || space.aliveCount(node.id) == 0) continue;
     Choice choice{node.id, fmt::format("{}.{}", node.choicePrefix, node.component->name), {}, {}};
     for (AltId a : space.aliveAlternatives(node.id)) {
       choice.alternatives.push_back(a);
       choice.names.push_back(graph.altName(node, a));
     }
-    choices.push_back(std::move(choice));
+    result.push_back(std::move(choice));
   }
+  return result;
+}
+
+// One key of the choice file over several shaders: the alternatives each
+// shader that has the component live allows.
+struct SharedKey {
+  std::string key;
+  bool isChoice = false;  // more than one alternative in some shader
+  std::vector<std::pair<std::string, std::vector<std::string>>> shaders;
+};
+
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// The line lists what every shader allows (in the first shader's order), so
+// that a decision with this key is valid for all of them; an alternative only
+// some allow gets a comment line naming them.
+std::string writeSharedKey(const SharedKey& k) {
+  std::vector<std::string> all;  // every alternative, in order of appearance
+  for (const auto& [shader, names] : k.shaders) {
+    for (const std::string& name : names) {
+      if (!contains(all, name)) all.push_back(name);
+    }
+  }
+  std::string comments;
+  std::vector<std::string> common;
+  for (const std::string& name : all) {
+    std::vector<std::string> allowing;
+    for (const auto& [shader, names] : k.shaders) {
+      if (contains(names, name)) allowing.push_back(shader);
+    }
+    if (allowing.size() == k.shaders.size()) common.push_back(name);
+    else comments += fmt::format("// {} is possible only for {}\n", name, fmt::join(allowing, ", "));
+  }
+  if (common.empty()) return comments;
+  return fmt::format("{}{} = {{{}}}\n", comments, k.key, fmt::join(common, ","));
+}
+
+}  // namespace
+
+std::vector<Choice> enumerateChoices(const ChoiceSpace& space) {
+  std::vector<Choice> choices = placements(space);
+  std::erase_if(choices, [](const Choice& c) { return c.alternatives.size() < 2; });
   return choices;
 }
 
-std::string writeChoiceFile(const ChoiceSpace& space) {
+std::string writeChoiceFile(const ChoiceSpace& space) { return writeChoiceFile(std::vector{&space}); }
+
+std::string writeChoiceFile(const std::vector<const ChoiceSpace*>& spaces) {
+  std::vector<SharedKey> keys;
+  std::map<std::string, size_t, std::less<>> index;
+  for (const ChoiceSpace* space : spaces) {
+    for (Choice& p : placements(*space)) {
+      const auto [it, added] = index.try_emplace(p.key, keys.size());
+      if (added) keys.push_back({p.key, false, {}});
+      SharedKey& k = keys[it->second];
+      k.isChoice = k.isChoice || p.names.size() > 1;
+      k.shaders.emplace_back(space->graph().shader().name, std::move(p.names));
+    }
+  }
   std::string out;
-  for (const Choice& choice : enumerateChoices(space)) {
-    out += fmt::format("{} = {{{}}}\n", choice.key, fmt::join(choice.names, ","));
+  for (const SharedKey& k : keys) {
+    if (k.isChoice) out += writeSharedKey(k);
   }
   return out;
 }

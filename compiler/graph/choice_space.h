@@ -66,4 +66,11 @@ std::vector<Choice> enumerateChoices(const ChoiceSpace& space);
 // One line per choice: `Prefix.component = {World[:variation],...}`.
 std::string writeChoiceFile(const ChoiceSpace& space);
 
+// The choice file of several shaders. A key shared by shaders (an inherited
+// component, prefixed by its base) appears once, at its first place, with
+// the alternatives every one of those shaders allows, so that one decision
+// applies to all of them; each alternative only some allow gets a comment
+// line above it naming them (`// PrebakeTex is possible only for A, B`).
+std::string writeChoiceFile(const std::vector<const ChoiceSpace*>& spaces);
+
 }  // namespace spire::graph

@@ -36,7 +36,72 @@ WorldMask lockedWorldsFor(const sem::Shader& shader, const std::string& origin) 
   return locked;
 }
 
+// The worlds locked for `shader` at or below `origin`: those finalized by
+// `origin` or by a shader between it and `shader`, where what `origin`
+// wrote must stay when it can (keepInLockedWorlds).
+WorldMask pinnedWorldsFor(const sem::Shader& shader, const std::string& origin) {
+  WorldMask pinned = 0;
+  for (const sem::Shader* s = &shader; s; s = s->base) {
+    for (const ast::NameRef& ref : s->decl->finalizes) {
+      if (auto w = shader.pipeline->findWorld(ref.name)) pinned |= WorldMask{1} << *w;
+    }
+    if (s->name == origin) return pinned;
+  }
+  return pinned;  // a pipeline component sits above every shader
+}
+
 }  // namespace
+
+std::optional<uint32_t> opaqueImport(const sem::Pipeline& pipeline, sem::WorldId from, sem::WorldId to) {
+  for (uint32_t k = 0; k < pipeline.imports.size(); ++k) {
+    const sem::Import& i = pipeline.imports[k];
+    if (i.from == from && i.to == to && i.strategy.signature && i.strategy.signature->carriesOpaque) return k;
+  }
+  return std::nullopt;
+}
+
+WorldMask ShaderGraph::readableFrom(sem::ComponentId component, sem::WorldId world) const {
+  if (!nodes_[component].component->type->containsOpaque()) return reachable_[world];
+  WorldMask mask = WorldMask{1} << world;
+  for (sem::WorldId to = 0; to < pipeline().worlds.size(); ++to) {
+    if (opaqueImport(pipeline(), world, to)) mask |= WorldMask{1} << to;
+  }
+  return mask;
+}
+
+void ShaderGraph::keepInLockedWorlds(ComponentNode& node) const {
+  WorldMask pinned = 0;
+  for (const sem::Definition& d : node.component->definitions) pinned |= pinnedWorldsFor(*shader_, d.origin);
+  auto outside = [&](const Alternative& a) { return !((pinned >> a.world) & 1); };
+  if (std::all_of(node.alternatives.begin(), node.alternatives.end(), outside)) return;
+  node.alternatives.erase(std::remove_if(node.alternatives.begin(), node.alternatives.end(), outside),
+                          node.alternatives.end());
+}
+
+WorldMask ShaderGraph::availableAvoiding(sem::ComponentId component, WorldMask locked) const {
+  WorldMask mask = 0;
+  for (const Alternative& alt : nodes_[component].alternatives) {
+    if ((locked >> alt.world) & 1) continue;
+    const WorldMask readable = readableFrom(component, alt.world);
+    for (sem::WorldId to = 0; to < pipeline().worlds.size(); ++to) {
+      if (!((readable >> to) & 1)) continue;
+      const std::vector<uint32_t> chain = route(component, alt.world, to);
+      const bool crosses = std::any_of(chain.begin(), chain.end(), [&](uint32_t k) {
+        const sem::WorldId via = pipeline().imports[k].to;
+        return via != to && ((locked >> via) & 1);
+      });
+      if (!crosses) mask |= WorldMask{1} << to;
+    }
+  }
+  return mask;
+}
+
+std::vector<uint32_t> ShaderGraph::route(sem::ComponentId component, sem::WorldId from, sem::WorldId to) const {
+  if (nodes_[component].component->type->containsOpaque()) {
+    if (const auto direct = opaqueImport(pipeline(), from, to)) return {*direct};
+  }
+  return pipeline().route(from, to);
+}
 
 std::vector<const sem::Shader*> concreteShaders(const sem::Model& model) {
   std::set<const sem::Shader*> abstractOnes;
@@ -162,14 +227,23 @@ bool ShaderGraph::expand(DiagnosticList& diags) {
     }
 
     for (const sem::Definition& d : component.definitions) {
+      // What this definition may read: a definition written below a shader
+      // that finalizes worlds reads nothing from or through them (section
+      // 6.2), or the locked kernels would depend on the derived shader.
+      const WorldMask locked = lockedWorldsFor(shader, d.origin);
+      auto readable = [&](sem::ComponentId dep) { return locked ? availableAvoiding(dep, locked) : available[dep]; };
       if (d.world) {
         for (size_t i = 0; i < d.dependencies.size(); ++i) {
           const sem::ComponentId dep = d.dependencies[i];
-          if ((available[dep] >> *d.world) & 1) continue;
+          if ((readable(dep) >> *d.world) & 1) continue;
+          const bool throughLocked = (available[dep] >> *d.world) & 1;
           diags.reportOnce(DiagCode::E4015, d.dependencyUses[i],
-                           fmt::format("'{}' is not available in world '{}', where '{}' is defined (it is available in {})",
+                           fmt::format("'{}' is not available in world '{}', where '{}' is defined ({})",
                                        shader.components[dep].name, pipeline.worlds[*d.world].name, component.name,
-                                       worldList(pipeline, available[dep])));
+                                       throughLocked ? fmt::format("it would come from or through a finalized world, "
+                                                                   "and a derived shader reads nothing there")
+                                                     : fmt::format("it is available in {}",
+                                                                   worldList(pipeline, available[dep]))));
           ok = false;
           failed[id] = true;
         }
@@ -184,15 +258,15 @@ bool ShaderGraph::expand(DiagnosticList& diags) {
         if (other.world && other.variation == d.variation) candidates &= ~(WorldMask{1} << *other.world);
       }
       WorldMask allowed = candidates;
-      for (sem::ComponentId dep : d.dependencies) allowed &= available[dep];
+      for (sem::ComponentId dep : d.dependencies) allowed &= readable(dep);
       if (allowed == 0 && component.definitions.size() == 1) {
         // Name the dependency that empties the set of possible worlds.
         WorldMask running = candidates;
         std::string explanation = "no world can compute it";
         std::vector<std::string> seen;
         for (sem::ComponentId dep : d.dependencies) {
-          const WorldMask next = running & available[dep];
-          seen.push_back(fmt::format("'{}' ({})", shader.components[dep].name, worldList(pipeline, available[dep])));
+          const WorldMask next = running & readable(dep);
+          seen.push_back(fmt::format("'{}' ({})", shader.components[dep].name, worldList(pipeline, readable(dep))));
           if (next == 0) {
             explanation = seen.size() == 1
                               ? fmt::format("it uses {}, which is available in no world where it could be computed",
@@ -212,11 +286,12 @@ bool ShaderGraph::expand(DiagnosticList& diags) {
         if ((allowed >> w) & 1) node.alternatives.push_back({w, variationIndex(d.variation), &d});
       }
     }
+    keepInLockedWorlds(node);
     std::stable_sort(node.alternatives.begin(), node.alternatives.end(), [&](const Alternative& a, const Alternative& b) {
       if (a.variation != b.variation) return a.variation < b.variation;
       return worldRank_[a.world] < worldRank_[b.world];
     });
-    for (const Alternative& alt : node.alternatives) available[id] |= reachable_[alt.world];
+    for (const Alternative& alt : node.alternatives) available[id] |= readableFrom(id, alt.world);
   }
 
   // Pipeline requirements: exports in their world, strategy arguments in the

@@ -66,6 +66,17 @@ class ShaderGraph {
   // Worlds reachable from `world` through zero or more imports.
   WorldMask reachable(sem::WorldId world) const { return reachable_[world]; }
   bool reaches(sem::WorldId from, sem::WorldId to) const { return (reachable_[from] >> to) & 1; }
+  // Worlds where `component`, computed or supplied in `world`, can be read:
+  // those `world` reaches, except that an opaque value (a sampler) only
+  // reaches the worlds that import it directly with a strategy that carries
+  // opaque values (no export strategy can write one).
+  WorldMask readableFrom(sem::ComponentId component, sem::WorldId world) const;
+  // The imports that carry `component` from `from` to `to`: the pipeline's
+  // route, or for an opaque value the direct import readableFrom() admits.
+  std::vector<uint32_t> route(sem::ComponentId component, sem::WorldId from, sem::WorldId to) const;
+  // Worlds where `component` can be read without its value coming from or
+  // through a world in `locked`.
+  WorldMask availableAvoiding(sem::ComponentId component, WorldMask locked) const;
 
   // "World" or "World:variation", as choice and decision files spell it.
   std::string altName(const ComponentNode& node, AltId alt) const;
@@ -75,6 +86,11 @@ class ShaderGraph {
  private:
   ShaderGraph() = default;
   bool expand(DiagnosticList& diags);
+  // A component written by a shader that finalizes worlds, or above it, and
+  // computable in one of them, is computed only in locked worlds, in every
+  // shader derived from it: so no derived shader can pull it out of a
+  // locked world (to read it earlier) and change the locked kernel.
+  void keepInLockedWorlds(ComponentNode& node) const;
 
   const sem::Shader* shader_ = nullptr;
   std::vector<ComponentNode> nodes_;
@@ -84,6 +100,9 @@ class ShaderGraph {
   std::vector<uint32_t> worldRank_;
   std::vector<WorldMask> reachable_;
 };
+
+// The import from `from` to `to` that carries opaque values, if any.
+std::optional<uint32_t> opaqueImport(const sem::Pipeline& pipeline, sem::WorldId from, sem::WorldId to);
 
 // Shaders for which variants are built: instances and shaders that no other
 // shader derives from and no group lists.

@@ -3,8 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <deque>
 #include <set>
+
+#include "sema/route_selection.h"
 
 namespace spire::graph {
 
@@ -19,11 +20,9 @@ class VariantBuilder {
  private:
   void route(Variant& v, sem::ComponentId component, sem::WorldId from, sem::WorldId to,
              std::set<std::pair<sem::ComponentId, uint32_t>>& seen);
-  const std::vector<uint32_t>& path(sem::WorldId from, sem::WorldId to);
   bool routeStrategyArguments(Variant& v, std::set<std::pair<sem::ComponentId, uint32_t>>& seen);
 
   const ShaderGraph& graph_;
-  std::map<std::pair<sem::WorldId, sem::WorldId>, std::vector<uint32_t>> paths_;
 };
 
 std::optional<Variant> VariantBuilder::place(const ChoiceSpace& domains) {
@@ -46,7 +45,7 @@ std::optional<Variant> VariantBuilder::place(const ChoiceSpace& domains) {
     return alts;
   };
   auto fits = [&](sem::ComponentId c, AltId a) {
-    const WorldMask reach = graph_.reachable(graph_.node(c).alternatives[a].world);
+    const WorldMask reach = graph_.readableFrom(c, graph_.node(c).alternatives[a].world);
     return (reach & mustReach[c]) == mustReach[c];
   };
 
@@ -133,35 +132,6 @@ std::optional<Variant> VariantBuilder::place(const ChoiceSpace& domains) {
   return v;
 }
 
-const std::vector<uint32_t>& VariantBuilder::path(sem::WorldId from, sem::WorldId to) {
-  auto [it, inserted] = paths_.try_emplace({from, to});
-  if (!inserted) return it->second;
-  // Breadth-first over imports in declaration order: the shortest route,
-  // and the same route every time.
-  const auto& imports = graph_.pipeline().imports;
-  std::vector<int> via(graph_.pipeline().worlds.size(), -1);
-  std::deque<sem::WorldId> queue{from};
-  std::vector<bool> visited(via.size(), false);
-  visited[from] = true;
-  while (!queue.empty()) {
-    const sem::WorldId w = queue.front();
-    queue.pop_front();
-    if (w == to) break;
-    for (uint32_t k = 0; k < imports.size(); ++k) {
-      if (imports[k].from != w || visited[imports[k].to]) continue;
-      visited[imports[k].to] = true;
-      via[imports[k].to] = static_cast<int>(k);
-      queue.push_back(imports[k].to);
-    }
-  }
-  std::vector<uint32_t>& result = it->second;
-  for (sem::WorldId w = to; w != from && via[w] >= 0; w = imports[static_cast<size_t>(via[w])].from) {
-    result.push_back(static_cast<uint32_t>(via[w]));
-  }
-  std::reverse(result.begin(), result.end());
-  return result;
-}
-
 // An import whose strategy takes arguments (`textureImport(vert_uv)`)
 // evaluates them in the consuming world, so every import the variant uses
 // brings its arguments there too; routing them may use further imports.
@@ -198,7 +168,7 @@ bool VariantBuilder::routeStrategyArguments(Variant& v, std::set<std::pair<sem::
 void VariantBuilder::route(Variant& v, sem::ComponentId component, sem::WorldId from, sem::WorldId to,
                            std::set<std::pair<sem::ComponentId, uint32_t>>& seen) {
   if (from == to) return;
-  for (uint32_t importIndex : path(from, to)) {
+  for (uint32_t importIndex : graph_.route(component, from, to)) {
     if (!seen.insert({component, importIndex}).second) continue;
     const sem::Import& import = graph_.pipeline().imports[importIndex];
     v.worlds_[import.from].outputs.push_back({component, importIndex});
@@ -248,7 +218,38 @@ std::string Variant::describe() const {
     if (!plan.inputs.empty()) out += fmt::format("//   imports:  {}\n", transfers(plan.inputs, true));
     if (!plan.outputs.empty()) out += fmt::format("//   exports:  {}\n", transfers(plan.outputs, false));
   }
-  return out;
+  return out + describeRoutes();
+}
+
+std::string Variant::describeRoutes() const {
+  const sem::Pipeline& pipeline = graph_->pipeline();
+  std::string out;
+  for (sem::ComponentId c : live_) {
+    // The worlds the value reaches and does not pass on: each one's route
+    // shows every world the value crosses on the way.
+    std::set<sem::WorldId> reached, forwarding;
+    for (const WorldPlan& plan : worlds_) {
+      for (const Transfer& t : plan.inputs) {
+        if (t.component != c) continue;
+        reached.insert(pipeline.imports[t.importIndex].to);
+        forwarding.insert(pipeline.imports[t.importIndex].from);
+      }
+    }
+    std::string routes;
+    for (sem::WorldId w : reached) {
+      if (forwarding.count(w)) continue;
+      std::string chain = pipeline.worlds[worldOf(c)].name, steps;
+      for (uint32_t k : graph_->route(c, worldOf(c), w)) {
+        const sem::Import& import = pipeline.imports[k];
+        chain += " -> " + pipeline.worlds[import.to].name;
+        steps += fmt::format("{}{} {}", steps.empty() ? "" : ", ", import.strategy.ref->name,
+                             sem::transferName(sem::transferOf(pipeline, import)));
+      }
+      routes += fmt::format("{}{} ({})", routes.empty() ? "" : "; ", chain, steps);
+    }
+    if (!routes.empty()) out += fmt::format("//   {}: {}\n", graph_->node(c).component->name, routes);
+  }
+  return out.empty() ? out : "// routes\n" + out;
 }
 
 VariantResult buildVariant(const ChoiceSpace& space, const std::vector<DecisionRequest>& requests) {

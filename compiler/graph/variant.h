@@ -65,6 +65,9 @@ class Variant {
   std::string placementText() const;
   // placementText() plus, per world, what it computes, imports and exports.
   std::string describe() const;
+  // The route of every value that crosses worlds: "// name: A -> B -> C
+  // (strategy transfer, ...)", one line per value.
+  std::string describeRoutes() const;
 
  private:
   friend class VariantBuilder;

@@ -69,6 +69,9 @@ class Analyzer {
   }
   void checkComponentBodies(ComponentSet& set, const std::string& origin);
   void checkComponentCycles(Shader& shader);
+  // locked_worlds.cpp: false (after E4020) when `decl`, written in a shader
+  // derived from `base`, would change a world `base` locks.
+  bool checkLockedDefinition(const Shader& base, const Pipeline& pipeline, const ast::ComponentDecl& decl);
   const Group* analyzeGroup(const ast::GroupDecl& decl);
   void buildGroupInstances(const ast::ShaderDecl& decl, const Group& base);
 

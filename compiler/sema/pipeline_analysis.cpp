@@ -5,6 +5,7 @@
 #include <queue>
 
 #include "sema/analyzer_impl.h"
+#include "sema/route_selection.h"
 #include "support/spelling.h"
 
 namespace spire::sem {
@@ -19,6 +20,12 @@ bool Pipeline::reaches(WorldId from, WorldId to) const {
   if (from == to) return true;
   const size_t index = static_cast<size_t>(from) * worlds.size() + to;
   return index < reachability.size() && reachability[index];
+}
+
+const std::vector<uint32_t>& Pipeline::route(WorldId from, WorldId to) const {
+  static const std::vector<uint32_t> kNone;
+  const size_t index = static_cast<size_t>(from) * worlds.size() + to;
+  return index < routes.size() ? routes[index] : kNone;
 }
 
 const Type* ComponentTableResolver::useComponent(std::string_view name, SourceRange use) {
@@ -82,6 +89,7 @@ void Analyzer::analyzePipeline(const ast::PipelineDecl& decl) {
   for (const ast::WorldDecl& world : decl.worlds) checkWorld(pipeline, world);
   for (const ast::ImportDecl& import : decl.imports) checkImport(pipeline, import);
   orderWorlds(pipeline);
+  if (pipeline.valid) selectRoutes(pipeline, diags_);
 }
 
 void Analyzer::checkWorld(Pipeline& pipeline, const ast::WorldDecl& decl) {
@@ -153,7 +161,9 @@ void Analyzer::checkImport(Pipeline& pipeline, const ast::ImportDecl& decl) {
       return;
     }
   }
-  Import import{*from, *to, &decl, {}};
+  const std::optional<int> priority = importPriority(decl, diags_);
+  if (!priority) pipeline.valid = false;
+  Import import{*from, *to, &decl, {}, priority.value_or(0)};
   import.strategy.ref = &decl.strategy;
   import.strategy.signature = strategies_.find(decl.strategy.name);
   import.strategy.componentArgs = std::move(componentArgs);

@@ -43,6 +43,7 @@ struct Import {
   WorldId to = 0;
   const ast::ImportDecl* decl = nullptr;
   StrategyUse strategy;
+  int priority = 0;  // [Priority: "N"]: breaks ties between equally faithful routes
 };
 
 struct Function;
@@ -101,6 +102,12 @@ struct Pipeline : ComponentSet {
   bool reaches(WorldId from, WorldId to) const;
   // reachability[from * worlds.size() + to]
   std::vector<bool> reachability;
+  // The imports that carry a value from one world to another, in order
+  // (route_selection.h says how they are chosen); empty for from == to or
+  // unreachable pairs.
+  const std::vector<uint32_t>& route(WorldId from, WorldId to) const;
+  // routes[from * worlds.size() + to]
+  std::vector<std::vector<uint32_t>> routes;
 };
 
 struct Group;

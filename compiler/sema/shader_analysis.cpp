@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "sema/analyzer_impl.h"
+#include "sema/group_members.h"
 #include "support/spelling.h"
 
 namespace spire::sem {
@@ -346,18 +347,7 @@ Shader* Analyzer::buildShader(const ast::ShaderDecl& decl, std::string name, con
   }
   for (const ast::ComponentDecl& component : decl.components) {
     if (diags_.limitReached()) break;
-    if (base && component.world) {
-      // Locked worlds (paper section 6.2): a shader deriving from a base that
-      // finalizes a world cannot add computation there.
-      const auto world = pipeline.findWorld(*component.world);
-      if (world && std::find(base->finalizedWorlds.begin(), base->finalizedWorlds.end(), *world) !=
-                       base->finalizedWorlds.end()) {
-        diags_.report(DiagCode::E4011, component.worldRange,
-                      fmt::format("world '{}' is finalized by '{}'; a derived shader cannot add definitions there",
-                                  *component.world, base->name));
-        continue;
-      }
-    }
+    if (base && !checkLockedDefinition(*base, pipeline, component)) continue;
     addComponent(shader, pipeline, component, shader.name, false);
   }
   checkComponentBodies(shader, shader.name);
@@ -423,7 +413,8 @@ const Group* Analyzer::analyzeGroup(const ast::GroupDecl& decl) {
 void Analyzer::buildGroupInstances(const ast::ShaderDecl& decl, const Group& base) {
   // Paper section 6.1: deriving from a group derives from each member. The
   // declarations must be valid against every required member; an optional
-  // member that rejects them is left out with a warning.
+  // member that rejects them is left out with a warning. Later stages leave
+  // out an optional member the same way (runMemberStage).
   auto derived = std::make_unique<Group>();
   derived->name = decl.name;
   derived->derivedDecl = &decl;
@@ -433,12 +424,7 @@ void Analyzer::buildGroupInstances(const ast::ShaderDecl& decl, const Group& bas
                                    member.shader);
     instance->derivedFrom = derived.get();
     if (member.isOptional && !instance->valid) {
-      std::vector<Diagnostic> errors = diags_.takeSince(mark);
-      Diagnostic& w = diags_.report(DiagCode::W4101, decl.nameRange,
-                                    fmt::format("shader '{}' is left out of optional group member '{}': its declarations "
-                                                "are not valid there",
-                                                decl.name, member.shader->name));
-      for (const Diagnostic& e : errors) w.note(e.range, e.message);
+      reportMemberLeftOut(diags_, decl, member.shader->name, diags_.takeSince(mark));
       model_->shaders.pop_back();  // the rejected instance, added last by buildShader
       continue;
     }

@@ -22,4 +22,14 @@ std::vector<std::string_view> StrategyCatalog::names(StrategyRole role) const {
 
 std::string_view roleName(StrategyRole role) { return role == StrategyRole::Import ? "import" : "export"; }
 
+std::string_view transferName(ValueTransfer transfer) {
+  switch (transfer) {
+    case ValueTransfer::Exact: return "exact";
+    case ValueTransfer::Interpolated: return "interpolated";
+    case ValueTransfer::Resampled: return "resampled";
+    case ValueTransfer::Aggregated: return "aggregated";
+  }
+  return "exact";
+}
+
 }  // namespace spire::sem

@@ -10,8 +10,9 @@ SourceRange SourceRange::cover(const SourceRange& a, const SourceRange& b) {
   return {a.file, std::min(a.begin, b.begin), std::max(a.end, b.end)};
 }
 
-FileId SourceManager::addFile(std::string path, std::string text) {
+FileId SourceManager::addFile(std::string path, std::string text, std::string logicalName) {
   auto file = std::make_unique<SourceFile>();
+  file->logicalName = logicalName.empty() ? path : std::move(logicalName);
   file->path = std::move(path);
   file->text = std::move(text);
   file->lineStarts.push_back(0);

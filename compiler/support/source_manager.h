@@ -35,13 +35,19 @@ struct LineCol {
 
 struct SourceFile {
   std::string path;  // as given by the user or resolved from an include
+  // The name generated code uses for this file (`#line N "name"`): the same
+  // whatever the working directory or the spelling of the path, so that
+  // kernels and their hashes are too (ModuleLoader decides it; see
+  // docs/reflection.md, "#line directives"). Equal to `path` unless set.
+  std::string logicalName;
   std::string text;
   std::vector<uint32_t> lineStarts;  // byte offset of each line's first byte
 };
 
 class SourceManager {
  public:
-  FileId addFile(std::string path, std::string text);
+  // `logicalName` defaults to `path`.
+  FileId addFile(std::string path, std::string text, std::string logicalName = {});
   const SourceFile& file(FileId id) const { return *files_[id]; }
   size_t fileCount() const { return files_.size(); }
 

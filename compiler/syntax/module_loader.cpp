@@ -30,12 +30,29 @@ std::string joinPath(const fs::path& directory, const std::string& include) {
   return (directory / include).lexically_normal().generic_string();
 }
 
+// The key of a directory, without a trailing '/', so that names relative to
+// it do not start with "../".
+std::string directoryKey(const fs::path& directory) {
+  std::string key = fileKey(directory.empty() ? std::string(".") : directory.string());
+  while (key.size() > 1 && key.back() == '/') key.pop_back();
+  return key;
+}
+
+// A file's name in generated code: its key relative to its root directory.
+// Both are absolute and normalized, so neither the working directory nor the
+// spelling of a path changes it (docs/reflection.md, "#line directives").
+std::string logicalName(const std::string& key, const std::string& root) {
+  std::string name = fs::path(key).lexically_relative(root).generic_string();
+  return name.empty() ? key : name;
+}
+
 }  // namespace
 
 struct ModuleLoader::Impl {
   struct OpenFile {
     std::string key;
     std::string displayPath;
+    std::string root;  // key of the directory its logical name is relative to
   };
 
   SourceManager& sources;
@@ -43,17 +60,28 @@ struct ModuleLoader::Impl {
   LoadOptions options;
   std::unordered_set<std::string> loaded;  // keys of files loaded or being loaded
   std::vector<OpenFile> openFiles;         // the chain of includes being loaded
+  // Root of the files named by the user: the first one's directory.
+  std::optional<std::string> inputRoot;
+
+  // A file named by the user (or given in memory) is named relative to the
+  // directory of the first such file.
+  void loadInput(std::string displayPath, std::string key, std::string text, ast::Program& program) {
+    if (!inputRoot) inputRoot = fs::path(key).parent_path().generic_string();
+    load(std::move(displayPath), std::move(key), *inputRoot, std::move(text), program);
+  }
 
   // Parses a file, loads what it includes, then appends it to the program.
-  void load(std::string displayPath, std::string key, std::string text, ast::Program& program) {
+  void load(std::string displayPath, std::string key, std::string root, std::string text, ast::Program& program) {
     loaded.insert(key);
-    const FileId file = sources.addFile(displayPath, std::move(text));
+    const FileId file = sources.addFile(displayPath, std::move(text), logicalName(key, root));
     if (!isText(file)) return;
     auto module = parseModule(sources, file, program, diags, options.parseLimits);
-    openFiles.push_back({std::move(key), displayPath});
+    openFiles.push_back({std::move(key), displayPath, root});
     for (const auto& decl : module->decls) {
       if (diags.limitReached()) break;
-      if (const auto* include = ast::dyn_cast<ast::UsingDecl>(decl.get())) loadInclude(*include, displayPath, program);
+      if (const auto* include = ast::dyn_cast<ast::UsingDecl>(decl.get())) {
+        loadInclude(*include, displayPath, root, program);
+      }
     }
     openFiles.pop_back();
     program.modules.push_back(std::move(module));
@@ -73,20 +101,29 @@ struct ModuleLoader::Impl {
     return false;
   }
 
-  // The including file's directory first, then the include directories.
-  void loadInclude(const ast::UsingDecl& include, const std::string& includerPath, ast::Program& program) {
-    std::vector<std::string> candidates = {joinPath(fs::path(includerPath).parent_path(), include.path)};
-    for (const auto& dir : options.includeDirs) candidates.push_back(joinPath(dir, include.path));
+  // The including file's directory first, then the include directories. A
+  // file found next to its includer shares the includer's root; one found
+  // through `-I DIR` is named relative to DIR, whoever includes it.
+  void loadInclude(const ast::UsingDecl& include, const std::string& includerPath, const std::string& includerRoot,
+                   ast::Program& program) {
+    struct Candidate {
+      std::string path;
+      std::string root;
+    };
+    std::vector<Candidate> candidates = {{joinPath(fs::path(includerPath).parent_path(), include.path), includerRoot}};
+    for (const auto& dir : options.includeDirs) candidates.push_back({joinPath(dir, include.path), directoryKey(dir)});
 
-    for (const auto& candidate : candidates) {
-      std::string key = fileKey(candidate);
+    for (auto& candidate : candidates) {
+      std::string key = fileKey(candidate.path);
       const auto open = std::find_if(openFiles.begin(), openFiles.end(), [&](const OpenFile& f) { return f.key == key; });
       if (open != openFiles.end()) return reportCycle(include, open);
       if (loaded.contains(key)) return;
-      if (auto text = options.readFile(candidate)) return load(candidate, std::move(key), std::move(*text), program);
+      if (auto text = options.readFile(candidate.path)) {
+        return load(candidate.path, std::move(key), std::move(candidate.root), std::move(*text), program);
+      }
     }
     std::string searched;
-    for (const auto& candidate : candidates) searched += (searched.empty() ? "'" : ", '") + candidate + "'";
+    for (const auto& candidate : candidates) searched += (searched.empty() ? "'" : ", '") + candidate.path + "'";
     diags.report(DiagCode::E1101, include.pathRange, fmt::format("cannot open included file '{}'", include.path))
         .note({}, "searched " + searched);
   }
@@ -100,7 +137,7 @@ struct ModuleLoader::Impl {
 };
 
 ModuleLoader::ModuleLoader(SourceManager& sources, DiagnosticList& diags, LoadOptions options)
-    : impl_(std::make_unique<Impl>(Impl{sources, diags, std::move(options), {}, {}})) {
+    : impl_(std::make_unique<Impl>(Impl{sources, diags, std::move(options), {}, {}, {}})) {
   if (!impl_->options.readFile) impl_->options.readFile = readWholeFile;
 }
 
@@ -114,13 +151,13 @@ bool ModuleLoader::loadFile(const std::string& path, ast::Program& program) {
     impl_->diags.report(DiagCode::E1101, {}, fmt::format("cannot open source file '{}'", path));
     return false;
   }
-  impl_->load(path, std::move(key), std::move(*text), program);
+  impl_->loadInput(path, std::move(key), std::move(*text), program);
   return true;
 }
 
 void ModuleLoader::loadSource(std::string displayPath, std::string text, ast::Program& program) {
   std::string key = fileKey(displayPath);
-  impl_->load(std::move(displayPath), std::move(key), std::move(text), program);
+  impl_->loadInput(std::move(displayPath), std::move(key), std::move(text), program);
 }
 
 }  // namespace spire

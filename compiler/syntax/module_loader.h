@@ -25,6 +25,10 @@ struct LoadOptions {
 // Each file is loaded once (by normalized path) however often it is included;
 // an include cycle is an error (E1102) at the `using` that closes it. Modules
 // are appended to the program in post-order: a file's includes come before it.
+// Each file also gets its logical name (SourceFile::logicalName): its path
+// relative to a root directory, which is the first input file's directory
+// for inputs and what is found next to them, and the include directory for a
+// file found through one (and what is found next to that file).
 class ModuleLoader {
  public:
   ModuleLoader(SourceManager& sources, DiagnosticList& diags, LoadOptions options);

@@ -142,7 +142,6 @@ def contract_problems(path, document):
     if os.path.basename(directory) != expected_dir:
         problems.append(f"directory is '{os.path.basename(directory)}', expected '{expected_dir}' for shader "
                         f"'{document['shader']}'")
-    binding_owner = {}  # binding -> world
     for k, kernel in enumerate(document["kernels"]):
         where = f"kernels/{k} ({kernel['world']})"
         for key, ext in (("glsl", ".glsl"), ("spirv", ".spv")):
@@ -156,12 +155,14 @@ def contract_problems(path, document):
                 actual = fnv1a64(f.read())
             if actual != kernel["hash"]:
                 problems.append(f"{where}: hash is {kernel['hash']}, but FNV-1a 64 of {kernel['glsl']} is {actual}")
+            with open(glsl_path, "rb") as f:
+                key = kernel_key(f.read(), kernel)
+            if key != kernel["key"]:
+                problems.append(f"{where}: key is {kernel['key']}, but the text and interface give {key}")
+        problems += binding_problems(where, kernel)
 
         blocks = {b["binding"]: b for b in kernel["blocks"]}
-        bindings = set(blocks)
         for entry in kernel["inputs"] + kernel["outputs"]:
-            if "binding" in entry:
-                bindings.add(entry["binding"])
             if "block" not in entry:
                 continue
             block = blocks.get(entry["binding"])
@@ -173,10 +174,29 @@ def contract_problems(path, document):
                        for m in block["members"]):
                 problems.append(f"{where}: block '{block['name']}' has no member for '{entry['component']}' at "
                                 f"offset {entry['offset']}")
-        for binding in sorted(bindings):
-            if binding in binding_owner:
-                problems.append(f"{where}: binding {binding} is also used by kernel '{binding_owner[binding]}'")
-            binding_owner[binding] = kernel["world"]
+    return problems
+
+
+def kernel_key(glsl: bytes, kernel) -> str:
+    """The content key docs/reflection.md defines: the text, then the interface as compact JSON."""
+    interface = {field: kernel[field] for field in ("world", "stage", "inputs", "outputs", "blocks")}
+    text = json.dumps(interface, separators=(",", ":"), ensure_ascii=False)
+    return fnv1a64(glsl + b"\n" + text.encode("utf-8"))
+
+
+def binding_problems(where, kernel):
+    """Every resource is in the stage's set; no two resources of one kernel share a binding."""
+    problems = []
+    expected_set = 1 if kernel["stage"] == "fragment" else 0
+    owners = {}  # binding -> the block name or component that owns it
+    for entry in kernel["blocks"] + kernel["inputs"] + kernel["outputs"]:
+        if "binding" not in entry:
+            continue
+        if entry["set"] != expected_set:
+            problems.append(f"{where}: set {entry['set']} in a {kernel['stage']} kernel, expected {expected_set}")
+        owner = entry.get("block") or entry.get("name") or entry["component"]
+        if owners.setdefault(entry["binding"], owner) != owner:
+            problems.append(f"{where}: binding {entry['binding']} holds both '{owners[entry['binding']]}' and '{owner}'")
     return problems
 
 

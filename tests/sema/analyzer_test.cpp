@@ -2,32 +2,14 @@
 // diagnostics each mistake produces.
 #include <gtest/gtest.h>
 
+#include "common/test_pipeline.h"
 #include "driver/frontend.h"
 #include "support/diagnostic_renderer.h"
 
 namespace spire {
 namespace {
 
-constexpr const char* kPipeline = R"(
-pipeline P {
-    abstract world Uniform;
-    abstract world Mesh;
-    world Bake : "GLSL" export standardExport;
-    world Vertex : "GLSL" export vertexExport(projPos);
-    world Fragment : "GLSL" export standardExport;
-    import Uniform->Bake using uniformImport;
-    import Uniform->Vertex using uniformImport;
-    import Uniform->Fragment using uniformImport;
-    import Mesh->Vertex using standardImport;
-    import Mesh->Bake using standardImport;
-    import Vertex->Fragment using standardImport;
-    import Bake->Fragment using textureImport(uv);
-    @Mesh vec3 pos;
-    @Mesh vec2 uv;
-    abstract @Vertex vec4 projPos;
-    abstract export @Fragment vec4 output;
-}
-)";
+using testing_util::kPipeline;
 
 struct Compiled {
   std::unique_ptr<FrontEnd> frontEnd;
@@ -170,7 +152,7 @@ shader Base using P {
 shader Locked : Base finalizes Vertex {}
 shader Derived : Locked { @Vertex float extra = 1.0; }
 )");
-  EXPECT_EQ(c.codes(), std::vector<std::string>{"E4011"}) << c.rendered();
+  EXPECT_EQ(c.codes(), std::vector<std::string>{"E4020"}) << c.rendered();
 }
 
 struct ErrorCase {

@@ -41,6 +41,12 @@ struct Loading {
     return paths;
   }
   Lines diagnostics() const { return test::describe(sources, diags); }
+  // The logical name (the name in kernels' #line) of each loaded module.
+  Lines logicalNames() const {
+    Lines names;
+    for (const auto& module : program.modules) names.push_back(sources.file(module->file).logicalName);
+    return names;
+  }
 };
 
 TEST(ModuleLoader, IncludesResolveRelativeToTheIncludingFile) {
@@ -65,6 +71,25 @@ TEST(ModuleLoader, IncludeDirectoriesAreSearchedInOrderAfterTheIncluder) {
   EXPECT_TRUE(l.loader({"inc1", "inc2"}).loadFile("src/main.spire", l.program));
   EXPECT_EQ(l.diagnostics(), Lines{});
   EXPECT_EQ(l.modulePaths(), (Lines{"inc1/std.spire", "src/local.spire", "src/main.spire"}));
+}
+
+TEST(ModuleLoader, LogicalNamesAreRelativeToTheInputsFolderOrTheIncludeDirectory) {
+  // Inputs and what they include next to themselves: relative to the first
+  // input's folder; an include directory's files (and theirs): relative to it.
+  Loading l;
+  l.files = {{"src/main.spire", "using \"../shared/s.spire\";\nusing \"std.spire\";"},
+             {"src/./../src/other.spire", ""},
+             {"shared/s.spire", ""},
+             {"inc/std.spire", "using \"sub/util.spire\";"},
+             {"inc/sub/util.spire", ""}};
+  auto loader = l.loader({"./x/../inc/"});
+  EXPECT_TRUE(loader.loadFile("src/main.spire", l.program));
+  EXPECT_TRUE(loader.loadFile("src/./../src/other.spire", l.program));
+  EXPECT_EQ(l.diagnostics(), Lines{});
+  EXPECT_EQ(l.modulePaths(),
+            (Lines{"shared/s.spire", "inc/sub/util.spire", "inc/std.spire", "src/main.spire", "src/./../src/other.spire"}));
+  EXPECT_EQ(l.logicalNames(),
+            (Lines{"../shared/s.spire", "sub/util.spire", "std.spire", "main.spire", "other.spire"}));
 }
 
 TEST(ModuleLoader, EachFileLoadsOnceWhateverThePathSpelling) {

@@ -30,7 +30,7 @@ class BufferExport final : public Strategy {
       kernel.addStore(fmt::format("{}[gl_GlobalInvocationID.x].{} = {};", block.recordsName, members[i].glslName,
                                   v.glslName));
       nlohmann::ordered_json entry = valueEntry(v, "bufferExport");
-      setBinding(entry, block.binding);
+      setBinding(entry, kernel, block.binding);
       entry["block"] = block.blockName;
       entry["offset"] = block.offsets[i];
       for (const auto& [name, value] : v.attributes) entry["hints"][name] = value;

@@ -37,7 +37,7 @@ class BufferImport final : public Strategy {
       kernel.declareGlobal(v.type, v.glslName);
       kernel.addFetch(fmt::format("{} = {}[{}].{};", v.glslName, block.recordsName, index, members[member].glslName));
       nlohmann::ordered_json entry = importEntry(site, v, "bufferImport");
-      setBinding(entry, block.binding);
+      setBinding(entry, kernel, block.binding);
       entry["block"] = block.blockName;
       entry["offset"] = block.offsets[member];
       entry["index"] = index;

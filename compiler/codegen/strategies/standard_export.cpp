@@ -13,7 +13,8 @@ class StandardExport final : public Strategy {
   }
 
  private:
-  sem::StrategySignature signature_ = makeSignature("standardExport", sem::StrategyRole::Export, {}, "'out' variables");
+  sem::StrategySignature signature_ = makeSignature("standardExport", sem::StrategyRole::Export, {}, "'out' variables",
+                                                    sem::ValueTransfer::Exact, true);
 };
 
 }  // namespace

@@ -33,7 +33,8 @@ class StandardImport final : public Strategy {
 
  private:
   sem::StrategySignature signature_ =
-      makeSignature("standardImport", sem::StrategyRole::Import, {}, "'in' variables matching the producer's 'out'");
+      makeSignature("standardImport", sem::StrategyRole::Import, {}, "'in' variables matching the producer's 'out'",
+                    sem::ValueTransfer::Interpolated, true);
 };
 
 }  // namespace

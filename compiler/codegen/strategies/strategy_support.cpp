@@ -5,8 +5,9 @@
 namespace spire::codegen {
 
 sem::StrategySignature makeSignature(std::string name, sem::StrategyRole role, std::vector<sem::StrategyParam> params,
-                                     std::string summary) {
-  return {std::move(name), role, std::move(params), std::move(summary)};
+                                     std::string summary, sem::ValueTransfer transfer, bool usesLocations,
+                                     bool carriesOpaque) {
+  return {std::move(name), role, std::move(params), std::move(summary), transfer, usesLocations, carriesOpaque};
 }
 
 nlohmann::ordered_json valueEntry(const KernelValue& value, std::string_view strategy) {
@@ -24,8 +25,8 @@ nlohmann::ordered_json importEntry(const ImportSite& site, const KernelValue& va
   return entry;
 }
 
-void setBinding(nlohmann::ordered_json& entry, uint32_t binding) {
-  entry["set"] = KernelBuilder::kDescriptorSet;
+void setBinding(nlohmann::ordered_json& entry, const KernelBuilder& kernel, uint32_t binding) {
+  entry["set"] = kernel.descriptorSet();
   entry["binding"] = binding;
 }
 
@@ -61,7 +62,7 @@ BlockDeclaration declareBlock(KernelBuilder& kernel, const std::string& hint, co
   reflection["name"] = block.blockName;
   reflection["kind"] = isBuffer ? "storage" : "uniform";
   reflection["layout"] = layoutName;
-  reflection["set"] = KernelBuilder::kDescriptorSet;
+  reflection["set"] = kernel.descriptorSet();
   reflection["binding"] = block.binding;
   if (isBuffer) {
     // A runtime array of records: the stride is the record size rounded to
@@ -70,11 +71,11 @@ BlockDeclaration declareBlock(KernelBuilder& kernel, const std::string& hint, co
     block.recordsName = kernel.names().generate(hint + "_records");
     kernel.declare(fmt::format("struct {} {{\n{}}};", block.recordType, members));
     kernel.declare(fmt::format("layout(set = {}, binding = {}, {}) {} {} {{\n    {} {}[];\n}};",
-                               KernelBuilder::kDescriptorSet, block.binding, layoutName, qualifier, block.blockName,
+                               kernel.descriptorSet(), block.binding, layoutName, qualifier, block.blockName,
                                block.recordType, block.recordsName));
     reflection["recordStride"] = alignUp(offset, layout == BlockLayout::Std140 ? std::max(alignment, 16u) : alignment);
   } else {
-    kernel.declare(fmt::format("layout(set = {}, binding = {}, {}) {} {} {{\n{}}};", KernelBuilder::kDescriptorSet,
+    kernel.declare(fmt::format("layout(set = {}, binding = {}, {}) {} {} {{\n{}}};", kernel.descriptorSet(),
                                block.binding, layoutName, qualifier, block.blockName, members));
     reflection["size"] = alignUp(offset, 16);
   }

@@ -12,14 +12,16 @@ namespace spire::codegen {
 
 // A signature built in place, for Strategy::signature() implementations.
 sem::StrategySignature makeSignature(std::string name, sem::StrategyRole role,
-                                     std::vector<sem::StrategyParam> params, std::string summary);
+                                     std::vector<sem::StrategyParam> params, std::string summary,
+                                     sem::ValueTransfer transfer = sem::ValueTransfer::Exact,
+                                     bool usesLocations = false, bool carriesOpaque = false);
 
 // The reflection entry common to inputs and outputs.
 nlohmann::ordered_json valueEntry(const KernelValue& value, std::string_view strategy);
 // An input's entry: valueEntry plus the world it comes from.
 nlohmann::ordered_json importEntry(const ImportSite& site, const KernelValue& value, std::string_view strategy);
 // Records the descriptor a value is bound through.
-void setBinding(nlohmann::ordered_json& entry, uint32_t binding);
+void setBinding(nlohmann::ordered_json& entry, const KernelBuilder& kernel, uint32_t binding);
 
 // Declares `values` as members of one interface block and reflects its
 // layout; returns the block's binding. `qualifier` is `uniform`,

@@ -23,7 +23,7 @@ class TextureImport final : public Strategy {
       static constexpr std::string_view kSwizzles[] = {"", ".x", ".xy", ".xyz", ""};
       const std::string sampler = kernel.names().generate("tex_" + v.glslName);
       const uint32_t binding = kernel.allocateBinding();
-      kernel.declare(fmt::format("layout(set = {}, binding = {}) uniform sampler2D {};", KernelBuilder::kDescriptorSet,
+      kernel.declare(fmt::format("layout(set = {}, binding = {}) uniform sampler2D {};", kernel.descriptorSet(),
                                  binding, sampler));
       kernel.declareGlobal(t, v.glslName);
       bool encodedSigned = false;
@@ -32,7 +32,7 @@ class TextureImport final : public Strategy {
       kernel.addFetch(encodedSigned ? fmt::format("{} = {} * 2.0 - 1.0;", v.glslName, fetch)
                                     : fmt::format("{} = {};", v.glslName, fetch));
       nlohmann::ordered_json entry = importEntry(site, v, "textureImport");
-      setBinding(entry, binding);
+      setBinding(entry, kernel, binding);
       entry["sampler"] = sampler;
       entry["uv"] = uv;
       entry["channels"] = t->rows;
@@ -43,7 +43,8 @@ class TextureImport final : public Strategy {
 
  private:
   sem::StrategySignature signature_ = makeSignature("textureImport", sem::StrategyRole::Import, {{"uv", "vec2"}},
-                                                    "one sampler per component, fetched at uv");
+                                                    "one sampler per component, fetched at uv",
+                                                    sem::ValueTransfer::Resampled);
 };
 
 }  // namespace

@@ -21,17 +21,17 @@ class UniformImport final : public Strategy {
         continue;
       }
       const uint32_t binding = kernel.allocateBinding();
-      kernel.declare(fmt::format("layout(set = {}, binding = {}) uniform {};", KernelBuilder::kDescriptorSet, binding,
+      kernel.declare(fmt::format("layout(set = {}, binding = {}) uniform {};", kernel.descriptorSet(), binding,
                                  kernel.declaration(v.type, v.glslName)));
       nlohmann::ordered_json entry = importEntry(site, v, "uniformImport");
-      setBinding(entry, binding);
+      setBinding(entry, kernel, binding);
       kernel.reflectInput(std::move(entry));
     }
     if (plain.empty()) return std::nullopt;
     const BlockDeclaration block = declareBlock(kernel, from, plain, BlockLayout::Std140, "uniform", "uniformImport");
     for (size_t i = 0; i < plain.size(); ++i) {
       nlohmann::ordered_json entry = importEntry(site, plain[i], "uniformImport");
-      setBinding(entry, block.binding);
+      setBinding(entry, kernel, block.binding);
       entry["block"] = block.blockName;
       entry["offset"] = block.offsets[i];
       kernel.reflectInput(std::move(entry));
@@ -41,7 +41,8 @@ class UniformImport final : public Strategy {
 
  private:
   sem::StrategySignature signature_ =
-      makeSignature("uniformImport", sem::StrategyRole::Import, {}, "std140 uniform block, samplers as uniforms");
+      makeSignature("uniformImport", sem::StrategyRole::Import, {}, "std140 uniform block, samplers as uniforms",
+                    sem::ValueTransfer::Aggregated, false, true);
 };
 
 }  // namespace
