@@ -53,6 +53,10 @@ class KernelGenerator {
   KernelValue value(sem::ComponentId id, const std::map<sem::ComponentId, std::string>& names) const;
   std::vector<sem::ComponentId> byName(const std::set<sem::ComponentId>& ids) const;
   std::vector<sem::ComponentId> canonicalOrder(const std::vector<sem::ComponentId>& computed) const;
+  bool emitImports(sem::WorldId w, KernelBuilder& kernel, const std::map<sem::ComponentId, std::string>& names,
+                   GlslWriter& writer);
+  bool emitExports(sem::WorldId w, const Strategy* exportStrategy, KernelBuilder& kernel,
+                   const std::map<sem::ComponentId, std::string>& names, GlslWriter& writer);
   std::vector<const sem::Function*> calledFunctions(const std::vector<sem::ComponentId>& computed) const;
   std::string structDeclarations(const std::string& code, const std::map<std::string, std::string, std::less<>>& names) const;
 
@@ -164,6 +168,65 @@ std::string KernelGenerator::structDeclarations(const std::string& code,
   return text;
 }
 
+// Inputs, one import edge at a time in declaration order; false after E6001.
+bool KernelGenerator::emitImports(sem::WorldId w, KernelBuilder& kernel,
+                                  const std::map<sem::ComponentId, std::string>& names, GlslWriter& writer) {
+  std::map<uint32_t, std::set<sem::ComponentId>> byImport;
+  for (const graph::Transfer& t : variant_.world(w).inputs) byImport[t.importIndex].insert(t.component);
+  // A locked world sees only what it reads of a producer's record, so its
+  // kernel does not depend on what the producer writes for other worlds.
+  const auto& locked = graph_.shader().finalizedWorlds;
+  const bool isLocked = std::find(locked.begin(), locked.end(), w) != locked.end();
+  for (const auto& [importIndex, ids] : byImport) {
+    const sem::Import& import = pipeline_.imports[importIndex];
+    const Strategy* strategy = strategies_.find(import.strategy.ref->name);
+    if (!strategy) {
+      fail(fmt::format("no code generator is registered for strategy '{}'", import.strategy.ref->name));
+      return false;
+    }
+    ImportSite site{kernel, pipeline_, import, {}, {},
+                    [&, index = importIndex](sem::ComponentId id) { return interfaces_.inputLocation(index, id); }, {}};
+    for (sem::ComponentId id : byName(ids)) site.values.push_back(value(id, names));
+    if (pipeline_.worlds[import.from].isAbstract || isLocked) {
+      site.producerOutputs = site.values;
+    } else {
+      for (const Located& l : interfaces_.outputs(import.from)) {
+        const sem::Component& c = *graph_.node(l.component).component;
+        site.producerOutputs.push_back({l.component, c.name, c.name, c.type, {}});
+      }
+    }
+    for (const ast::ExprPtr& arg : import.strategy.ref->args) site.args.push_back(writer.expr(*arg));
+    if (auto problem = strategy->emitImport(site)) {
+      fail(*problem);
+      return false;
+    }
+  }
+  return true;
+}
+
+// Outputs, through the world's export strategy; false after E6001.
+bool KernelGenerator::emitExports(sem::WorldId w, const Strategy* exportStrategy, KernelBuilder& kernel,
+                                  const std::map<sem::ComponentId, std::string>& names, GlslWriter& writer) {
+  const sem::World& world = pipeline_.worlds[w];
+  const std::vector<Located>& outputs = interfaces_.outputs(w);
+  if (outputs.empty() && !(world.exportStrategy && !world.exportStrategy->ref->args.empty())) return true;
+  if (!exportStrategy) {
+    fail(fmt::format("no code generator is registered for strategy '{}'", world.exportStrategy->ref->name));
+    return false;
+  }
+  ExportSite site{kernel, pipeline_, world, {}, {}, {}};
+  for (const Located& o : outputs) {
+    site.values.push_back(value(o.component, names));
+    site.locations.push_back(o.location);
+  }
+  for (const ast::ExprPtr& arg : world.exportStrategy->ref->args) site.args.push_back(writer.expr(*arg));
+  if (auto problem = exportStrategy->emitExport(site)) {
+    fail(*problem);
+    return false;
+  }
+  return true;
+}
+
 std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
   const sem::World& world = pipeline_.worlds[w];
   currentWorld_ = world.name;
@@ -202,40 +265,7 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
   };
   GlslWriter writer(model_, sources_, maps, kernel.names());
 
-  // Inputs, one import edge at a time in declaration order.
-  std::map<uint32_t, std::vector<sem::ComponentId>> byImport;
-  for (const graph::Transfer& t : plan.inputs) byImport[t.importIndex].push_back(t.component);
-  for (auto& [importIndex, ids] : byImport) {
-    const sem::Import& import = pipeline_.imports[importIndex];
-    const Strategy* strategy = strategies_.find(import.strategy.ref->name);
-    if (!strategy) {
-      fail(fmt::format("no code generator is registered for strategy '{}'", import.strategy.ref->name));
-      return std::nullopt;
-    }
-    std::sort(ids.begin(), ids.end(), [&](sem::ComponentId a, sem::ComponentId b) {
-      return graph_.node(a).component->name < graph_.node(b).component->name;
-    });
-    const std::vector<Located>& producerOutputs = interfaces_.outputs(import.from);
-    ImportSite site{kernel, pipeline_, import, {}, {},
-                    [&, index = importIndex](sem::ComponentId id) { return interfaces_.inputLocation(index, id); }, {}};
-    for (sem::ComponentId id : ids) site.values.push_back(value(id, names));
-    // A locked world sees only what it reads of a producer's record, so its
-    // kernel does not depend on what the producer writes for other worlds.
-    const auto& locked = graph_.shader().finalizedWorlds;
-    if (pipeline_.worlds[import.from].isAbstract || std::find(locked.begin(), locked.end(), w) != locked.end()) {
-      site.producerOutputs = site.values;
-    } else {
-      for (const Located& l : producerOutputs) {
-        const sem::Component& c = *graph_.node(l.component).component;
-        site.producerOutputs.push_back({l.component, c.name, c.name, c.type, {}});
-      }
-    }
-    for (const ast::ExprPtr& arg : import.strategy.ref->args) site.args.push_back(writer.expr(*arg));
-    if (auto problem = strategy->emitImport(site)) {
-      fail(*problem);
-      return std::nullopt;
-    }
-  }
+  if (!emitImports(w, kernel, names, writer)) return std::nullopt;
 
   // The world's computations, producers first. A block body becomes a
   // function, so its locals and returns stay as written.
@@ -247,23 +277,7 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
     }
   }
 
-  // Outputs, through the world's export strategy.
-  if (!outputs.empty() || (world.exportStrategy && !world.exportStrategy->ref->args.empty())) {
-    if (!exportStrategy) {
-      fail(fmt::format("no code generator is registered for strategy '{}'", world.exportStrategy->ref->name));
-      return std::nullopt;
-    }
-    ExportSite site{kernel, pipeline_, world, {}, {}, {}};
-    for (const Located& o : outputs) {
-      site.values.push_back(value(o.component, names));
-      site.locations.push_back(o.location);
-    }
-    for (const ast::ExprPtr& arg : world.exportStrategy->ref->args) site.args.push_back(writer.expr(*arg));
-    if (auto problem = exportStrategy->emitExport(site)) {
-      fail(*problem);
-      return std::nullopt;
-    }
-  }
+  if (!emitExports(w, exportStrategy, kernel, names, writer)) return std::nullopt;
 
   auto writeCode = [&](GlslOutput& out) {
     for (const std::string& d : kernel.declarations()) {

@@ -50,8 +50,7 @@ WorldMask pinnedWorldsFor(const sem::Shader& shader, const std::string& origin) 
   return pinned;  // a pipeline component sits above every shader
 }
 
-}  // namespace
-
+// The import from `from` to `to` that carries opaque values, if any.
 std::optional<uint32_t> opaqueImport(const sem::Pipeline& pipeline, sem::WorldId from, sem::WorldId to) {
   for (uint32_t k = 0; k < pipeline.imports.size(); ++k) {
     const sem::Import& i = pipeline.imports[k];
@@ -59,6 +58,8 @@ std::optional<uint32_t> opaqueImport(const sem::Pipeline& pipeline, sem::WorldId
   }
   return std::nullopt;
 }
+
+}  // namespace
 
 WorldMask ShaderGraph::readableFrom(sem::ComponentId component, sem::WorldId world) const {
   if (!nodes_[component].component->type->containsOpaque()) return reachable_[world];

@@ -63,8 +63,6 @@ class ShaderGraph {
   uint32_t dependencyRank(sem::ComponentId c) const { return rank_[c]; }
   // Position of each world in the pipeline's topological order.
   uint32_t worldRank(sem::WorldId world) const { return worldRank_[world]; }
-  // Worlds reachable from `world` through zero or more imports.
-  WorldMask reachable(sem::WorldId world) const { return reachable_[world]; }
   bool reaches(sem::WorldId from, sem::WorldId to) const { return (reachable_[from] >> to) & 1; }
   // Worlds where `component`, computed or supplied in `world`, can be read:
   // those `world` reaches, except that an opaque value (a sampler) only
@@ -100,9 +98,6 @@ class ShaderGraph {
   std::vector<uint32_t> worldRank_;
   std::vector<WorldMask> reachable_;
 };
-
-// The import from `from` to `to` that carries opaque values, if any.
-std::optional<uint32_t> opaqueImport(const sem::Pipeline& pipeline, sem::WorldId from, sem::WorldId to);
 
 // Shaders for which variants are built: instances and shaders that no other
 // shader derives from and no group lists.
