@@ -7,7 +7,7 @@ set -euo pipefail
 
 PACKAGES=(
   # toolchain
-  cmake g++ ninja-build pkg-config
+  cmake g++ ninja-build pkg-config ccache
   # shader tooling and Vulkan (code generation checks, engine demo)
   glslang-dev glslang-tools spirv-tools
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
