@@ -4,12 +4,12 @@
 
 #include <cstdint>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "codegen/glsl_names.h"
 #include "codegen/spirv_compiler.h"
+#include "reflection/reflection.h"
 #include "sema/semantic_model.h"
 
 namespace spire::codegen {
@@ -62,19 +62,19 @@ class KernelBuilder {
   // Statements that store exported values, after the computations.
   void addStore(std::string statement) { stores_.push_back(std::move(statement)); }
 
-  // Reflection entries: one object per input, output and block.
-  void reflectInput(nlohmann::ordered_json entry) { inputs_.push_back(std::move(entry)); }
-  void reflectOutput(nlohmann::ordered_json entry) { outputs_.push_back(std::move(entry)); }
-  void reflectBlock(nlohmann::ordered_json entry) { blocks_.push_back(std::move(entry)); }
+  // Reflection records: one per input, output and block.
+  void reflectInput(reflection::KernelInput entry) { inputs_.push_back(std::move(entry)); }
+  void reflectOutput(reflection::KernelOutput entry) { outputs_.push_back(std::move(entry)); }
+  void reflectBlock(reflection::Block entry) { blocks_.push_back(std::move(entry)); }
 
   const std::vector<std::string>& declarations() const { return declarations_; }
   const std::vector<std::string>& globals() const { return globals_; }
   const std::vector<std::string>& entry() const { return entry_; }
   const std::vector<std::string>& fetches() const { return fetches_; }
   const std::vector<std::string>& stores() const { return stores_; }
-  const nlohmann::ordered_json& inputs() const { return inputs_; }
-  const nlohmann::ordered_json& outputs() const { return outputs_; }
-  const nlohmann::ordered_json& blocks() const { return blocks_; }
+  const std::vector<reflection::KernelInput>& inputs() const { return inputs_; }
+  const std::vector<reflection::KernelOutput>& outputs() const { return outputs_; }
+  const std::vector<reflection::Block>& blocks() const { return blocks_; }
 
  private:
   std::string world_;
@@ -87,9 +87,9 @@ class KernelBuilder {
   std::vector<std::string> entry_;
   std::vector<std::string> fetches_;
   std::vector<std::string> stores_;
-  nlohmann::ordered_json inputs_ = nlohmann::ordered_json::array();
-  nlohmann::ordered_json outputs_ = nlohmann::ordered_json::array();
-  nlohmann::ordered_json blocks_ = nlohmann::ordered_json::array();
+  std::vector<reflection::KernelInput> inputs_;
+  std::vector<reflection::KernelOutput> outputs_;
+  std::vector<reflection::Block> blocks_;
 };
 
 }  // namespace spire::codegen

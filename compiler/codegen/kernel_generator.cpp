@@ -11,6 +11,7 @@
 
 #include "codegen/glsl_writer.h"
 #include "codegen/interface_allocation.h"
+#include "reflection/reflection_json.h"
 
 namespace spire::codegen {
 namespace {
@@ -345,55 +346,32 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
   result.world = world.name;
   result.stage = *stage;
   result.glsl = out.text();
-  nlohmann::ordered_json& r = result.reflection;
-  r["world"] = world.name;
-  r["stage"] = stageName(*stage);
-  r["entry"] = "main";
-  r["glsl"] = world.name + ".glsl";
-  r["spirv"] = world.name + ".spv";
-  r["hash"] = contentHash(result.glsl);
-  r["inputs"] = kernel.inputs();
-  r["outputs"] = kernel.outputs();
-  r["blocks"] = kernel.blocks();
-  r["key"] = kernelKey(result.glsl, r);
+  reflection::Kernel& r = result.reflection;
+  r.world = world.name;
+  r.stage = *stage;
+  r.glslFile = world.name + ".glsl";
+  r.spirvFile = world.name + ".spv";
+  r.hash = reflection::contentHash(result.glsl);
+  r.inputs = kernel.inputs();
+  r.outputs = kernel.outputs();
+  r.blocks = kernel.blocks();
+  r.key = reflection::kernelKey(result.glsl, r);
   return result;
 }
 
 }  // namespace
 
-std::string kernelKey(std::string_view glsl, const nlohmann::ordered_json& reflection) {
-  // The interface is part of the key: two kernels with one text could still
-  // be fed from different worlds, and then one binding would not serve both.
-  nlohmann::ordered_json interface;
-  for (const char* field : {"world", "stage", "inputs", "outputs", "blocks"}) interface[field] = reflection.at(field);
-  return contentHash(std::string(glsl) + '\n' + interface.dump());
-}
-
-std::string contentHash(std::string_view text) {
-  uint64_t hash = 14695981039346656037ull;
-  for (char c : text) {
-    hash ^= static_cast<unsigned char>(c);
-    hash *= 1099511628211ull;
-  }
-  return fmt::format("{:016x}", hash);
-}
-
-nlohmann::ordered_json GeneratedShader::reflection(const graph::Variant& variant) const {
+reflection::Variant GeneratedShader::reflection(const graph::Variant& variant) const {
   const graph::ShaderGraph& g = variant.graph();
-  nlohmann::ordered_json root;
-  root["format"] = "spire-reflection";
-  root["version"] = 1;
-  root["shader"] = shader;
-  root["pipeline"] = g.pipeline().name;
-  nlohmann::ordered_json placement = nlohmann::ordered_json::object();
+  reflection::Variant result;
+  result.shader = shader;
+  result.pipeline = g.pipeline().name;
   for (sem::ComponentId c : variant.live()) {
     const graph::ComponentNode& node = g.node(c);
-    if (!node.isInput) placement[node.component->name] = g.altName(node, *variant.choice(c));
+    if (!node.isInput) result.placement.emplace_back(node.component->name, g.altName(node, *variant.choice(c)));
   }
-  root["placement"] = std::move(placement);
-  root["kernels"] = nlohmann::ordered_json::array();
-  for (const Kernel& k : kernels) root["kernels"].push_back(k.reflection);
-  return root;
+  for (const Kernel& k : kernels) result.kernels.push_back(k.reflection);
+  return result;
 }
 
 std::optional<GeneratedShader> generateKernels(const sem::Model& model, const SourceManager& sources,

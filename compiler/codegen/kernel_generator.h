@@ -4,7 +4,6 @@
 // engine (docs/reflection.md).
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +11,7 @@
 #include "codegen/spirv_compiler.h"
 #include "codegen/strategy_registry.h"
 #include "graph/variant.h"
+#include "reflection/reflection.h"
 #include "sema/semantic_model.h"
 #include "support/diagnostic.h"
 #include "support/source_manager.h"
@@ -22,7 +22,7 @@ struct Kernel {
   std::string world;
   ShaderStage stage = ShaderStage::Fragment;
   std::string glsl;
-  nlohmann::ordered_json reflection;  // this kernel's entry in reflection.json
+  reflection::Kernel reflection;  // this kernel's entry in reflection.json
 };
 
 struct GeneratedShader {
@@ -30,8 +30,8 @@ struct GeneratedShader {
   std::string directory;  // file-system-safe shader name: `TerrainLOD-BaseMaterialLQ`
   std::vector<Kernel> kernels;  // in the pipeline's world order
 
-  // The whole reflection.json document.
-  nlohmann::ordered_json reflection(const graph::Variant& variant) const;
+  // The whole variant's reflection.
+  reflection::Variant reflection(const graph::Variant& variant) const;
 };
 
 // Generates the kernels of `variant`. Problems a strategy cannot handle
@@ -40,13 +40,8 @@ std::optional<GeneratedShader> generateKernels(const sem::Model& model, const So
                                                const graph::Variant& variant, const StrategyRegistry& strategies,
                                                DiagnosticList& diags);
 
-// Stable 64-bit FNV-1a hash of a kernel's text, as 16 hex digits.
-std::string contentHash(std::string_view text);
-
-// A kernel's content key (reflection "key"): the hash of its text and its
-// interface (world, stage, inputs, outputs, blocks). Kernels with equal keys
-// are interchangeable, so an engine can draw them in one batch: shaders
-// derived from a base that finalizes a world get equal keys for it.
-std::string kernelKey(std::string_view glsl, const nlohmann::ordered_json& reflection);
+// Kernel content keys (reflection::kernelKey) let an engine draw kernels in
+// one batch: shaders derived from a base that finalizes a world get equal keys
+// for it.
 
 }  // namespace spire::codegen

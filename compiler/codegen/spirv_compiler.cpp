@@ -40,18 +40,6 @@ void appendLog(std::string& log, const std::string& text) {
 
 }  // namespace
 
-std::string_view stageName(ShaderStage stage) {
-  switch (stage) {
-    case ShaderStage::Vertex:
-      return "vertex";
-    case ShaderStage::Fragment:
-      return "fragment";
-    case ShaderStage::Compute:
-      return "compute";
-  }
-  return "unknown";
-}
-
 SpirvResult compileGlslToSpirv(ShaderStage stage, std::string_view glsl, std::string_view sourceName) {
   SpirvResult result;
   const std::string name(sourceName);

@@ -13,12 +13,13 @@
 #include <string_view>
 #include <vector>
 
+#include "reflection/reflection.h"
+
 namespace spire::codegen {
 
-enum class ShaderStage : uint8_t { Vertex, Fragment, Compute };
-
-// "vertex", "fragment", "compute".
-std::string_view stageName(ShaderStage stage);
+// The stage a kernel runs in is part of its reflection.
+using ShaderStage = reflection::Stage;
+using reflection::stageName;
 
 struct SpirvResult {
   std::vector<uint32_t> words;  // empty on failure

@@ -19,6 +19,7 @@
 namespace spire {
 
 using graph::Choice;
+struct CompiledVariant;
 
 class ShaderLibrary {
  public:
@@ -53,6 +54,9 @@ class ShaderLibrary {
                                              std::vector<std::string>* skipped = nullptr,
                                              const Attributes& attributes = {}) const;
 
+  // Variants compiled from this library, by variant (driver/compiler.h).
+  std::map<std::string, std::shared_ptr<const CompiledVariant>>& compiledVariants() { return compiled_; }
+
  private:
   struct Entry {
     const sem::Shader* shader;
@@ -66,6 +70,7 @@ class ShaderLibrary {
   FrontEnd frontEnd_;
   const sem::Model* model_ = nullptr;
   std::vector<Entry> entries_;
+  std::map<std::string, std::shared_ptr<const CompiledVariant>> compiled_;
 };
 
 }  // namespace spire

@@ -6,11 +6,12 @@
 #include <filesystem>
 #include <ostream>
 
+#include "driver/compiler.h"
 #include "driver/shader_library.h"
-#include "codegen/kernel_generator.h"
-#include "codegen/spirv_compiler.h"
 #include "graph/decision_file.h"
+#include "reflection/reflection_json.h"
 #include "sema/group_members.h"
+#include "support/atomic_directory.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
 
@@ -31,86 +32,63 @@ struct Options {
   uint32_t maxErrors = 20;
 };
 
-struct OutputFile {
+// One shader's output: DIR/<Shader>/ as a set of files.
+struct OutputDirectory {
   std::filesystem::path path;
-  std::string contents;
+  FileSet files;
 };
 
-// Generates a variant's kernels as the files DIR/<Shader>/<World>.glsl|.spv
-// and reflection.json; they are written only once every shader has
-// compiled, so a failing run leaves no partial output. SPIR-V is made (and
-// validated) only when asked for: glslang's start-up costs far more than the
-// rest of spirec. glslang rejecting generated code is a compiler bug: it is
-// reported as an internal error against the shader, and that kernel alone is
-// saved at once for inspection.
-void generateKernelFiles(ShaderLibrary& library, const graph::Variant& variant, const std::string& outputDir,
-                         const std::string& emit, DiagnosticList& diags, std::vector<OutputFile>& files) {
-  const auto generated = codegen::generateKernels(library.model(), library.sources(), variant,
-                                                  codegen::StrategyRegistry::builtin(), diags);
-  if (!generated) return;
-  const std::filesystem::path dir = std::filesystem::path(outputDir) / generated->directory;
-  const bool wantGlsl = emit != "spirv";
-  const bool wantSpirv = emit != "glsl";
-  for (const codegen::Kernel& kernel : generated->kernels) {
-    const std::filesystem::path glslPath = dir / (kernel.world + ".glsl");
-    if (wantGlsl) files.push_back({glslPath, kernel.glsl});
-    if (!wantSpirv) continue;
-    const codegen::SpirvResult spirv = codegen::compileGlslToSpirv(kernel.stage, kernel.glsl, glslPath.string());
-    const std::optional<std::string> invalid = spirv.ok() ? codegen::validateSpirv(spirv.words) : std::nullopt;
-    if (!spirv.ok() || invalid) {
-      std::error_code ignored;
-      std::filesystem::create_directories(dir, ignored);
-      const auto saveError = writeFileAtomically(glslPath.string(), kernel.glsl);
-      diags.report(DiagCode::E6002, variant.graph().shader().decl->nameRange,
-                   fmt::format("internal error: the generated {} kernel of '{}' was rejected; this is a spirec bug",
-                               kernel.world, generated->shader))
-          .note({}, spirv.ok() ? *invalid : spirv.log)
-          .note({}, saveError ? *saveError : fmt::format("the kernel is saved as '{}'", glslPath.string()));
-      continue;
+// The files of a compiled variant: <World>.glsl and <World>.spv as --emit
+// asks, and reflection.json.
+OutputDirectory variantFiles(const CompiledVariant& compiled, const Options& options) {
+  OutputDirectory out{std::filesystem::path(options.outputDir) / compiled.directory, {}};
+  for (size_t i = 0; i < compiled.kernels.size(); ++i) {
+    const reflection::Kernel& kernel = compiled.reflection.kernels[i];
+    if (options.emit != "spirv") out.files.emplace_back(kernel.glslFile, compiled.kernels[i].glsl);
+    const std::vector<uint32_t>& words = compiled.kernels[i].spirv;
+    if (options.emit != "glsl") {
+      out.files.emplace_back(kernel.spirvFile,
+                             std::string(reinterpret_cast<const char*>(words.data()), words.size() * sizeof(uint32_t)));
     }
-    files.push_back({dir / (kernel.world + ".spv"),
-                     std::string(reinterpret_cast<const char*>(spirv.words.data()), spirv.words.size() * sizeof(uint32_t))});
   }
-  files.push_back({dir / "reflection.json", generated->reflection(variant).dump(2) + "\n"});
+  out.files.emplace_back("reflection.json", reflection::toJson(compiled.reflection).dump(2) + "\n");
+  return out;
 }
 
 // Applies the decisions to one shader and adds its placement dump (with
-// --dump-placement) and kernel files (with -o) to `output` and `files`. An
-// optional group member's instance that fails here is left out with W4101
-// and adds nothing. False when the shader has no variant or kernels.
+// --dump-placement) and output directory (with -o) to `output` and
+// `directories`. An optional group member's instance that fails here is left
+// out with W4101 and adds nothing. False when the shader has no variant or
+// kernels.
 bool buildVariantOutputs(ShaderLibrary& library, const graph::ChoiceSpace& space, const graph::DecisionFile& decisions,
                          const Options& options, DiagnosticList& diags, std::string& output,
-                         std::vector<OutputFile>& files) {
+                         std::vector<OutputDirectory>& directories) {
   std::string placement;
-  std::vector<OutputFile> kernels;
+  std::optional<OutputDirectory> files;
   const sem::Shader& shader = space.graph().shader();
   const bool ok = sem::runMemberStage(shader, diags, [&](DiagnosticList& stageDiags) {
     const auto variant = graph::applyDecisions(decisions, space, stageDiags);
     if (!variant) return false;
     if (options.dumpPlacement) placement = fmt::format("// variant of {}\n{}", shader.name, variant->describe());
-    const uint32_t errorsBefore = stageDiags.errorCount();
-    if (!options.outputDir.empty()) {
-      generateKernelFiles(library, *variant, options.outputDir, options.emit, stageDiags, kernels);
-    }
-    return stageDiags.errorCount() == errorsBefore;
+    if (options.outputDir.empty()) return true;
+    CompileOptions compileOptions;
+    compileOptions.spirv = options.emit != "glsl";
+    compileOptions.saveRejectedTo = options.outputDir;
+    const CompiledVariantPtr compiled = compileVariant(library, *variant, compileOptions, stageDiags);
+    if (compiled) files = variantFiles(*compiled, options);
+    return compiled != nullptr;
   });
   if (!ok) return false;
   output += placement;
-  files.insert(files.end(), std::make_move_iterator(kernels.begin()), std::make_move_iterator(kernels.end()));
+  if (files) directories.push_back(std::move(*files));
   return true;
 }
 
-// Writes each file atomically, creating folders as needed.
-void writeFiles(const std::vector<OutputFile>& files, DiagnosticList& diags) {
-  for (const OutputFile& file : files) {
-    std::error_code ec;
-    std::filesystem::create_directories(file.path.parent_path(), ec);
-    if (ec) {
-      diags.report(DiagCode::E6003, {},
-                   fmt::format("cannot create directory '{}': {}", file.path.parent_path().string(), ec.message()));
-      return;
-    }
-    if (auto error = writeFileAtomically(file.path.string(), file.contents)) {
+// Replaces each shader's directory as a whole, so that a reader never sees
+// kernels beside another variant's reflection.
+void writeDirectories(const std::vector<OutputDirectory>& directories, DiagnosticList& diags) {
+  for (const OutputDirectory& dir : directories) {
+    if (auto error = replaceDirectoryAtomically(dir.path.string(), dir.files)) {
       diags.report(DiagCode::E6003, {}, *error);
       return;
     }
@@ -183,7 +161,7 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
 
   std::string choicesText;
   std::string output;
-  std::vector<OutputFile> kernelFiles;
+  std::vector<OutputDirectory> directories;
   const bool generate = !options.outputDir.empty();
   if (!diags.hasErrors() && (!options.decisionsPath.empty() || options.dumpPlacement || generate)) {
     graph::DecisionFile decisions;
@@ -195,7 +173,7 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
     }
     if (!diags.hasErrors()) {
       std::erase_if(spaces, [&](const graph::ChoiceSpace* space) {
-        return !buildVariantOutputs(library, *space, decisions, options, diags, output, kernelFiles);
+        return !buildVariantOutputs(library, *space, decisions, options, diags, output, directories);
       });
     }
   }
@@ -203,7 +181,7 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
     choicesText = graph::writeChoiceFile(spaces);
   }
 
-  if (!diags.hasErrors()) writeFiles(kernelFiles, diags);
+  if (!diags.hasErrors()) writeDirectories(directories, diags);
   const std::string rendered = renderDiagnostics(library.sources(), diags, format);
   if (format == DiagnosticFormat::Json || !rendered.empty()) err << rendered;
   if (diags.hasErrors()) return kExitInputError;

@@ -66,7 +66,7 @@ Expected<std::vector<BakeLayout>> selectBakeLayouts(const KernelProgram& kernel,
   for (const KernelOutput& output : kernel.outputs) {
     if (output.kind != OutputKind::Varying) continue;
     const auto texture = baked.textures.find(output.component);
-    const auto type = parseValueType(output.type);
+    const ValueType* type = output.type.isNumeric() ? &output.type : nullptr;
     if (texture == baked.textures.end() || !type) continue;
     const std::vector<std::byte>& texels = texture->second.texels;
     const size_t count = size_t{baked.size} * baked.size;

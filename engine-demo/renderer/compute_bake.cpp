@@ -69,11 +69,13 @@ Expected<UniformBakeResult> runUniformBake(const vk::Context& ctx, ModuleCache& 
                                           static_cast<size_t>(output->records->size()));
   UniformBakeResult result;
   for (const BlockMember& member : layout.members) {
-    const auto type = parseValueType(member.type);
-    if (!type) return Error{fmt::format("cannot average '{}' of type {} over vertices", member.component, member.type), {}, {}};
-    std::vector<double> sum(type->componentCount(), 0.0);
+    if (!member.type.isNumeric()) {
+      return Error{fmt::format("cannot average '{}' of type {} over vertices", member.component, member.type.name),
+                   {}, {}};
+    }
+    std::vector<double> sum(member.type.componentCount(), 0.0);
     for (uint32_t i = 0; i < count; ++i) {
-      const auto values = readValue(memory.subspan(size_t{i} * layout.recordStride, layout.recordStride), member, *type);
+      const auto values = readValue(memory.subspan(size_t{i} * layout.recordStride, layout.recordStride), member);
       for (size_t c = 0; c < values.size(); ++c) sum[c] += values[c];
     }
     for (double& s : sum) s /= count;

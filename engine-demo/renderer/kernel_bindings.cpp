@@ -26,7 +26,7 @@ std::span<std::byte> bytesOf(const vk::Buffer& buffer) {
 
 Error missing(const KernelProgram& kernel, const KernelInput& input, std::string_view what) {
   return Error{fmt::format("the {} kernel's input '{}' ({} from {}) has no value: {}", kernel.world, input.component,
-                           input.type, input.from, what),
+                           input.type.name, input.from, what),
                {},
                {}};
 }
@@ -73,22 +73,23 @@ class KernelBinder {
     for (const KernelInput& input : kernel_.inputs) {
       if (input.kind != InputKind::UniformMember || input.slot != block.slot) continue;
       const BlockMember* member = block.member(input.component);
-      const auto type = parseValueType(input.type);
-      if (!member || !type) return missing(kernel_, input, "its block member or type is not in the reflection");
+      if (!member || !member->type.isNumeric()) {
+        return missing(kernel_, input, "its block member or type is not in the reflection");
+      }
       const MaterialValue* bound = materialValue(input.component);
       const WorldRole role = roleOf(input);
       if (role == WorldRole::FrameParameters && !bound) {
-        bound_.frameWrites.push_back({*buffer, *member, *type, input.component});
+        bound_.frameWrites.push_back({*buffer, *member, input.component});
         continue;
       }
       if (role == WorldRole::UniformBake) {
         const std::vector<double>* baked = bakedUniform(input.component);
         if (!baked) return missing(kernel_, input, "the uniform bake did not produce it");
-        writeValue(bytesOf(**buffer), *member, *type, *baked);
+        writeValue(bytesOf(**buffer), *member, *baked);
         continue;
       }
       if (!bound) return missing(kernel_, input, "not bound in the material");
-      writeValue(bytesOf(**buffer), *member, *type, bound->numbers);
+      writeValue(bytesOf(**buffer), *member, bound->numbers);
     }
     bound_.descriptors.push_back({block.slot, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, (*buffer)->handle(), VK_NULL_HANDLE,
                                   VK_NULL_HANDLE, fmt::format("uniform block '{}'", block.name)});
@@ -134,15 +135,16 @@ class KernelBinder {
   // rather than bound as the producer wrote them.
   Expected<void> fillRecords(vk::Buffer& buffer, const Block& block, const KernelInput& input, uint32_t records) {
     const BlockMember* member = block.member(input.component);
-    const auto type = parseValueType(input.type);
-    if (!member || !type) return missing(kernel_, input, "its record member or type is not in the reflection");
+    if (!member || !member->type.isNumeric()) {
+      return missing(kernel_, input, "its record member or type is not in the reflection");
+    }
     const std::span<std::byte> memory = bytesOf(buffer);
     const WorldRole role = roleOf(input);
     if (role == WorldRole::MeshAttributes) {
       const MeshAttribute* attribute = findMeshAttribute(input.component);
       if (!attribute) return missing(kernel_, input, "the engine supplies no such mesh attribute");
       for (uint32_t i = 0; i < records; ++i) {
-        writeValue(memory.subspan(size_t{i} * block.recordStride, block.recordStride), *member, *type,
+        writeValue(memory.subspan(size_t{i} * block.recordStride, block.recordStride), *member,
                    attributeValue(sources_.mesh->mesh.vertices[i], *attribute));
       }
       return {};
@@ -153,8 +155,8 @@ class KernelBinder {
       const std::span<const std::byte> source = bytesOf(*sources_.vertexBake->buffer);
       const uint32_t stride = sources_.vertexBake->layout.recordStride;
       for (uint32_t i = 0; i < records; ++i) {
-        const auto values = readValue(source.subspan(size_t{i} * stride, stride), *produced, *type);
-        writeValue(memory.subspan(size_t{i} * block.recordStride, block.recordStride), *member, *type, values);
+        const auto values = readValue(source.subspan(size_t{i} * stride, stride), *produced);
+        writeValue(memory.subspan(size_t{i} * block.recordStride, block.recordStride), *member, values);
       }
       return {};
     }
@@ -197,7 +199,7 @@ Expected<BoundKernel> bindKernel(const vk::Context& ctx, const KernelProgram& ke
 void writeFrameValues(const BoundKernel& kernel, const FrameState& frame, const glm::mat4& model) {
   for (const FrameWrite& write : kernel.frameWrites) {
     if (const auto value = frameValue(write.component, frame, model)) {
-      writeValue(bytesOf(*write.buffer), write.member, write.type, value->numbers);
+      writeValue(bytesOf(*write.buffer), write.member, value->numbers);
     }
   }
 }

@@ -60,7 +60,6 @@ struct BindingSources {
 struct FrameWrite {
   vk::Buffer* buffer = nullptr;
   BlockMember member;
-  ValueType type;
   std::string component;
 };
 

@@ -13,8 +13,6 @@ namespace spire::engine {
 
 namespace {
 
-bool isSampler(std::string_view type) { return type.starts_with("sampler"); }
-
 std::string supportedNames() {
   std::string names;
   for (const FrameValueInfo& v : frameValues()) names += fmt::format("{}{}", names.empty() ? "" : ", ", v.component);
@@ -85,10 +83,10 @@ class MaterialResolver {
                         fmt::format("the {} kernel reads mesh attribute '{}', which meshes do not have "
                                     "(they have vert_pos, vert_uv, vert_normal and vert_tangent)",
                                     kernel.world, input.component));
-    } else if (attribute->type != input.type) {
+    } else if (attribute->type != input.type.name) {
       diags_.reportOnce(DiagCode::E7103, shaderRange(),
                         fmt::format("mesh attribute '{}' is a {}, but '{}' declares it as {}", input.component,
-                                    attribute->type, program_.shader, input.type));
+                                    attribute->type, program_.shader, input.type.name));
     }
   }
 
@@ -103,7 +101,7 @@ class MaterialResolver {
       diags_.reportOnce(DiagCode::E7102, instance_.materialRange,
                         fmt::format("input '{}' ({} from {}) of '{}' is not bound; add it to the instance's "
                                     "\"material\"",
-                                    input.component, input.type, input.from, program_.shader));
+                                    input.component, input.type.name, input.from, program_.shader));
       return;
     }
     const auto supplied = frameValue(input.component, FrameState{}, glm::mat4(1.0F));
@@ -111,11 +109,11 @@ class MaterialResolver {
       diags_.reportOnce(DiagCode::E7102, instance_.materialRange,
                         fmt::format("input '{}' ({} from {}) of '{}' is not bound and is not a per-frame engine value "
                                     "({}); bind it in the instance's \"material\"",
-                                    input.component, input.type, input.from, program_.shader, supportedNames()));
-    } else if (supplied->type != input.type) {
+                                    input.component, input.type.name, input.from, program_.shader, supportedNames()));
+    } else if (supplied->type != input.type.name) {
       diags_.reportOnce(DiagCode::E7103, shaderRange(),
                         fmt::format("the engine supplies '{}' as {}, but '{}' declares it as {}", input.component,
-                                    supplied->type, program_.shader, input.type));
+                                    supplied->type, program_.shader, input.type.name));
     }
   }
 
@@ -127,11 +125,11 @@ class MaterialResolver {
   }
 
   void resolveBinding(const KernelInput& input, const scene::MaterialBinding& binding) {
-    if (isSampler(input.type)) {
+    if (input.type.kind == ValueType::Kind::Sampler) {
       if (!binding.texture) {
         diags_.report(DiagCode::E7103, binding.valueRange,
                       fmt::format("'{}' is a {}: bind it to a texture name, not numbers", input.component,
-                                  input.type));
+                                  input.type.name));
         return;
       }
       if (const GpuTexture* texture = textureFor_(*binding.texture, binding.valueRange)) {
@@ -139,22 +137,22 @@ class MaterialResolver {
       }
       return;
     }
-    const auto type = parseValueType(input.type);
+    const ValueType* type = input.type.isNumeric() ? &input.type : nullptr;
     if (!type) {
       diags_.report(DiagCode::E7103, binding.valueRange,
-                    fmt::format("'{}' has type {}, which a scene file cannot supply", input.component, input.type));
+                    fmt::format("'{}' has type {}, which a scene file cannot supply", input.component, input.type.name));
       return;
     }
     if (binding.texture) {
       diags_.report(DiagCode::E7103, binding.valueRange,
-                    fmt::format("'{}' is a {}: bind it to {} number{}, not a texture", input.component, input.type,
+                    fmt::format("'{}' is a {}: bind it to {} number{}, not a texture", input.component, input.type.name,
                                 type->componentCount(), type->componentCount() == 1 ? "" : "s"));
       return;
     }
     if (binding.numbers.size() != type->componentCount()) {
       diags_.report(DiagCode::E7103, binding.valueRange,
                     fmt::format("'{}' is a {} and needs {} number{}, but the value has {}", input.component,
-                                input.type, type->componentCount(), type->componentCount() == 1 ? "" : "s",
+                                input.type.name, type->componentCount(), type->componentCount() == 1 ? "" : "s",
                                 binding.numbers.size()));
       return;
     }
@@ -162,7 +160,7 @@ class MaterialResolver {
       for (double n : binding.numbers) {
         if (n != std::floor(n) || (type->scalar == ValueType::Scalar::Uint && n < 0)) {
           diags_.report(DiagCode::E7103, binding.valueRange,
-                        fmt::format("'{}' is a {}: {} is not a valid component", input.component, input.type, n));
+                        fmt::format("'{}' is a {}: {} is not a valid component", input.component, input.type.name, n));
           return;
         }
       }

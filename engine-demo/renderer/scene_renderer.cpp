@@ -7,13 +7,12 @@
 
 #include <algorithm>
 
-#include "codegen/kernel_generator.h"
+#include "driver/compiler.h"
 #include "graph/decision_file.h"
 #include "renderer/material.h"
 #include "renderer/world_roles.h"
 #include "scene/scene_resources.h"
 #include "support/diagnostic_renderer.h"
-#include "support/spelling.h"
 #include "vk/timer.h"
 
 namespace spire::engine {
@@ -78,15 +77,6 @@ Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDes
   auto library = libraryFor(instance);
   if (!library) return library.error();
   ShaderLibrary& lib = **library;
-  const graph::ChoiceSpace* space = lib.choiceSpace(instance.shader);
-  if (!space) {
-    const std::vector<std::string> names = lib.shaderNames();
-    const std::vector<std::string_view> candidates(names.begin(), names.end());
-    const auto suggestion = closestSpelling(instance.shader, candidates);
-    return Error{fmt::format("'{}' has no concrete shader named '{}'{}", instance.source.string(), instance.shader,
-                             suggestion ? fmt::format("; did you mean '{}'?", *suggestion) : ""),
-                 instance.shaderRange, {}};
-  }
   DiagnosticList& diags = lib.diagnostics();
   const size_t mark = diags.size();
   graph::DecisionFile decisionFile;
@@ -96,21 +86,31 @@ Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDes
       graph::checkDecisionPrefixes(decisionFile, lib.model(), diags);
     }
   }
-  std::optional<graph::Variant> variant;
-  std::optional<codegen::GeneratedShader> generated;
-  if (!diags.hasErrors()) variant = graph::applyDecisions(decisionFile, *space, diags);
-  if (variant && !diags.hasErrors()) {
-    generated = codegen::generateKernels(lib.model(), lib.sources(), *variant, codegen::StrategyRegistry::builtin(), diags);
-  }
-  const bool failed = diags.hasErrors() || !generated;
-  const std::vector<Diagnostic> reported = diags.takeSince(mark);
-  if (failed) {
-    return Error{fmt::format("cannot build the variant of '{}'", instance.shader),
-                 decisions || !instance.decisions ? instance.shaderRange : instance.decisionsRange,
+  const SourceRange where = decisions || !instance.decisions ? instance.shaderRange : instance.decisionsRange;
+  const bool unreadable = diags.hasErrors();
+  std::vector<Diagnostic> reported = diags.takeSince(mark);
+  const bool skipped = std::any_of(reported.begin(), reported.end(),
+                                   [](const Diagnostic& d) { return d.severity == Severity::Warning; });
+  if (unreadable) {
+    return Error{fmt::format("cannot read the decisions for '{}'", instance.shader), where,
                  renderAll(lib.sources(), reported)};
   }
-  compilerWarnings_ += renderAll(lib.sources(), reported);
-  auto program = compileProgram(*generated, *variant);
+  if (skipped && strictDecisions_) {
+    return Error{fmt::format("not every decision for '{}' applies, so this is not the variant asked for",
+                             instance.shader),
+                 where, renderAll(lib.sources(), reported)};
+  }
+  CompileOptions options;
+  options.strictDecisions = strictDecisions_;
+  const CompileResult compiled = spire::compileVariant(lib, instance.shader, decisionFile, options);
+  if (!compiled) {
+    const CompileError& error = compiled.error();
+    reported.insert(reported.end(), error.diagnostics.begin(), error.diagnostics.end());
+    return Error{fmt::format("'{}': {}", instance.source.string(), error.message),
+                 error.diagnostics.empty() ? instance.shaderRange : where, renderAll(lib.sources(), reported)};
+  }
+  compilerWarnings_ += renderAll(lib.sources(), reported) + renderAll(lib.sources(), (*compiled)->warnings);
+  auto program = programFrom(**compiled);
   if (!program) return Error{program.error().message, instance.shaderRange, program.error().details};
   return programs_.emplace(key, std::move(program).value()).first->second;
 }
@@ -124,15 +124,13 @@ Expected<VariantProgram> SceneRenderer::compileVariant(size_t index, const std::
   ShaderLibrary& lib = **library;
   const auto variant = lib.buildVariant(instance.shader, decisions, skipped, attributes);
   if (!variant) return Error{fmt::format("'{}' has no valid variant for these decisions", instance.shader), instance.shaderRange, {}};
-  DiagnosticList& diags = lib.diagnostics();
-  const size_t mark = diags.size();
-  auto generated = codegen::generateKernels(lib.model(), lib.sources(), *variant, codegen::StrategyRegistry::builtin(), diags);
-  const std::vector<Diagnostic> reported = diags.takeSince(mark);
-  if (!generated) {
-    return Error{fmt::format("cannot generate the kernels of this variant of '{}'", instance.shader), instance.shaderRange,
-                 renderAll(lib.sources(), reported)};
+  DiagnosticList diags;
+  const CompiledVariantPtr compiled = spire::compileVariant(lib, *variant, CompileOptions{}, diags);
+  if (!compiled) {
+    return Error{fmt::format("cannot compile this variant of '{}'", instance.shader), instance.shaderRange,
+                 renderAll(lib.sources(), diags.all())};
   }
-  auto program = compileProgram(*generated, *variant);
+  auto program = programFrom(*compiled);
   if (!program) return Error{program.error().message, instance.shaderRange, program.error().details};
   return program;
 }

@@ -70,6 +70,11 @@ class SceneRenderer {
   // The library compiled for instance `index` (compiling it on first use).
   Expected<ShaderLibrary*> library(size_t index) { return libraryFor(scene_.instances.at(index)); }
 
+  // Whether a decision that is not applied (unknown, infeasible,
+  // conflicting) fails the instance's compile; on by default, since
+  // measuring a variant other than the one asked for is worthless.
+  void setStrictDecisions(bool strict) { strictDecisions_ = strict; }
+
   // Material values that replace the scene's for every instance that binds
   // the component, in the next prepare() calls: the tuner samples uniform
   // parameters over ranges this way. Empty restores the scene's values.
@@ -129,6 +134,7 @@ class SceneRenderer {
   std::optional<RenderTarget> target_;
   std::string compilerWarnings_;
   std::map<std::string, std::vector<double>> overrides_;
+  bool strictDecisions_ = true;
 };
 
 }  // namespace spire::engine

@@ -23,7 +23,7 @@ std::string bakeVertexShader(const KernelProgram& kernel, uint32_t uvLocation) {
   for (const KernelInput& input : kernel.inputs) {
     if (input.kind != InputKind::Varying) continue;
     declarations += fmt::format("layout(location = {0}) in {1} spire_in_{0};\nlayout(location = {0}) out {1} spire_out_{0};\n",
-                                input.location, input.type);
+                                input.location, input.type.name);
     body += fmt::format("    spire_out_{0} = spire_in_{0};\n", input.location);
   }
   return fmt::format(
@@ -105,19 +105,19 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
   for (const KernelOutput& output : kernel.outputs) {
     if (output.kind != OutputKind::Varying) continue;
     BakeTarget target{output.component, output.location, options.defaultFormat};
-    if (const auto hint = output.hints.find("Format"); hint != output.hints.end()) {
-      const auto format = bakeFormat(hint->second);
+    if (const std::string* hint = output.hint("Format")) {
+      const auto format = bakeFormat(*hint);
       if (!format) {
         return Error{fmt::format("'{}' asks for bake format \"{}\"; the engine supports {}", output.component,
-                                 hint->second, bakeFormatNames()),
+                                 *hint, bakeFormatNames()),
                      {},
                      {}};
       }
       target.format = *format;
     }
     uint32_t requested = options.defaultSize;
-    if (const auto hint = output.hints.find("TextureSize"); hint != output.hints.end()) {
-      const std::string& text = hint->second;
+    if (const std::string* hint = output.hint("TextureSize")) {
+      const std::string& text = *hint;
       const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), requested);
       if (ec != std::errc{} || end != text.data() + text.size() || requested == 0 || requested > 8192) {
         return Error{fmt::format("'{}' asks for bake size \"{}\"; use a whole number from 1 to 8192",

@@ -1,48 +1,11 @@
 #include "renderer/value_layout.h"
 
-#include <charconv>
 #include <cstring>
 #include <string>
 
 namespace spire::engine {
 
 namespace {
-
-std::optional<ValueType> parseNonArray(std::string_view type) {
-  ValueType result;
-  if (type == "float" || type == "int" || type == "uint" || type == "bool") {
-    result.scalar = type == "float" ? ValueType::Scalar::Float
-                    : type == "int" ? ValueType::Scalar::Int
-                    : type == "uint" ? ValueType::Scalar::Uint
-                                     : ValueType::Scalar::Bool;
-    return result;
-  }
-  const auto digit = [](char c) -> uint32_t { return c >= '2' && c <= '4' ? static_cast<uint32_t>(c - '0') : 0; };
-  if (type.size() == 4 && type.substr(0, 3) == "vec" && digit(type[3])) {
-    result.rows = digit(type[3]);
-    return result;
-  }
-  if (type.size() == 5 && type.substr(1, 3) == "vec" && digit(type[4])) {
-    switch (type[0]) {
-      case 'i': result.scalar = ValueType::Scalar::Int; break;
-      case 'u': result.scalar = ValueType::Scalar::Uint; break;
-      case 'b': result.scalar = ValueType::Scalar::Bool; break;
-      default: return std::nullopt;
-    }
-    result.rows = digit(type[4]);
-    return result;
-  }
-  if (type.size() == 4 && type.substr(0, 3) == "mat" && digit(type[3])) {
-    result.rows = result.columns = digit(type[3]);
-    return result;
-  }
-  if (type.size() == 6 && type.substr(0, 3) == "mat" && digit(type[3]) && type[4] == 'x' && digit(type[5])) {
-    result.columns = digit(type[3]);
-    result.rows = digit(type[5]);
-    return result;
-  }
-  return std::nullopt;
-}
 
 // Every scalar type the engine moves is 32 bits wide in std140 and std430.
 constexpr uint32_t kScalarSize = 4;
@@ -60,22 +23,10 @@ size_t componentOffset(const BlockMember& member, const ValueType& type, uint32_
 
 }  // namespace
 
-std::optional<ValueType> parseValueType(std::string_view type) {
-  const size_t bracket = type.find('[');
-  if (bracket == std::string_view::npos) return parseNonArray(type);
-  if (type.back() != ']' || type.find('[', bracket + 1) != std::string_view::npos) return std::nullopt;
-  auto result = parseNonArray(type.substr(0, bracket));
-  if (!result) return std::nullopt;
-  const std::string_view digits = type.substr(bracket + 1, type.size() - bracket - 2);
-  uint32_t length = 0;
-  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), length);
-  if (ec != std::errc{} || end != digits.data() + digits.size() || length == 0) return std::nullopt;
-  result->arrayLength = length;
-  return result;
-}
-
-void writeValue(std::span<std::byte> memory, const BlockMember& member, const ValueType& type,
+void writeValue(std::span<std::byte> memory, const BlockMember& member,
                 std::span<const double> values) {
+  const ValueType& type = member.type;
+  if (!type.isNumeric()) return;
   const uint32_t count = std::min<uint32_t>(type.componentCount(), static_cast<uint32_t>(values.size()));
   for (uint32_t i = 0; i < count; ++i) {
     const size_t offset = member.offset + componentOffset(member, type, i);
@@ -106,8 +57,10 @@ void writeValue(std::span<std::byte> memory, const BlockMember& member, const Va
   }
 }
 
-std::vector<double> readValue(std::span<const std::byte> memory, const BlockMember& member, const ValueType& type) {
+std::vector<double> readValue(std::span<const std::byte> memory, const BlockMember& member) {
+  const ValueType& type = member.type;
   std::vector<double> values;
+  if (!type.isNumeric()) return values;
   values.reserve(type.componentCount());
   for (uint32_t i = 0; i < type.componentCount(); ++i) {
     const size_t offset = member.offset + componentOffset(member, type, i);

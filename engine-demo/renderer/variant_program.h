@@ -5,7 +5,6 @@
 // (the path for build pipelines); both give the same program.
 #pragma once
 
-#include <compare>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -15,75 +14,26 @@
 
 #include <nlohmann/json.hpp>
 
-#include "codegen/kernel_generator.h"
+#include "driver/compiler.h"
+#include "reflection/reflection.h"
 #include "renderer/error.h"
 #include "renderer/world_roles.h"
 
 namespace spire::engine {
 
-// Where a kernel's resource is bound: a descriptor set and a binding in it
-// (docs/reflection.md, Descriptor bindings). Bindings may restart at 0 in each
-// kernel, so a binding number alone does not identify a resource.
-struct DescriptorSlot {
-  uint32_t set = 0;
-  uint32_t binding = 0;
-  auto operator<=>(const DescriptorSlot&) const = default;
-};
+// The engine reads the compiler's typed reflection records as they are.
+using reflection::Block;
+using reflection::BlockMember;
+using reflection::DescriptorSlot;
+using reflection::InputKind;
+using reflection::KernelInput;
+using reflection::KernelOutput;
+using reflection::OutputKind;
+using reflection::ValueType;
 
-// One member of a uniform block or of a storage buffer's record.
-struct BlockMember {
-  std::string component;
-  std::string type;
-  uint32_t offset = 0;
-  uint32_t size = 0;
-  uint32_t arrayStride = 0;
-  uint32_t matrixStride = 0;
-};
-
-struct Block {
-  std::string name;
-  bool storage = false;  // storage buffer of records; otherwise a uniform block
-  DescriptorSlot slot;
-  uint32_t size = 0;          // uniform blocks
-  uint32_t recordStride = 0;  // storage blocks
-  std::vector<BlockMember> members;
-
-  const BlockMember* member(std::string_view component) const;
-};
-
-enum class InputKind { UniformMember, Sampler, Varying, Texture, BufferMember };
-
-struct KernelInput {
-  InputKind kind = InputKind::Varying;
-  std::string component;
-  std::string type;
-  std::string from;  // the producing world
-  DescriptorSlot slot;    // UniformMember, Sampler, Texture, BufferMember
-  uint32_t location = 0;  // Varying
-  uint32_t channels = 4;  // Texture
-};
-
-enum class OutputKind { Varying, BuiltIn, BufferMember };
-
-struct KernelOutput {
-  OutputKind kind = OutputKind::Varying;
-  std::string component;
-  std::string type;
-  uint32_t location = 0;  // Varying
-  DescriptorSlot slot;    // BufferMember
-  std::map<std::string, std::string> hints;
-};
-
-struct KernelProgram {
-  std::string world;
-  codegen::ShaderStage stage = codegen::ShaderStage::Fragment;
-  std::string hash;
+// A kernel's reflection and its SPIR-V.
+struct KernelProgram : reflection::Kernel {
   std::vector<uint32_t> spirv;
-  std::vector<KernelInput> inputs;
-  std::vector<KernelOutput> outputs;
-  std::vector<Block> blocks;
-
-  const Block* block(DescriptorSlot slot) const;
 };
 
 struct VariantProgram {
@@ -102,15 +52,22 @@ struct VariantProgram {
   std::string fingerprint() const;
 };
 
-// Parses a reflection.json document; `spirv` supplies each kernel's words by
-// world. Malformed reflection is an error naming the offending field.
+// A program from reflection and each kernel's SPIR-V by world. Every
+// kernel's words must be there, and its interface must be the one the
+// reflection states (spirv_interface.h).
+Expected<VariantProgram> makeProgram(const reflection::Variant& reflection,
+                                     const std::map<std::string, std::vector<uint32_t>>& spirv);
+
+// As makeProgram, from a reflection.json document.
 Expected<VariantProgram> parseReflection(const nlohmann::ordered_json& reflection,
                                          const std::map<std::string, std::vector<uint32_t>>& spirv);
 
-// The file path: `directory` holds reflection.json and the .spv files it names.
+// The file path: `directory` holds reflection.json and the .spv files it
+// names. Each file must be the one the reflection was written with (its
+// recorded hash): a directory that mixes two compiles is an error.
 Expected<VariantProgram> loadProgram(const std::filesystem::path& directory);
 
-// The library path: compiles the generated GLSL of every kernel with glslang.
-Expected<VariantProgram> compileProgram(const codegen::GeneratedShader& shader, const graph::Variant& variant);
+// The library path: a variant from driver/compiler.h, compiled with SPIR-V.
+Expected<VariantProgram> programFrom(const CompiledVariant& compiled);
 
 }  // namespace spire::engine

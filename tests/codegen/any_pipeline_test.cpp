@@ -113,9 +113,9 @@ std::vector<Kernel> checkedKernels(Compiled& c, const graph::Variant& variant) {
       EXPECT_FALSE(validateSpirv(spirv.words).has_value()) << k.glsl;
     }
     std::set<uint64_t> used;
-    for (const auto& input : k.reflection["inputs"]) {
-      if (!input.contains("location")) continue;
-      EXPECT_TRUE(used.insert(input["location"].get<uint64_t>()).second) << "location reused in " << k.glsl;
+    for (const reflection::KernelInput& input : k.reflection.inputs) {
+      if (input.kind != reflection::InputKind::Varying) continue;
+      EXPECT_TRUE(used.insert(input.location).second) << "location reused in " << k.glsl;
     }
   }
   return std::move(generated->kernels);
@@ -135,19 +135,20 @@ TEST(AnyPipeline, AWorldFedByTwoProducersGetsDisjointLocations) {
   const std::vector<Kernel> kernels = checkedKernels(c, *variant);
   const Kernel& vertex = kernelOf(kernels, "Vertex");
   std::set<std::string> fromBake;
-  for (const auto& input : vertex.reflection["inputs"]) {
-    if (input["from"] == "PrebakeVertex") fromBake.insert(input["component"].get<std::string>());
+  for (const reflection::KernelInput& input : vertex.reflection.inputs) {
+    if (input.from == "PrebakeVertex") fromBake.insert(input.component);
   }
   EXPECT_EQ(fromBake, (std::set<std::string>{"n", "t"})) << vertex.glsl;
   // Every varying Fragment reads is written by Vertex at the same location.
   const Kernel& fragment = kernelOf(kernels, "Fragment");
-  for (const auto& input : fragment.reflection["inputs"]) {
-    if (input["from"] != "Vertex") continue;
+  for (const reflection::KernelInput& input : fragment.reflection.inputs) {
+    if (input.from != "Vertex") continue;
     bool written = false;
-    for (const auto& output : vertex.reflection["outputs"]) {
-      written = written || (output.value("component", "") == input["component"] && output["location"] == input["location"]);
+    for (const reflection::KernelOutput& output : vertex.reflection.outputs) {
+      written = written || (output.kind == reflection::OutputKind::Varying && output.component == input.component &&
+                            output.location == input.location);
     }
-    EXPECT_TRUE(written) << input.dump();
+    EXPECT_TRUE(written) << input.component;
   }
 }
 
@@ -268,11 +269,11 @@ TEST(LockedWorlds, DerivedShadersShareTheLockedKernels) {
     const Kernel& ka = kernelOf(a, world);
     const Kernel& kb = kernelOf(b, world);
     EXPECT_EQ(ka.glsl, kb.glsl) << world;
-    EXPECT_EQ(ka.reflection["key"], kb.reflection["key"]) << world;
+    EXPECT_EQ(ka.reflection.key, kb.reflection.key) << world;
     EXPECT_EQ(compileGlslToSpirv(ka.stage, ka.glsl, world).words, compileGlslToSpirv(kb.stage, kb.glsl, world).words);
   }
   // The unlocked bake differs, and so does its key.
-  EXPECT_NE(kernelOf(a, "PrebakeTex").reflection["key"], kernelOf(b, "PrebakeTex").reflection["key"]);
+  EXPECT_NE(kernelOf(a, "PrebakeTex").reflection.key, kernelOf(b, "PrebakeTex").reflection.key);
 }
 
 std::string lockedError(const std::string& body) {

@@ -10,6 +10,7 @@
 #include "codegen/strategies/strategy_support.h"
 #include "driver/shader_library.h"
 #include "graph/graph_test_util.h"
+#include "reflection/reflection_json.h"
 #include "support/diagnostic_renderer.h"
 
 namespace spire::codegen {
@@ -77,11 +78,11 @@ TEST(KernelGenerator, BakedAlbedoIsWrittenByPrebakeAndSampledByFragment) {
   EXPECT_NE(fragment->glsl.find("uniform sampler2D spire_tex_albedo;"), std::string::npos) << fragment->glsl;
   EXPECT_NE(fragment->glsl.find("albedo = texture(spire_tex_albedo, vert_uv);"), std::string::npos) << fragment->glsl;
   bool reflected = false;
-  for (const auto& input : fragment->reflection["inputs"]) {
-    reflected = reflected || (input["component"] == "albedo" && input["strategy"] == "textureImport" &&
-                              input["uv"] == "vert_uv");
+  for (const reflection::KernelInput& input : fragment->reflection.inputs) {
+    reflected = reflected || (input.kind == reflection::InputKind::Texture && input.component == "albedo" &&
+                              input.strategy == "textureImport" && input.uv == "vert_uv");
   }
-  EXPECT_TRUE(reflected) << fragment->reflection.dump(2);
+  EXPECT_TRUE(reflected) << reflection::toJson(fragment->reflection).dump(2);
 }
 
 TEST(KernelGenerator, GlslReservedNamesAreRenamedAndReflectedBySourceName) {
@@ -106,7 +107,8 @@ shader S using EnginePipeline {
   ASSERT_TRUE(fragment);
   EXPECT_NE(fragment->glsl.find("vec4 output_;"), std::string::npos) << fragment->glsl;
   EXPECT_NE(fragment->glsl.find("float glx_weight;"), std::string::npos) << fragment->glsl;
-  EXPECT_EQ(fragment->reflection["outputs"][0]["component"], "output");
+  ASSERT_FALSE(fragment->reflection.outputs.empty());
+  EXPECT_EQ(fragment->reflection.outputs[0].component, "output");
 }
 
 TEST(KernelGenerator, LocalDeclarationsKeepTheirShapeInGlsl) {
@@ -141,12 +143,11 @@ TEST(KernelGenerator, OutputIsDeterministicAndHashesFollowContent) {
     const auto variant = library.buildVariant("Terrain", {{"lighting", "Vertex:ggx"}});
     return generateKernels(library.model(), library.sources(), *variant, StrategyRegistry::builtin(),
                            library.diagnostics())
-        ->reflection(*variant)
-        .dump();
+        ->reflection(*variant);
   };
   EXPECT_EQ(generate(), generate());
-  EXPECT_EQ(contentHash("abc"), contentHash("abc"));
-  EXPECT_NE(contentHash("abc"), contentHash("abd"));
+  EXPECT_EQ(reflection::contentHash("abc"), reflection::contentHash("abc"));
+  EXPECT_NE(reflection::contentHash("abc"), reflection::contentHash("abd"));
 }
 
 // A strategy defined entirely here: push constants instead of a uniform
@@ -156,10 +157,15 @@ class PushConstantImport final : public Strategy {
   const sem::StrategySignature& signature() const override { return signature_; }
   std::optional<std::string> emitImport(ImportSite& site) const override {
     std::string members;
+    uint32_t offset = 0;
     for (const KernelValue& v : site.values) {
       if (v.type->containsOpaque()) return "push constants cannot hold samplers";
       members += "    " + site.consumer.declaration(v.type, v.glslName) + ";\n";
-      nlohmann::ordered_json entry = valueEntry(v, "pushConstantImport");
+      const MemberLayout layout = layoutOf(v.type, BlockLayout::Std430);
+      reflection::KernelInput entry =
+          importEntry(site, v, reflection::InputKind::PushConstant, "pushConstantImport");
+      entry.offset = offset = alignUp(offset, layout.alignment);
+      offset += layout.size;
       site.consumer.reflectInput(std::move(entry));
     }
     site.consumer.declare("layout(push_constant, std430) uniform " + site.consumer.names().generate("push") + " {\n" +
@@ -207,6 +213,13 @@ shader S using Push {
   const Kernel* vertex = findKernel(generated->kernels, "Vertex");
   ASSERT_TRUE(vertex);
   EXPECT_NE(vertex->glsl.find("layout(push_constant, std430) uniform"), std::string::npos) << vertex->glsl;
+  ASSERT_EQ(vertex->reflection.inputs.size(), 2u);  // mvp, pos
+  EXPECT_EQ(vertex->reflection.inputs[0].kind, reflection::InputKind::PushConstant);
+  EXPECT_EQ(vertex->reflection.inputs[0].component, "mvp");
+  // The typed record survives the JSON round trip, kind and offset included.
+  const auto reread = reflection::fromJson(reflection::toJson(generated->reflection(*variant)));
+  ASSERT_TRUE(reread) << reread.error();
+  EXPECT_EQ(*reread, generated->reflection(*variant));
   compileAndValidate(library, *variant, registry);
 }
 
@@ -255,12 +268,12 @@ shader S using Buffers {
   ASSERT_TRUE(prebake && vertex);
   EXPECT_EQ(prebake->stage, ShaderStage::Compute);
   // The consumer reads the producer's records with the producer's layout.
-  std::map<std::string, int> written;
-  for (const auto& out : prebake->reflection["outputs"]) written[out["component"]] = out["offset"];
+  std::map<std::string, uint32_t> written;
+  for (const reflection::KernelOutput& out : prebake->reflection.outputs) written[out.component] = out.offset;
   size_t read = 0;
-  for (const auto& in : vertex->reflection["inputs"]) {
-    if (in["strategy"] != "bufferImport" || in["from"] != "PrebakeVertex") continue;
-    EXPECT_EQ(in["offset"], written.at(in["component"])) << in.dump();
+  for (const reflection::KernelInput& in : vertex->reflection.inputs) {
+    if (in.kind != reflection::InputKind::BufferMember || in.from != "PrebakeVertex") continue;
+    EXPECT_EQ(in.offset, written.at(in.component)) << in.component;
     ++read;
   }
   EXPECT_GE(read, 1u);

@@ -19,6 +19,7 @@
 
 #include "codegen/spirv_compiler.h"
 #include "engine/device_fixture.h"
+#include "reflection/reflection_json.h"
 #include "renderer/draw_item.h"
 #include "renderer/gpu_resources.h"
 #include "renderer/pipeline_descriptors.h"
@@ -37,36 +38,62 @@ struct TestKernel {
   std::string reflection;  // the kernel's "inputs", "outputs" and "blocks", as JSON members
 };
 
+// Names and strategies are bookkeeping the tests do not vary: fill them in
+// where a fixture leaves them out. Kinds, slots and types are always written.
+void fillNames(Json& list) {
+  for (Json& entry : list) {
+    if (entry.contains("component") && !entry.contains("glslName")) entry["glslName"] = entry["component"];
+    if (!entry.contains("strategy")) entry["strategy"] = "test";
+    if (entry.contains("members")) {
+      if (!entry.contains("layout")) entry["layout"] = "std140";
+      fillNames(entry["members"]);
+    }
+  }
+}
+
 Json reflectionOf(const std::vector<TestKernel>& kernels) {
   Json kernelList = Json::array();
   for (const TestKernel& k : kernels) {
-    Json entry = Json::parse("{" + k.reflection + "}");
-    entry["world"] = k.world;
-    entry["stage"] = k.stage == codegen::ShaderStage::Vertex ? "vertex" : "fragment";
-    entry["hash"] = "test-" + k.world + "-" + std::to_string(std::hash<std::string>{}(k.glsl));
+    Json entry = {{"world", k.world},
+                  {"stage", k.stage == codegen::ShaderStage::Vertex ? "vertex" : "fragment"},
+                  {"entry", "main"},
+                  {"glsl", k.world + ".glsl"},
+                  {"spirv", k.world + ".spv"},
+                  {"hash", reflection::contentHash(k.glsl)},
+                  {"key", reflection::contentHash(k.world + k.glsl)}};
+    entry.update(Json::parse("{" + k.reflection + "}"));
+    for (const char* list : {"inputs", "outputs", "blocks"}) fillNames(entry[list]);
     kernelList.push_back(std::move(entry));
   }
-  return Json{{"format", "spire-reflection"}, {"version", 1},      {"shader", "SetsTest"},
-              {"pipeline", "EnginePipeline"}, {"placement", Json::object()}, {"kernels", kernelList}};
+  return Json{{"format", "spire-reflection"},
+              {"version", reflection::kFormatVersion},
+              {"shader", "SetsTest"},
+              {"pipeline", "EnginePipeline"},
+              {"placement", Json::object()},
+              {"kernels", kernelList}};
 }
 
-// The program of `kernels`, compiled with glslang.
-Expected<VariantProgram> programOf(const std::vector<TestKernel>& kernels) {
+// The kernels' SPIR-V, compiled with glslang; empty for one that does not compile.
+std::map<std::string, std::vector<uint32_t>> spirvOf(const std::vector<TestKernel>& kernels) {
   std::map<std::string, std::vector<uint32_t>> spirv;
   for (const TestKernel& k : kernels) {
     codegen::SpirvResult result = codegen::compileGlslToSpirv(k.stage, k.glsl, k.world + ".glsl");
-    if (!result.ok()) return Error{"test kernel does not compile", {}, result.log};
+    EXPECT_TRUE(result.ok()) << result.log;
     spirv[k.world] = std::move(result.words);
   }
-  return parseReflection(reflectionOf(kernels), spirv);
+  return spirv;
+}
+
+Expected<VariantProgram> programOf(const std::vector<TestKernel>& kernels) {
+  return parseReflection(reflectionOf(kernels), spirvOf(kernels));
 }
 
 const std::string kVertexBlockReflection = R"(
   "inputs": [
-    {"component": "offset", "type": "vec4", "from": "MaterialUniform", "set": 0, "binding": 0,
+    {"kind": "uniform", "component": "offset", "type": "vec4", "from": "MaterialUniform", "set": 0, "binding": 0,
      "block": "VertexBlock", "offset": 0},
-    {"component": "vert_pos", "type": "vec3", "from": "MeshVertex", "location": 0}],
-  "outputs": [{"builtin": "gl_Position"}],
+    {"kind": "varying", "component": "vert_pos", "type": "vec3", "from": "MeshVertex", "location": 0}],
+  "outputs": [{"kind": "builtin", "builtin": "gl_Position", "expression": "projPos"}],
   "blocks": [{"name": "VertexBlock", "kind": "uniform", "set": 0, "binding": 0, "size": 16,
               "members": [{"component": "offset", "type": "vec4", "offset": 0, "size": 16}]}])";
 
@@ -87,16 +114,16 @@ void main() { color = texture(tint, vec2(0.5)) * scale; }
 )",
                                R"(
   "inputs": [
-    {"component": "tint", "type": "sampler2D", "from": "MaterialUniform", "set": 1, "binding": 0},
-    {"component": "scale", "type": "vec4", "from": "MaterialUniform", "set": 1, "binding": 1,
+    {"kind": "sampler", "component": "tint", "type": "sampler2D", "from": "MaterialUniform", "set": 1, "binding": 0},
+    {"kind": "uniform", "component": "scale", "type": "vec4", "from": "MaterialUniform", "set": 1, "binding": 1,
      "block": "FragmentBlock", "offset": 0}],
-  "outputs": [{"component": "color", "type": "vec4", "location": 0}],
+  "outputs": [{"kind": "varying", "component": "color", "type": "vec4", "location": 0}],
   "blocks": [{"name": "FragmentBlock", "kind": "uniform", "set": 1, "binding": 1, "size": 16,
               "members": [{"component": "scale", "type": "vec4", "offset": 0, "size": 16}]}])"};
 
 TEST(RendererReflectionSets, EveryBindingHasItsSet) {
   const Json reflection = reflectionOf({kVertexSet0, kFragmentSet1});
-  auto program = parseReflection(reflection, {{"Vertex", {1}}, {"Fragment", {1}}});
+  auto program = parseReflection(reflection, spirvOf({kVertexSet0, kFragmentSet1}));
   ASSERT_TRUE(program) << program.error().message;
   const KernelProgram& fragment = *program->kernel("Fragment");
   EXPECT_EQ(fragment.inputs[0].slot, (DescriptorSlot{1, 0}));
@@ -116,7 +143,7 @@ TEST(RendererReflectionSets, MissingOrNonIntegerSetIsAnError) {
     } else {
       input["set"] = bad;
     }
-    auto program = parseReflection(reflection, {{"Vertex", {1}}, {"Fragment", {1}}});
+    auto program = parseReflection(reflection, spirvOf({kVertexSet0, kFragmentSet1}));
     ASSERT_FALSE(program) << "set: " << bad.dump();
     EXPECT_NE(program.error().message.find("kernel 'Fragment', input 'tint'"), std::string::npos)
         << program.error().message;
@@ -124,7 +151,7 @@ TEST(RendererReflectionSets, MissingOrNonIntegerSetIsAnError) {
   }
   Json reflection = reflectionOf({kVertexSet0, kFragmentSet1});
   reflection["kernels"][0]["blocks"][0]["set"] = "zero";
-  auto program = parseReflection(reflection, {{"Vertex", {1}}, {"Fragment", {1}}});
+  auto program = parseReflection(reflection, spirvOf({kVertexSet0, kFragmentSet1}));
   ASSERT_FALSE(program);
   EXPECT_NE(program.error().message.find("kernel 'Vertex', block 'VertexBlock': \"set\" must be a whole number"),
             std::string::npos)
@@ -253,17 +280,17 @@ void main() { gl_Position = vec4(vert_pos.x, vert_pos.z, 0.5, textureLod(tint, v
 )",
                           R"(
   "inputs": [
-    {"component": "tint", "type": "sampler2D", "from": "MaterialUniform", "set": 0, "binding": 0},
-    {"component": "vert_pos", "type": "vec3", "from": "MeshVertex", "location": 0}],
-  "outputs": [{"builtin": "gl_Position"}], "blocks": [])"};
+    {"kind": "sampler", "component": "tint", "type": "sampler2D", "from": "MaterialUniform", "set": 0, "binding": 0},
+    {"kind": "varying", "component": "vert_pos", "type": "vec3", "from": "MeshVertex", "location": 0}],
+  "outputs": [{"kind": "builtin", "builtin": "gl_Position", "expression": "projPos"}], "blocks": [])"};
   const TestKernel fragment{codegen::ShaderStage::Fragment, "Fragment", R"(#version 450
 layout(set = 0, binding = 0) uniform sampler2D tint;
 layout(location = 0) out vec4 color;
 void main() { color = texture(tint, vec2(0.5)); }
 )",
                             R"(
-  "inputs": [{"component": "tint", "type": "sampler2D", "from": "MaterialUniform", "set": 0, "binding": 0}],
-  "outputs": [{"component": "color", "type": "vec4", "location": 0}], "blocks": [])"};
+  "inputs": [{"kind": "sampler", "component": "tint", "type": "sampler2D", "from": "MaterialUniform", "set": 0, "binding": 0}],
+  "outputs": [{"kind": "varying", "component": "color", "type": "vec4", "location": 0}], "blocks": [])"};
   auto program = programOf({vertex, fragment});
   ASSERT_TRUE(program) << program.error().message << program.error().details;
   DrawItem item;
@@ -308,7 +335,7 @@ void main() { color = texture(tint, vec2(0.5)) * scale; }
   Json sameType = Json::parse("{" + kVertexBlockReflection + "}");
   sameType["inputs"][0]["component"] = "scale";
   sameType["blocks"][0]["members"][0]["component"] = "scale";
-  sameType["outputs"] = Json::parse(R"([{"component": "color", "type": "vec4", "location": 0}])");
+  sameType["outputs"] = Json::parse(R"([{"kind": "varying", "component": "color", "type": "vec4", "location": 0}])");
   sameType["inputs"].erase(1);
   auto differentResource = programOf({kVertexSet0, {codegen::ShaderStage::Fragment, "Fragment", R"(#version 450
 layout(set = 0, binding = 0, std140) uniform VertexBlock { vec4 scale; };
@@ -335,10 +362,10 @@ void main() { albedo = scale + vec4(0.0 * vert_uv, 0.0, 0.0); }
 )",
                         R"(
   "inputs": [
-    {"component": "scale", "type": "vec4", "from": "MaterialUniform", "set": 1, "binding": 0,
+    {"kind": "uniform", "component": "scale", "type": "vec4", "from": "MaterialUniform", "set": 1, "binding": 0,
      "block": "BakeBlock", "offset": 0},
-    {"component": "vert_uv", "type": "vec2", "from": "MeshVertex", "location": 0}],
-  "outputs": [{"component": "albedo", "type": "vec4", "location": 0}],
+    {"kind": "varying", "component": "vert_uv", "type": "vec2", "from": "MeshVertex", "location": 0}],
+  "outputs": [{"kind": "varying", "component": "albedo", "type": "vec4", "location": 0}],
   "blocks": [{"name": "BakeBlock", "kind": "uniform", "set": 1, "binding": 0, "size": 16,
               "members": [{"component": "scale", "type": "vec4", "offset": 0, "size": 16}]}])"};
   auto program = programOf({bake});

@@ -24,8 +24,8 @@ namespace spire::testgen {
 std::vector<std::string> checkInterfaces(const codegen::GeneratedShader& shader, const sem::Pipeline& pipeline,
                                          const std::vector<sem::WorldId>& lockedWorlds = {});
 
-// How many locations a value of this reflection type takes: `mat3` 3,
-// `vec4[2]` 2, scalars and vectors 1.
-int locationSpan(const std::string& type);
+// How many locations a value of this type takes: `mat3` 3, `vec4[2]` 2,
+// scalars and vectors 1.
+int locationSpan(const reflection::ValueType& type);
 
 }  // namespace spire::testgen

@@ -10,7 +10,7 @@
 namespace spire::testgen {
 namespace {
 
-using Json = nlohmann::ordered_json;
+namespace rf = reflection;
 
 sem::Pipeline twoStagePipeline() {
   sem::Pipeline p;
@@ -24,27 +24,39 @@ sem::Pipeline twoStagePipeline() {
   return p;
 }
 
-codegen::Kernel kernel(const char* world, Json inputs, Json outputs) {
+rf::KernelInput varyingIn(const char* component, const char* type, uint32_t location, const char* from) {
+  rf::KernelInput in;
+  in.component = component;
+  in.type = rf::parseValueType(type);
+  in.strategy = "standardImport";
+  in.from = from;
+  in.location = location;
+  return in;
+}
+
+rf::KernelOutput varyingOut(const char* component, const char* type, uint32_t location) {
+  rf::KernelOutput out;
+  out.component = component;
+  out.type = rf::parseValueType(type);
+  out.location = location;
+  return out;
+}
+
+codegen::Kernel kernel(const char* world, std::vector<rf::KernelInput> inputs, std::vector<rf::KernelOutput> outputs) {
   codegen::Kernel k;
   k.world = world;
-  k.reflection = {
-      {"world", world}, {"inputs", std::move(inputs)}, {"outputs", std::move(outputs)}, {"blocks", Json::array()}};
+  k.reflection.world = world;
+  k.reflection.inputs = std::move(inputs);
+  k.reflection.outputs = std::move(outputs);
   return k;
 }
 
-Json varying(const char* component, const char* type, int location, const char* from = nullptr) {
-  Json j = {{"component", component}, {"type", type}, {"strategy", "standardImport"}};
-  if (from) j["from"] = from;
-  j["location"] = location;
-  return j;
-}
-
-codegen::GeneratedShader shader(int fragmentLocation, const char* fragmentType) {
+codegen::GeneratedShader shader(uint32_t fragmentLocation, const char* fragmentType) {
   codegen::GeneratedShader s;
-  s.kernels.push_back(kernel("V0", Json::array({varying("pos", "vec3", 0, "M0"), varying("m", "mat3", 1, "M0")}),
-                             Json::array({varying("n", "vec3", 0), varying("t", "vec2", 1)})));
-  s.kernels.push_back(kernel("F0", Json::array({varying("n", fragmentType, fragmentLocation, "V0")}),
-                             Json::array({varying("output", "vec4", 0)})));
+  s.kernels.push_back(kernel("V0", {varyingIn("pos", "vec3", 0, "M0"), varyingIn("m", "mat3", 1, "M0")},
+                             {varyingOut("n", "vec3", 0), varyingOut("t", "vec2", 1)}));
+  s.kernels.push_back(
+      kernel("F0", {varyingIn("n", fragmentType, fragmentLocation, "V0")}, {varyingOut("output", "vec4", 0)}));
   return s;
 }
 
@@ -59,12 +71,12 @@ TEST(GeneratorInterfaceCheck, LocationOrTypeMismatchIsReported) {
 
 TEST(GeneratorInterfaceCheck, OverlappingSpansAreReported) {
   codegen::GeneratedShader s = shader(0, "vec3");
-  s.kernels[0].reflection["inputs"].push_back(varying("uv", "vec2", 3, "M0"));  // inside mat3 m's 1..3
+  s.kernels[0].reflection.inputs.push_back(varyingIn("uv", "vec2", 3, "M0"));  // inside mat3 m's 1..3
   ASSERT_EQ(checkInterfaces(s, twoStagePipeline()).size(), 1u);
   EXPECT_NE(checkInterfaces(s, twoStagePipeline())[0].find("location 3"), std::string::npos);
-  EXPECT_EQ(locationSpan("mat4x3"), 4);
-  EXPECT_EQ(locationSpan("vec4[3]"), 3);
-  EXPECT_EQ(locationSpan("mat2[2]"), 4);
+  EXPECT_EQ(locationSpan(rf::parseValueType("mat4x3")), 4);
+  EXPECT_EQ(locationSpan(rf::parseValueType("vec4[3]")), 3);
+  EXPECT_EQ(locationSpan(rf::parseValueType("mat2[2]")), 4);
 }
 
 TEST(GeneratorInterfaceCheck, ImportsReversedTouchesOnlyImportLines) {

@@ -9,6 +9,7 @@
 #include "codegen/spirv_compiler.h"
 #include "gen/interface_check.h"
 #include "graph/decision_file.h"
+#include "reflection/reflection_json.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
 
@@ -30,9 +31,8 @@ bool hasInternalError(const DiagnosticList& diags) {
 std::string routesOf(const codegen::GeneratedShader& generated, const graph::Variant& variant) {
   std::vector<std::string> lines;
   for (const codegen::Kernel& k : generated.kernels) {
-    for (const auto& input : k.reflection["inputs"]) {
-      lines.push_back(fmt::format("{} reads {} from {} by {}\n", k.world, input["component"].get<std::string>(),
-                                  input["from"].get<std::string>(), input["strategy"].get<std::string>()));
+    for (const reflection::KernelInput& input : k.reflection.inputs) {
+      lines.push_back(fmt::format("{} reads {} from {} by {}\n", k.world, input.component, input.from, input.strategy));
     }
   }
   std::sort(lines.begin(), lines.end());
@@ -160,7 +160,7 @@ VariantReport ProgramChecker::checkVariant(const graph::Variant& variant, Diagno
   if (!mismatches.empty()) {
     std::string detail;
     for (const std::string& m : mismatches) detail += m + "\n";
-    return {"", Verdict::InterfaceMismatch, {}, detail + generated->reflection(variant).dump(2), {}, {}};
+    return {"", Verdict::InterfaceMismatch, {}, detail + reflection::toJson(generated->reflection(variant)).dump(2), {}, {}};
   }
   return {"", Verdict::Accepted, {}, {}, routesOf(*generated, variant), lockedKernelsOf(*generated, variant)};
 }

@@ -29,11 +29,10 @@ class BufferExport final : public Strategy {
       const KernelValue& v = site.values[i];
       kernel.addStore(fmt::format("{}[gl_GlobalInvocationID.x].{} = {};", block.recordsName, members[i].glslName,
                                   v.glslName));
-      nlohmann::ordered_json entry = valueEntry(v, "bufferExport");
-      setBinding(entry, kernel, block.binding);
-      entry["block"] = block.blockName;
-      entry["offset"] = block.offsets[i];
-      for (const auto& [name, value] : v.attributes) entry["hints"][name] = value;
+      reflection::KernelOutput entry = exportEntry(v, reflection::OutputKind::BufferMember, "bufferExport");
+      entry.slot = slotAt(kernel, block.binding);
+      entry.block = block.blockName;
+      entry.offset = block.offsets[i];
       kernel.reflectOutput(std::move(entry));
     }
     return std::nullopt;

@@ -36,11 +36,11 @@ class BufferImport final : public Strategy {
       while (members[member].component != v.component) ++member;
       kernel.declareGlobal(v.type, v.glslName);
       kernel.addFetch(fmt::format("{} = {}[{}].{};", v.glslName, block.recordsName, index, members[member].glslName));
-      nlohmann::ordered_json entry = importEntry(site, v, "bufferImport");
-      setBinding(entry, kernel, block.binding);
-      entry["block"] = block.blockName;
-      entry["offset"] = block.offsets[member];
-      entry["index"] = index;
+      reflection::KernelInput entry = importEntry(site, v, reflection::InputKind::BufferMember, "bufferImport");
+      entry.slot = slotAt(kernel, block.binding);
+      entry.block = block.blockName;
+      entry.offset = block.offsets[member];
+      entry.index = index;
       kernel.reflectInput(std::move(entry));
     }
     return std::nullopt;

@@ -24,8 +24,8 @@ class StandardImport final : public Strategy {
       const bool flat = kernel.stage() == ShaderStage::Fragment && needsFlat(v.type);
       kernel.declare(fmt::format("layout(location = {}) {}in {};", location, flat ? "flat " : "",
                                  kernel.declaration(v.type, v.glslName)));
-      nlohmann::ordered_json entry = importEntry(site, v, "standardImport");
-      entry["location"] = location;
+      reflection::KernelInput entry = importEntry(site, v, reflection::InputKind::Varying, "standardImport");
+      entry.location = location;
       kernel.reflectInput(std::move(entry));
     }
     return std::nullopt;

@@ -10,24 +10,55 @@ sem::StrategySignature makeSignature(std::string name, sem::StrategyRole role, s
   return {std::move(name), role, std::move(params), std::move(summary), transfer, usesLocations, carriesOpaque};
 }
 
-nlohmann::ordered_json valueEntry(const KernelValue& value, std::string_view strategy) {
-  nlohmann::ordered_json entry;
-  entry["component"] = value.sourceName;
-  entry["glslName"] = value.glslName;
-  entry["type"] = value.type->name();
-  entry["strategy"] = strategy;
+reflection::ValueType reflectedType(const sem::Type* type) {
+  reflection::ValueType result;
+  result.name = type->name();
+  const sem::Type* base = type->isArray() ? type->element : type;
+  if (!base->isNumericShape()) {
+    result.kind = type->isSampler() ? reflection::ValueType::Kind::Sampler : reflection::ValueType::Kind::Other;
+    return result;
+  }
+  static constexpr reflection::ValueType::Scalar kScalars[] = {
+      reflection::ValueType::Scalar::Bool, reflection::ValueType::Scalar::Int, reflection::ValueType::Scalar::Uint,
+      reflection::ValueType::Scalar::Float};
+  result.scalar = kScalars[static_cast<size_t>(base->scalar)];
+  result.rows = base->rows;
+  result.columns = base->isMatrix() ? base->columns : 1;
+  result.arrayLength = type->isArray() ? type->arraySize : 0;
+  return result;
+}
+
+namespace {
+
+// The fields inputs and outputs share.
+template <class Entry, class Kind>
+Entry valueRecord(const KernelValue& value, Kind kind, std::string_view strategy) {
+  Entry entry;
+  entry.kind = kind;
+  entry.component = value.sourceName;
+  entry.glslName = value.glslName;
+  entry.type = reflectedType(value.type);
+  entry.strategy = strategy;
   return entry;
 }
 
-nlohmann::ordered_json importEntry(const ImportSite& site, const KernelValue& value, std::string_view strategy) {
-  nlohmann::ordered_json entry = valueEntry(value, strategy);
-  entry["from"] = site.pipeline.worlds[site.import.from].name;
+}  // namespace
+
+reflection::KernelInput importEntry(const ImportSite& site, const KernelValue& value, reflection::InputKind kind,
+                                    std::string_view strategy) {
+  auto entry = valueRecord<reflection::KernelInput>(value, kind, strategy);
+  entry.from = site.pipeline.worlds[site.import.from].name;
   return entry;
 }
 
-void setBinding(nlohmann::ordered_json& entry, const KernelBuilder& kernel, uint32_t binding) {
-  entry["set"] = kernel.descriptorSet();
-  entry["binding"] = binding;
+reflection::KernelOutput exportEntry(const KernelValue& value, reflection::OutputKind kind, std::string_view strategy) {
+  auto entry = valueRecord<reflection::KernelOutput>(value, kind, strategy);
+  for (const auto& [name, text] : value.attributes) entry.setHint(name, text);
+  return entry;
+}
+
+reflection::DescriptorSlot slotAt(const KernelBuilder& kernel, uint32_t binding) {
+  return {kernel.descriptorSet(), binding};
 }
 
 BlockDeclaration declareBlock(KernelBuilder& kernel, const std::string& hint, const std::vector<KernelValue>& values,
@@ -39,31 +70,23 @@ BlockDeclaration declareBlock(KernelBuilder& kernel, const std::string& hint, co
   std::string members;
   uint32_t offset = 0;
   uint32_t alignment = 0;
-  nlohmann::ordered_json memberList = nlohmann::ordered_json::array();
+  reflection::Block reflected;
   for (const KernelValue& v : values) {
     const MemberLayout m = layoutOf(v.type, layout);
     offset = alignUp(offset, m.alignment);
     block.offsets.push_back(offset);
     members += fmt::format("    {};\n", kernel.declaration(v.type, v.glslName));
-    nlohmann::ordered_json member;
-    member["component"] = v.sourceName;
-    member["glslName"] = v.glslName;
-    member["type"] = v.type->name();
-    member["offset"] = offset;
-    member["size"] = m.size;
-    if (m.arrayStride) member["arrayStride"] = m.arrayStride;
-    if (m.matrixStride) member["matrixStride"] = m.matrixStride;
-    memberList.push_back(std::move(member));
+    reflected.members.push_back({v.sourceName, v.glslName, reflectedType(v.type), offset, m.size, m.arrayStride,
+                                 m.matrixStride});
     offset += m.size;
     alignment = std::max(alignment, m.alignment);
   }
   const std::string layoutName = layout == BlockLayout::Std140 ? "std140" : "std430";
-  nlohmann::ordered_json reflection;
-  reflection["name"] = block.blockName;
-  reflection["kind"] = isBuffer ? "storage" : "uniform";
-  reflection["layout"] = layoutName;
-  reflection["set"] = kernel.descriptorSet();
-  reflection["binding"] = block.binding;
+  reflected.name = block.blockName;
+  reflected.storage = isBuffer;
+  reflected.layout = layoutName;
+  reflected.slot = slotAt(kernel, block.binding);
+  reflected.strategy = strategy;
   if (isBuffer) {
     // A runtime array of records: the stride is the record size rounded to
     // the record's alignment.
@@ -73,15 +96,13 @@ BlockDeclaration declareBlock(KernelBuilder& kernel, const std::string& hint, co
     kernel.declare(fmt::format("layout(set = {}, binding = {}, {}) {} {} {{\n    {} {}[];\n}};",
                                kernel.descriptorSet(), block.binding, layoutName, qualifier, block.blockName,
                                block.recordType, block.recordsName));
-    reflection["recordStride"] = alignUp(offset, layout == BlockLayout::Std140 ? std::max(alignment, 16u) : alignment);
+    reflected.recordStride = alignUp(offset, layout == BlockLayout::Std140 ? std::max(alignment, 16u) : alignment);
   } else {
     kernel.declare(fmt::format("layout(set = {}, binding = {}, {}) {} {} {{\n{}}};", kernel.descriptorSet(),
                                block.binding, layoutName, qualifier, block.blockName, members));
-    reflection["size"] = alignUp(offset, 16);
+    reflected.size = alignUp(offset, 16);
   }
-  reflection["strategy"] = strategy;
-  reflection["members"] = std::move(memberList);
-  kernel.reflectBlock(std::move(reflection));
+  kernel.reflectBlock(std::move(reflected));
   return block;
 }
 
@@ -137,10 +158,9 @@ std::optional<std::string> emitOutVariables(ExportSite& site, std::string_view s
     if (auto problem = checkEncoding(v, encodeSigned)) return problem;
     kernel.addStore(encodeSigned ? fmt::format("{} = {} * 0.5 + 0.5;", out, v.glslName)
                                  : fmt::format("{} = {};", out, v.glslName));
-    nlohmann::ordered_json entry = valueEntry(v, strategy);
-    entry["glslName"] = out;
-    entry["location"] = site.locations[i];
-    for (const auto& [name, value] : v.attributes) entry["hints"][name] = value;
+    reflection::KernelOutput entry = exportEntry(v, reflection::OutputKind::Varying, strategy);
+    entry.glslName = out;
+    entry.location = site.locations[i];
     kernel.reflectOutput(std::move(entry));
   }
   return std::nullopt;

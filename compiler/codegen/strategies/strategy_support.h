@@ -1,7 +1,6 @@
 // Helpers shared by the built-in strategies.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -16,12 +15,15 @@ sem::StrategySignature makeSignature(std::string name, sem::StrategyRole role,
                                      sem::ValueTransfer transfer = sem::ValueTransfer::Exact,
                                      bool usesLocations = false, bool carriesOpaque = false);
 
-// The reflection entry common to inputs and outputs.
-nlohmann::ordered_json valueEntry(const KernelValue& value, std::string_view strategy);
-// An input's entry: valueEntry plus the world it comes from.
-nlohmann::ordered_json importEntry(const ImportSite& site, const KernelValue& value, std::string_view strategy);
-// Records the descriptor a value is bound through.
-void setBinding(nlohmann::ordered_json& entry, const KernelBuilder& kernel, uint32_t binding);
+// The reflected form of a value's type.
+reflection::ValueType reflectedType(const sem::Type* type);
+// An input's record: the value, its kind, strategy and producing world.
+reflection::KernelInput importEntry(const ImportSite& site, const KernelValue& value, reflection::InputKind kind,
+                                    std::string_view strategy);
+// An output's record, with the value's attributes as hints.
+reflection::KernelOutput exportEntry(const KernelValue& value, reflection::OutputKind kind, std::string_view strategy);
+// Where the kernel binds a resource at `binding`.
+reflection::DescriptorSlot slotAt(const KernelBuilder& kernel, uint32_t binding);
 
 // Declares `values` as members of one interface block and reflects its
 // layout; returns the block's binding. `qualifier` is `uniform`,

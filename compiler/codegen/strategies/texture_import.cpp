@@ -31,11 +31,11 @@ class TextureImport final : public Strategy {
       const std::string fetch = fmt::format("texture({}, {}){}", sampler, uv, kSwizzles[t->rows]);
       kernel.addFetch(encodedSigned ? fmt::format("{} = {} * 2.0 - 1.0;", v.glslName, fetch)
                                     : fmt::format("{} = {};", v.glslName, fetch));
-      nlohmann::ordered_json entry = importEntry(site, v, "textureImport");
-      setBinding(entry, kernel, binding);
-      entry["sampler"] = sampler;
-      entry["uv"] = uv;
-      entry["channels"] = t->rows;
+      reflection::KernelInput entry = importEntry(site, v, reflection::InputKind::Texture, "textureImport");
+      entry.slot = slotAt(kernel, binding);
+      entry.sampler = sampler;
+      entry.uv = uv;
+      entry.channels = t->rows;
       kernel.reflectInput(std::move(entry));
     }
     return std::nullopt;

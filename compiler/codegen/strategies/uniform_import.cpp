@@ -23,17 +23,17 @@ class UniformImport final : public Strategy {
       const uint32_t binding = kernel.allocateBinding();
       kernel.declare(fmt::format("layout(set = {}, binding = {}) uniform {};", kernel.descriptorSet(), binding,
                                  kernel.declaration(v.type, v.glslName)));
-      nlohmann::ordered_json entry = importEntry(site, v, "uniformImport");
-      setBinding(entry, kernel, binding);
+      reflection::KernelInput entry = importEntry(site, v, reflection::InputKind::Sampler, "uniformImport");
+      entry.slot = slotAt(kernel, binding);
       kernel.reflectInput(std::move(entry));
     }
     if (plain.empty()) return std::nullopt;
     const BlockDeclaration block = declareBlock(kernel, from, plain, BlockLayout::Std140, "uniform", "uniformImport");
     for (size_t i = 0; i < plain.size(); ++i) {
-      nlohmann::ordered_json entry = importEntry(site, plain[i], "uniformImport");
-      setBinding(entry, kernel, block.binding);
-      entry["block"] = block.blockName;
-      entry["offset"] = block.offsets[i];
+      reflection::KernelInput entry = importEntry(site, plain[i], reflection::InputKind::UniformMember, "uniformImport");
+      entry.slot = slotAt(kernel, block.binding);
+      entry.block = block.blockName;
+      entry.offset = block.offsets[i];
       kernel.reflectInput(std::move(entry));
     }
     return std::nullopt;

@@ -13,10 +13,11 @@ class VertexExport final : public Strategy {
   std::optional<std::string> emitExport(ExportSite& site) const override {
     if (auto problem = emitOutVariables(site, "vertexExport")) return problem;
     site.producer.addStore(fmt::format("gl_Position = {};", site.args.at(0)));
-    nlohmann::ordered_json entry;
-    entry["builtin"] = "gl_Position";
-    entry["expression"] = site.args.at(0);
-    entry["strategy"] = "vertexExport";
+    reflection::KernelOutput entry;
+    entry.kind = reflection::OutputKind::BuiltIn;
+    entry.component = "gl_Position";
+    entry.expression = site.args.at(0);
+    entry.strategy = "vertexExport";
     site.producer.reflectOutput(std::move(entry));
     return std::nullopt;
   }

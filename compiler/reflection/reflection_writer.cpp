@@ -1,0 +1,174 @@
+// The writer half of reflection_json.h. Key order is part of the format:
+// kernel keys hash these objects' text, and goldens compare it exactly.
+#include "reflection/reflection_json.h"
+
+namespace spire::reflection {
+
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+std::string_view inputKindName(InputKind kind) {
+  switch (kind) {
+    case InputKind::Varying: return "varying";
+    case InputKind::UniformMember: return "uniform";
+    case InputKind::Sampler: return "sampler";
+    case InputKind::Texture: return "texture";
+    case InputKind::BufferMember: return "buffer";
+    case InputKind::PushConstant: return "push";
+  }
+  return "unknown";
+}
+
+std::string_view outputKindName(OutputKind kind) {
+  switch (kind) {
+    case OutputKind::Varying: return "varying";
+    case OutputKind::BuiltIn: return "builtin";
+    case OutputKind::BufferMember: return "buffer";
+  }
+  return "unknown";
+}
+
+void putSlot(Json& entry, DescriptorSlot slot) {
+  entry["set"] = slot.set;
+  entry["binding"] = slot.binding;
+}
+
+Json valueEntry(std::string_view kind, const std::string& component, const std::string& glslName,
+                const ValueType& type, const std::string& strategy) {
+  Json entry;
+  entry["kind"] = kind;
+  entry["component"] = component;
+  entry["glslName"] = glslName;
+  entry["type"] = type.name;
+  entry["strategy"] = strategy;
+  return entry;
+}
+
+Json inputJson(const KernelInput& in) {
+  Json entry = valueEntry(inputKindName(in.kind), in.component, in.glslName, in.type, in.strategy);
+  entry["from"] = in.from;
+  if (in.kind == InputKind::Varying) {
+    entry["location"] = in.location;
+    return entry;
+  }
+  if (in.kind == InputKind::PushConstant) {
+    entry["offset"] = in.offset;
+    return entry;
+  }
+  putSlot(entry, in.slot);
+  if (in.kind == InputKind::Texture) {
+    entry["sampler"] = in.sampler;
+    entry["uv"] = in.uv;
+    entry["channels"] = in.channels;
+  } else if (in.kind == InputKind::UniformMember || in.kind == InputKind::BufferMember) {
+    entry["block"] = in.block;
+    entry["offset"] = in.offset;
+    if (in.kind == InputKind::BufferMember) entry["index"] = in.index;
+  }
+  return entry;
+}
+
+Json outputJson(const KernelOutput& out) {
+  if (out.kind == OutputKind::BuiltIn) {
+    Json entry;
+    entry["kind"] = outputKindName(out.kind);
+    entry["builtin"] = out.component;
+    entry["expression"] = out.expression;
+    entry["strategy"] = out.strategy;
+    return entry;
+  }
+  Json entry = valueEntry(outputKindName(out.kind), out.component, out.glslName, out.type, out.strategy);
+  if (out.kind == OutputKind::Varying) {
+    entry["location"] = out.location;
+  } else {
+    putSlot(entry, out.slot);
+    entry["block"] = out.block;
+    entry["offset"] = out.offset;
+  }
+  for (const auto& [name, value] : out.hints) entry["hints"][name] = value;
+  return entry;
+}
+
+Json blockJson(const Block& block) {
+  Json entry;
+  entry["name"] = block.name;
+  entry["kind"] = block.storage ? "storage" : "uniform";
+  entry["layout"] = block.layout;
+  putSlot(entry, block.slot);
+  if (block.storage) {
+    entry["recordStride"] = block.recordStride;
+  } else {
+    entry["size"] = block.size;
+  }
+  entry["strategy"] = block.strategy;
+  Json members = Json::array();
+  for (const BlockMember& m : block.members) {
+    Json member;
+    member["component"] = m.component;
+    member["glslName"] = m.glslName;
+    member["type"] = m.type.name;
+    member["offset"] = m.offset;
+    member["size"] = m.size;
+    if (m.arrayStride) member["arrayStride"] = m.arrayStride;
+    if (m.matrixStride) member["matrixStride"] = m.matrixStride;
+    members.push_back(std::move(member));
+  }
+  entry["members"] = std::move(members);
+  return entry;
+}
+
+template <class T, class ToJson>
+Json arrayOf(const std::vector<T>& items, ToJson toJson) {
+  Json list = Json::array();
+  for (const T& item : items) list.push_back(toJson(item));
+  return list;
+}
+
+// The part of a kernel's entry that its key covers.
+Json interfaceJson(const Kernel& kernel) {
+  Json entry;
+  entry["world"] = kernel.world;
+  entry["stage"] = stageName(kernel.stage);
+  entry["inputs"] = arrayOf(kernel.inputs, inputJson);
+  entry["outputs"] = arrayOf(kernel.outputs, outputJson);
+  entry["blocks"] = arrayOf(kernel.blocks, blockJson);
+  return entry;
+}
+
+}  // namespace
+
+Json toJson(const Kernel& kernel) {
+  Json entry;
+  entry["world"] = kernel.world;
+  entry["stage"] = stageName(kernel.stage);
+  entry["entry"] = kernel.entry;
+  entry["glsl"] = kernel.glslFile;
+  entry["spirv"] = kernel.spirvFile;
+  entry["hash"] = kernel.hash;
+  if (!kernel.spirvHash.empty()) entry["spirvHash"] = kernel.spirvHash;
+  entry["inputs"] = arrayOf(kernel.inputs, inputJson);
+  entry["outputs"] = arrayOf(kernel.outputs, outputJson);
+  entry["blocks"] = arrayOf(kernel.blocks, blockJson);
+  entry["key"] = kernel.key;
+  return entry;
+}
+
+Json toJson(const Variant& variant) {
+  Json root;
+  root["format"] = "spire-reflection";
+  root["version"] = kFormatVersion;
+  root["shader"] = variant.shader;
+  root["pipeline"] = variant.pipeline;
+  Json placement = Json::object();
+  for (const auto& [component, world] : variant.placement) placement[component] = world;
+  root["placement"] = std::move(placement);
+  root["kernels"] = arrayOf(variant.kernels, [](const Kernel& k) { return toJson(k); });
+  return root;
+}
+
+std::string kernelKey(std::string_view glsl, const Kernel& kernel) {
+  return contentHash(std::string(glsl) + '\n' + interfaceJson(kernel).dump());
+}
+
+}  // namespace spire::reflection

@@ -1,0 +1,99 @@
+// The typed reflection records and their one JSON form: every kernel the
+// examples can produce survives the round trip unchanged, value types are
+// read from their GLSL spelling once, and malformed documents are errors
+// that name what is wrong.
+#include "reflection/reflection_json.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "driver/compiler.h"
+#include "driver/shader_library.h"
+
+namespace spire::reflection {
+namespace {
+
+TEST(ReflectionValueType, ParsesNumericTypes) {
+  const ValueType mat = parseValueType("mat3x4");
+  ASSERT_TRUE(mat.isNumeric());
+  EXPECT_EQ(mat.columns, 3U);
+  EXPECT_EQ(mat.rows, 4U);
+  EXPECT_EQ(mat.componentCount(), 12U);
+  EXPECT_EQ(parseValueType("vec2[3]").componentCount(), 6U);
+  EXPECT_EQ(parseValueType("uvec3").scalar, ValueType::Scalar::Uint);
+  EXPECT_EQ(parseValueType("sampler2D").kind, ValueType::Kind::Sampler);
+  for (const char* other : {"vec5", "float[0]", "float[2][2]", "Light", ""}) {
+    EXPECT_EQ(parseValueType(other).kind, ValueType::Kind::Other) << other;
+    EXPECT_EQ(parseValueType(other).name, other);
+  }
+}
+
+// Every variant that differs from the default in one decision, for every
+// shader of the examples: each is a different mix of strategies and kinds.
+TEST(ReflectionJson, EveryKernelOfTheExamplesSurvivesTheRoundTrip) {
+  size_t variants = 0;
+  for (const char* file : {"terrain.spire", "couch.spire", "terrain_five_world.spire", "lod_library.spire"}) {
+    ShaderLibrary library;
+    library.addFile(std::string(SPIRE_SOURCE_DIR) + "/examples/" + file);
+    ASSERT_TRUE(library.compile()) << file;
+    CompileOptions glslOnly;
+    glslOnly.spirv = false;
+    for (const std::string& shader : library.shaderNames()) {
+      std::vector<Decisions> all{{}};
+      for (const graph::Choice& choice : library.choices(shader)) {
+        const std::string component = choice.key.substr(choice.key.find('.') + 1);
+        for (const std::string& name : choice.names) all.push_back({{{component, name}}, {}});
+      }
+      for (const Decisions& decisions : all) {
+        const auto compiled = compileVariant(library, shader, decisions, glslOnly);
+        if (!compiled) continue;  // an alternative only feasible with other decisions
+        const Variant& variant = (*compiled)->reflection;
+        const auto json = toJson(variant);
+        const auto reread = fromJson(json);
+        ASSERT_TRUE(reread) << shader << ": " << reread.error();
+        EXPECT_EQ(*reread, variant) << shader << "\n" << json.dump(2);
+        EXPECT_EQ(toJson(*reread).dump(), json.dump());
+        ++variants;
+      }
+    }
+  }
+  EXPECT_GT(variants, 40U);
+}
+
+nlohmann::ordered_json terrainReflection() {
+  ShaderLibrary library;
+  library.addFile(std::string(SPIRE_SOURCE_DIR) + "/examples/terrain.spire");
+  EXPECT_TRUE(library.compile());
+  CompileOptions glslOnly;
+  glslOnly.spirv = false;
+  const auto compiled = compileVariant(library, "Terrain", Decisions{}, glslOnly);
+  EXPECT_TRUE(compiled);
+  return compiled ? toJson((*compiled)->reflection) : nlohmann::ordered_json{};
+}
+
+std::string errorOf(const nlohmann::ordered_json& document) {
+  const auto variant = fromJson(document);
+  return variant ? std::string("(accepted)") : variant.error();
+}
+
+TEST(ReflectionJson, MalformedDocumentsAreErrorsNamingTheEntry) {
+  const nlohmann::ordered_json good = terrainReflection();
+  ASSERT_TRUE(fromJson(good));
+  auto wrongKind = good;
+  wrongKind["kernels"][1]["inputs"][0]["kind"] = "telepathy";
+  EXPECT_NE(errorOf(wrongKind).find("kernel 'Fragment', input"), std::string::npos) << errorOf(wrongKind);
+  auto missing = good;
+  missing["kernels"][0]["inputs"][0].erase("strategy");
+  EXPECT_NE(errorOf(missing).find("kernel 'Vertex'"), std::string::npos) << errorOf(missing);
+  auto oldVersion = good;
+  oldVersion["version"] = 1;
+  EXPECT_NE(errorOf(oldVersion).find("compile the shader again"), std::string::npos);
+  EXPECT_NE(parseReflection("{\"format\": ").error().find("not valid JSON"), std::string::npos);
+  auto badStage = good;
+  badStage["kernels"][0]["stage"] = "geometry";
+  EXPECT_NE(errorOf(badStage).find("unknown stage"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace spire::reflection
