@@ -16,24 +16,12 @@
 namespace spire::codegen {
 namespace {
 
+// The world's [Stage]; sema's attribute check has refused any other value.
 std::optional<ShaderStage> stageFromAttribute(const ast::WorldDecl& decl) {
   for (const ast::Attribute& a : decl.attributes) {
-    if (a.name != "Stage" || !a.value) continue;
-    if (*a.value == "vertex") return ShaderStage::Vertex;
-    if (*a.value == "fragment") return ShaderStage::Fragment;
-    if (*a.value == "compute") return ShaderStage::Compute;
+    if (a.name == "Stage" && a.value) return reflection::parseStage(*a.value);
   }
   return std::nullopt;
-}
-
-bool containsWord(const std::string& text, const std::string& word) {
-  for (size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) {
-    auto isIdent = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-    const bool startOk = at == 0 || !isIdent(text[at - 1]);
-    const bool endOk = at + word.size() >= text.size() || !isIdent(text[at + word.size()]);
-    if (startOk && endOk) return true;
-  }
-  return false;
 }
 
 class KernelGenerator {
@@ -59,7 +47,11 @@ class KernelGenerator {
   bool emitExports(sem::WorldId w, const Strategy* exportStrategy, KernelBuilder& kernel,
                    const std::map<sem::ComponentId, std::string>& names, GlslWriter& writer);
   std::vector<const sem::Function*> calledFunctions(const std::vector<sem::ComponentId>& computed) const;
-  std::string structDeclarations(const std::string& code, const std::map<std::string, std::string, std::less<>>& names) const;
+  std::set<const sem::Type*> usedStructs(const std::set<sem::ComponentId>& touched,
+                                         const std::vector<sem::ComponentId>& computed,
+                                         const std::vector<const sem::Function*>& functions) const;
+  std::string structDeclarations(const std::set<const sem::Type*>& used,
+                                 const std::map<std::string, std::string, std::less<>>& names) const;
 
   const sem::Model& model_;
   const SourceManager& sources_;
@@ -138,7 +130,27 @@ std::vector<const sem::Function*> KernelGenerator::calledFunctions(const std::ve
   return ordered;
 }
 
-std::string KernelGenerator::structDeclarations(const std::string& code,
+// The structs the kernel's code names, as sema recorded them: those of the
+// values it touches, and those its computations and functions declare,
+// construct or compute with.
+std::set<const sem::Type*> KernelGenerator::usedStructs(const std::set<sem::ComponentId>& touched,
+                                                        const std::vector<sem::ComponentId>& computed,
+                                                        const std::vector<const sem::Function*>& functions) const {
+  std::set<const sem::Type*> used;
+  for (sem::ComponentId id : touched) {
+    const sem::Type* type = graph_.node(id).component->type;
+    while (type->isArray()) type = type->element;
+    if (type->isStruct()) used.insert(type);
+  }
+  for (sem::ComponentId id : computed) {
+    const auto& structs = graph_.node(id).alternatives[*variant_.choice(id)].definition->structs;
+    used.insert(structs.begin(), structs.end());
+  }
+  for (const sem::Function* f : functions) used.insert(f->structs.begin(), f->structs.end());
+  return used;
+}
+
+std::string KernelGenerator::structDeclarations(const std::set<const sem::Type*>& directlyUsed,
                                                 const std::map<std::string, std::string, std::less<>>& names) const {
   // A struct is needed when the kernel names it, or a needed struct has a
   // field of its type; declarations follow the source order, which already
@@ -146,7 +158,7 @@ std::string KernelGenerator::structDeclarations(const std::string& code,
   std::set<const sem::Type*> needed;
   for (auto it = model_.structOrder.rbegin(); it != model_.structOrder.rend(); ++it) {
     const sem::Type* s = *it;
-    bool used = containsWord(code, names.at(s->structName));
+    bool used = directlyUsed.contains(s);
     for (const sem::Type* other : needed) {
       for (const sem::StructField& f : other->fields) {
         const sem::Type* base = f.type;
@@ -320,11 +332,8 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
     out.line("}");
   };
 
-  // Struct declarations go first but depend on what the code uses: write the
-  // code once to find out, then the kernel for real.
-  GlslOutput scratch(world.name + ".glsl");
-  writeCode(scratch);
-  const std::string structs = structDeclarations(scratch.text(), kernel.structNames());
+  const std::string structs =
+      structDeclarations(usedStructs(touched, computed, functions), kernel.structNames());
   GlslOutput out(world.name + ".glsl");
   out.line("#version 450");
   out.line("#extension GL_GOOGLE_cpp_style_line_directive : require");

@@ -7,6 +7,7 @@
 
 #include "codegen/kernel_generator.h"
 #include "codegen/spirv_compiler.h"
+#include "sema/attribute_catalog.h"
 #include "support/file_io.h"
 #include "support/spelling.h"
 
@@ -137,6 +138,15 @@ CompileResult compileVariant(ShaderLibrary& library, std::string_view shader, co
   const std::optional<graph::Variant> variant =
       library.buildVariant(shader, decisions.placement, &skipped, decisions.attributes);
   DiagnosticList diags;
+  // In-memory attributes get the check a decision file's get when it is read.
+  for (const auto& [component, attributes] : decisions.attributes) {
+    for (const auto& [name, value] : attributes) {
+      if (auto problem = sem::checkAttribute(sem::AttributeSite::Decision, name, value)) {
+        diags.report(problem->isError ? DiagCode::E5010 : DiagCode::W5011, {},
+                     fmt::format("'{}': {}", component, problem->message));
+      }
+    }
+  }
   for (const std::string& component : skipped) {
     diags.report(DiagCode::W5003, {},
                  fmt::format("the decision for '{}' is not applied: unknown, or infeasible with the others",

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <map>
 
+#include "sema/attribute_catalog.h"
 #include "support/spelling.h"
 
 namespace spire::graph {
@@ -85,14 +86,20 @@ std::optional<DecisionLine> parseLine(LineParser& p, FileId file, DiagnosticList
   while (p.accept('[')) {
     auto attr = p.name(false);
     if (!attr) return fail("expected an attribute name after '['");
-    std::string value;
+    std::optional<std::string> value;
+    SourceRange valueRange = attr->second;
     if (p.accept(':')) {
-      auto text = p.stringLiteral();
-      if (!text) return fail("expected a quoted attribute value, as in [Format: \"RGBA8\"]");
-      value = *text;
+      const uint32_t valueBegin = p.here().begin;
+      value = p.stringLiteral();
+      if (!value) return fail("expected a quoted attribute value, as in [Format: \"RGBA8\"]");
+      valueRange = {file, valueBegin, p.position()};
     }
     if (!p.accept(']')) return fail("expected ']' to close the attribute");
-    line.attributes.emplace_back(attr->first, value);
+    if (auto problem = sem::checkAttribute(sem::AttributeSite::Decision, attr->first, value)) {
+      diags.report(problem->isError ? DiagCode::E5010 : DiagCode::W5011, problem->atValue ? valueRange : attr->second,
+                   std::move(problem->message));
+    }
+    line.attributes.emplace_back(attr->first, value.value_or(""));
   }
   auto path = p.name(true);
   if (!path) return fail("expected 'Shader.component = World' in the decision file");

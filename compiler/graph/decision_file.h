@@ -1,4 +1,4 @@
-// Decision files (docs/decisions.md): one `Shader.component = World[:variation]`
+// Decision files (docs/choices-and-decisions.md): one `Shader.component = World[:variation]`
 // per line, with `//` comments and optional attributes before a decision,
 // such as `[Format: "RGB10_A2"] Terrain.albedo = PrebakeTex`.
 #pragma once

@@ -176,8 +176,10 @@ void Analyzer::checkFunctionBodies() {
     for (const ast::Param& p : f->decl->params) {
       checker.declareParameter(p, f->params[static_cast<size_t>(&p - f->decl->params.data())].type);
     }
+    checker.noteType(f->returnType);
     checker.checkBody(*f->decl->body, f->returnType, fmt::format("function '{}'", f->name));
     f->callees = checker.calledFunctions();
+    f->structs = checker.usedStructs();
   }
 }
 

@@ -50,6 +50,11 @@ class BodyChecker {
   const Type* resolveType(const ast::TypeSyntax& syntax, const std::vector<ast::ExprPtr>& declaratorDims = {});
 
   const std::vector<const Function*>& calledFunctions() const { return calledFunctions_; }
+  // The struct types the checked code declares, constructs or computes with
+  // (arrays stripped), in first-use order: the structs its GLSL names.
+  const std::vector<const Type*>& usedStructs() const { return usedStructs_; }
+  // Adds `type`'s struct, if it is one, to usedStructs().
+  void noteType(const Type* type);
 
  private:
   struct Local {
@@ -96,6 +101,7 @@ class BodyChecker {
   ComponentResolver* components_;
   std::vector<std::map<std::string, Local, std::less<>>> scopes_;
   std::vector<const Function*> calledFunctions_;
+  std::vector<const Type*> usedStructs_;
   const Type* returnType_ = nullptr;
   std::string owner_;
   uint32_t loopDepth_ = 0;

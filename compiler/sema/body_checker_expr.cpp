@@ -55,7 +55,15 @@ const Type* BodyChecker::check(const ast::Expr& expr) {
   info.type = type;
   if (!type->isError()) foldConstant(expr, info);
   model_.mutableInfo(expr) = info;
+  noteType(type);
   return type;
+}
+
+void BodyChecker::noteType(const Type* type) {
+  while (type->isArray()) type = type->element;
+  if (type->isStruct() && std::find(usedStructs_.begin(), usedStructs_.end(), type) == usedStructs_.end()) {
+    usedStructs_.push_back(type);
+  }
 }
 
 const Type* BodyChecker::checkUncached(const ast::Expr& expr, ExprInfo& info) {

@@ -40,6 +40,7 @@ const Type* BodyChecker::resolveType(const ast::TypeSyntax& syntax, const std::v
     }
     type = model_.types().array(type, *size);
   }
+  noteType(type);
   return type;
 }
 
@@ -70,6 +71,7 @@ std::vector<std::string_view> BodyChecker::visibleValueNames() const {
 }
 
 void BodyChecker::declareParameter(const ast::Param& param, const Type* type) {
+  noteType(type);
   if (param.name.empty()) return;
   Local local;
   local.type = type;

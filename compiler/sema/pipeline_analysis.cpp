@@ -5,6 +5,7 @@
 #include <queue>
 
 #include "sema/analyzer_impl.h"
+#include "sema/attribute_catalog.h"
 #include "sema/route_selection.h"
 #include "support/spelling.h"
 
@@ -95,6 +96,7 @@ void Analyzer::analyzePipeline(const ast::PipelineDecl& decl) {
 void Analyzer::checkWorld(Pipeline& pipeline, const ast::WorldDecl& decl) {
   auto id = pipeline.findWorld(decl.name);
   if (!id || pipeline.worlds[*id].decl != &decl) return;  // a reported duplicate
+  if (!checkAttributes(decl.attributes, AttributeSite::World, diags_)) pipeline.valid = false;
   World& world = pipeline.worlds[*id];
   if (decl.isAbstract) {
     if (decl.language) {
@@ -133,6 +135,7 @@ void Analyzer::checkWorld(Pipeline& pipeline, const ast::WorldDecl& decl) {
 }
 
 void Analyzer::checkImport(Pipeline& pipeline, const ast::ImportDecl& decl) {
+  if (!checkAttributes(decl.attributes, AttributeSite::Import, diags_)) pipeline.valid = false;
   const auto from = resolveWorld(pipeline, decl.from, decl.fromRange);
   const auto to = resolveWorld(pipeline, decl.to, decl.toRange);
   std::vector<std::string> componentArgs = checkStrategy(pipeline, decl.strategy, StrategyRole::Import);
@@ -161,9 +164,7 @@ void Analyzer::checkImport(Pipeline& pipeline, const ast::ImportDecl& decl) {
       return;
     }
   }
-  const std::optional<int> priority = importPriority(decl, diags_);
-  if (!priority) pipeline.valid = false;
-  Import import{*from, *to, &decl, {}, priority.value_or(0)};
+  Import import{*from, *to, &decl, {}, importPriority(decl)};
   import.strategy.ref = &decl.strategy;
   import.strategy.signature = strategies_.find(decl.strategy.name);
   import.strategy.componentArgs = std::move(componentArgs);

@@ -7,6 +7,8 @@
 #include <set>
 #include <tuple>
 
+#include "sema/attribute_catalog.h"
+
 namespace spire::sem {
 namespace {
 
@@ -125,21 +127,11 @@ ValueTransfer transferOf(const Pipeline& pipeline, const Import& import) {
   return import.strategy.signature->transfer;
 }
 
-std::optional<int> importPriority(const ast::ImportDecl& decl, DiagnosticList& diags) {
+int importPriority(const ast::ImportDecl& decl) {
   int priority = 0;
   for (const ast::Attribute& a : decl.attributes) {
-    if (a.name != "Priority") continue;
-    const std::string text = a.value.value_or("");
-    int value = 0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (error != std::errc{} || end != text.data() + text.size() || value < -1000 || value > 1000) {
-      diags.report(DiagCode::E4021, a.value ? a.valueRange : a.range,
-                   fmt::format("[Priority] takes an integer from -1000 to 1000 as a string, as in [Priority: \"1\"]; "
-                               "got {}",
-                               a.value ? fmt::format("\"{}\"", text) : std::string("no value")));
-      return std::nullopt;
-    }
-    priority = value;
+    if (a.name != "Priority" || !a.value || checkAttribute(AttributeSite::Import, a.name, a.value)) continue;
+    std::from_chars(a.value->data(), a.value->data() + a.value->size(), priority);
   }
   return priority;
 }

@@ -14,9 +14,9 @@ namespace spire::sem {
 // strategy's ValueTransfer.
 ValueTransfer transferOf(const Pipeline& pipeline, const Import& import);
 
-// An import's `[Priority: "N"]` attribute (0 when absent); reports E4021 and
-// returns nullopt when the value is not an integer in [-1000, 1000].
-std::optional<int> importPriority(const ast::ImportDecl& decl, DiagnosticList& diags);
+// An import's `[Priority: "N"]` attribute, 0 when absent. checkAttributes
+// has reported a value that is not an integer in range; it counts as 0.
+int importPriority(const ast::ImportDecl& decl);
 
 // Fills pipeline.routes. Routes are compared by, in order:
 //  1. the worst change an import on the route makes to the value

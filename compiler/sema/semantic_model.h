@@ -59,6 +59,7 @@ struct Definition {
   std::vector<SourceRange> dependencyUses;  // first use of each dependency, same order
   std::vector<const Function*> functions;  // user functions called directly
   std::string origin;                      // shader or pipeline that wrote it
+  std::vector<const Type*> structs;        // struct types its body names (BodyChecker::usedStructs)
 
   bool isInput() const { return !decl->hasDefinition(); }
 };
@@ -148,6 +149,7 @@ struct Function {
   const Type* returnType = nullptr;
   std::vector<Param> params;
   std::vector<const Function*> callees;  // user functions called directly, in first-call order
+  std::vector<const Type*> structs;      // struct types its signature and body name
   bool defined = false;
 };
 

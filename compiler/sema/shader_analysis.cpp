@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "sema/analyzer_impl.h"
+#include "sema/attribute_catalog.h"
 #include "sema/group_members.h"
 #include "support/spelling.h"
 
@@ -46,6 +47,7 @@ const Group* Model::findGroup(std::string_view name) const {
 
 void Analyzer::addComponent(ComponentSet& set, const Pipeline& pipeline, const ast::ComponentDecl& decl,
                             const std::string& origin, bool inPipeline) {
+  checkAttributes(decl.attributes, AttributeSite::Component, diags_);
   BodyChecker types(*model_, diags_, functions_, nullptr);
   const Type* type = types.resolveType(decl.type);
   if (type->isVoid()) {
@@ -119,7 +121,7 @@ void Analyzer::addComponent(ComponentSet& set, const Pipeline& pipeline, const a
     c.isExport = decl.isExport;
     if (decl.isAbstract) c.requiredWorld = world;
     for (const ast::Attribute& a : decl.attributes) c.attributes.push_back(&a);
-    if (!decl.isAbstract) c.definitions.push_back({&decl, world, decl.variation, {}, {}, {}, origin});
+    if (!decl.isAbstract) c.definitions.push_back({&decl, world, decl.variation, {}, {}, {}, origin, {}});
     set.componentByName.emplace(decl.name, static_cast<ComponentId>(set.components.size()));
     set.components.push_back(std::move(c));
     return;
@@ -158,7 +160,7 @@ void Analyzer::addComponent(ComponentSet& set, const Pipeline& pipeline, const a
     return;
   }
   const std::optional<WorldId> effectiveWorld = world ? world : existing.requiredWorld;
-  Definition definition{&decl, effectiveWorld, decl.variation, {}, {}, {}, origin};
+  Definition definition{&decl, effectiveWorld, decl.variation, {}, {}, {}, origin, {}};
   for (Definition& d : existing.definitions) {
     if (d.world != effectiveWorld || d.variation != decl.variation) continue;
     if (d.origin == origin) {
@@ -187,6 +189,7 @@ void Analyzer::checkComponentBodies(ComponentSet& set, const std::string& origin
       else checker.checkBody(*definition.decl->body, component.type, owner);
       resolver.takeDependencies(definition.dependencies, definition.dependencyUses);
       definition.functions = checker.calledFunctions();
+      definition.structs = checker.usedStructs();
     }
   }
 }

@@ -1,5 +1,5 @@
 // Turns syntax trees back into text: Spire source (printModule) and a
-// structural dump for tests and `spirec --dump-ast` (dumpAst).
+// structural dump for tests (dumpAst).
 #pragma once
 
 #include <string>

@@ -7,7 +7,7 @@
 #include <optional>
 #include <unordered_map>
 
-#include "syntax/utf8.h"
+#include "support/utf8.h"
 
 namespace spire {
 namespace {

@@ -7,7 +7,7 @@
 #include <unordered_set>
 
 #include "support/file_io.h"
-#include "syntax/utf8.h"
+#include "support/utf8.h"
 
 namespace spire {
 namespace fs = std::filesystem;

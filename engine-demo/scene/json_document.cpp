@@ -6,7 +6,7 @@
 #include <charconv>
 #include <unordered_map>
 
-#include "syntax/utf8.h"
+#include "support/utf8.h"
 
 namespace spire::scene {
 namespace {

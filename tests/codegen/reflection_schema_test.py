@@ -98,7 +98,7 @@ shader SchemaShader using SchemaPipeline {
 """
 
 SYNTHETIC_DECISIONS = """\
-[Format: "rgba32f"] SchemaShader.newPos = Simulate
+[Format: "RGBA32F"] [Precision: "high"] SchemaShader.newPos = Simulate
 SchemaShader.color = Vert
 SchemaShader.basis = Vert
 SchemaShader.ident = Vert

@@ -12,6 +12,7 @@
 #include "renderer/texture_bake.h"
 #include "renderer/value_layout.h"
 #include "renderer/world_roles.h"
+#include "sema/attribute_catalog.h"
 
 namespace spire::engine {
 namespace {
@@ -79,6 +80,8 @@ TEST(BakeFormats, HintNamesMapToFormats) {
   EXPECT_EQ(bakeFormat("R8"), VK_FORMAT_R8_UNORM);
   EXPECT_FALSE(bakeFormat("BC7"));
   EXPECT_NE(bakeFormatNames().find("RGBA16F"), std::string::npos);
+  // Every format the compiler lets a [Format] name, the engine can bake into.
+  for (std::string_view name : sem::textureFormatNames()) EXPECT_TRUE(bakeFormat(name)) << name;
 }
 
 std::string formatFor(uint32_t channels, const std::vector<float>& rgba, bool* signedEncoding = nullptr) {

@@ -1,0 +1,78 @@
+// The attribute catalogue: what each known attribute accepts and where, and
+// that decision files and in-memory decisions are checked against it when
+// they are read, as sources are (the golden invalid_attributes covers
+// sources).
+#include "sema/attribute_catalog.h"
+
+#include <gtest/gtest.h>
+
+#include "driver/compiler.h"
+#include "graph/decision_file.h"
+#include "support/diagnostic_renderer.h"
+
+namespace spire::sem {
+namespace {
+
+TEST(AttributeCatalog, KnownAttributesTakeTheirValuesInTheirPlaces) {
+  EXPECT_FALSE(checkAttribute(AttributeSite::World, "Stage", "compute"));
+  EXPECT_FALSE(checkAttribute(AttributeSite::Import, "Priority", "-1000"));
+  EXPECT_FALSE(checkAttribute(AttributeSite::Decision, "TextureSize", "8192"));
+  for (std::string_view format : textureFormatNames()) {
+    EXPECT_FALSE(checkAttribute(AttributeSite::Component, "Format", std::string(format))) << format;
+  }
+  const auto badSize = checkAttribute(AttributeSite::Decision, "TextureSize", "8193");
+  ASSERT_TRUE(badSize);
+  EXPECT_TRUE(badSize->isError && badSize->atValue);
+  EXPECT_EQ(badSize->message,
+            "[TextureSize] takes an integer from 1 to 8192 as a string, as in [TextureSize: \"512\"]; got \"8193\"");
+  const auto noValue = checkAttribute(AttributeSite::World, "Stage", std::nullopt);
+  ASSERT_TRUE(noValue);
+  EXPECT_FALSE(noValue->atValue);
+  const auto misplaced = checkAttribute(AttributeSite::Decision, "Stage", "vertex");
+  ASSERT_TRUE(misplaced);
+  EXPECT_NE(misplaced->message.find("does not belong on a decision; it goes on a world declaration"),
+            std::string::npos);
+  const auto typo = checkAttribute(AttributeSite::Decision, "Format", "rgba8");
+  ASSERT_TRUE(typo);
+  EXPECT_NE(typo->message.find("did you mean \"RGBA8\"?"), std::string::npos) << typo->message;
+}
+
+TEST(AttributeCatalog, UnknownNamesAreHintsUnlessTheyLookLikeKnownOnes) {
+  EXPECT_FALSE(checkAttribute(AttributeSite::Component, "Tonemap", "aces"));
+  EXPECT_FALSE(checkAttribute(AttributeSite::Decision, "Interpolation", "smooth"));
+  const auto nearMiss = checkAttribute(AttributeSite::Decision, "TextureSise", "512");
+  ASSERT_TRUE(nearMiss);
+  EXPECT_FALSE(nearMiss->isError);
+  EXPECT_NE(nearMiss->message.find("did you mean [TextureSize]?"), std::string::npos);
+}
+
+TEST(AttributeCatalog, DecisionFilesAreCheckedWhenRead) {
+  SourceManager sources;
+  DiagnosticList diags;
+  const FileId file = sources.addFile("d.decisions",
+                                      "[Format: \"RGBA9\"] Terrain.albedo = PrebakeTex\n"
+                                      "[TextureSise: \"512\"] Terrain.mixFactor = PrebakeTex\n");
+  const graph::DecisionFile decisions = graph::parseDecisionFile(sources, file, diags);
+  EXPECT_EQ(decisions.lines.size(), 2U);
+  const std::string text = renderDiagnostics(sources, diags, DiagnosticFormat::Text);
+  EXPECT_NE(text.find("d.decisions:1:10: error[E5010]: [Format] takes one of \"R8\""), std::string::npos) << text;
+  EXPECT_NE(text.find("did you mean \"RGBA8\"?"), std::string::npos) << text;
+  EXPECT_NE(text.find("d.decisions:2:2: warning[W5011]: unknown attribute [TextureSise]"), std::string::npos) << text;
+}
+
+TEST(AttributeCatalog, InMemoryDecisionsAreCheckedBeforeCompiling) {
+  ShaderLibrary library;
+  library.addFile(std::string(SPIRE_SOURCE_DIR) + "/examples/terrain.spire");
+  ASSERT_TRUE(library.compile());
+  Decisions decisions;
+  decisions.placement = {{"albedo", "PrebakeTex"}};
+  decisions.attributes["albedo"] = {{"Format", "BC7"}};
+  const CompileResult compiled = compileVariant(library, "Terrain", decisions);
+  ASSERT_FALSE(compiled);
+  ASSERT_FALSE(compiled.error().diagnostics.empty());
+  EXPECT_EQ(compiled.error().diagnostics[0].code, DiagCode::E5010);
+  EXPECT_NE(compiled.error().diagnostics[0].message.find("'albedo': [Format] takes one of"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace spire::sem
