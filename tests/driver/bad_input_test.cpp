@@ -128,5 +128,16 @@ TEST_F(BadInput, DeepParenthesesAreNestingTooDeep) {
   EXPECT_NE(run.err.find("error[E2004]: nesting too deep"), std::string::npos) << run.err;
 }
 
+// Diagnostics on a megabyte-long line quote a window of it, not all of it.
+TEST_F(BadInput, DiagnosticsOnAHugeLineStaySmall) {
+  std::string line;
+  while (line.size() < (4u << 20)) line += "float f() { return 1.0 + $; } ";
+  const SpirecRun run = spirec({write("minified.spire", line)});
+  EXPECT_EQ(run.exitCode, kExitInputError);
+  EXPECT_NE(run.err.find("error[E1001]: stray character '$'"), std::string::npos) << run.err.substr(0, 2000);
+  EXPECT_NE(run.err.find(" 1 | ...urn 1.0 + $; } float f() {"), std::string::npos) << run.err.substr(0, 2000);
+  EXPECT_LT(run.err.size(), 20000u);
+}
+
 }  // namespace
 }  // namespace spire
