@@ -139,5 +139,65 @@ TEST_F(BadInput, DiagnosticsOnAHugeLineStaySmall) {
   EXPECT_LT(run.err.size(), 20000u);
 }
 
+std::string terrain() { return (fs::path(SPIRE_SOURCE_DIR) / "examples/terrain.spire").string(); }
+
+// Permissions do not stop root, so tests of unreadable or unwritable files
+// are skipped when running as root.
+bool runningAsRoot() { return ::geteuid() == 0; }
+
+TEST_F(BadInput, ADirectoryGivenAsAFileSaysSo) {
+  fs::create_directories(dir_ / "shaders.spire");
+  const SpirecRun source = spirec({path("shaders.spire")});
+  EXPECT_EQ(source.exitCode, kExitInputError);
+  EXPECT_NE(source.err.find("error[E1101]: cannot open source file '" + path("shaders.spire") + "': Is a directory"),
+            std::string::npos)
+      << source.err;
+  const SpirecRun decisions = spirec({terrain(), "--decisions", path("shaders.spire")});
+  EXPECT_EQ(decisions.exitCode, kExitInputError);
+  EXPECT_NE(decisions.err.find("error[E1101]: cannot open file '" + path("shaders.spire") + "': Is a directory"),
+            std::string::npos)
+      << decisions.err;
+}
+
+TEST_F(BadInput, AnUnreadableFileSaysWhy) {
+  if (runningAsRoot()) GTEST_SKIP() << "root can read a file without read permission";
+  const std::string source = write("secret.spire", "struct S { float x; };\n");
+  fs::permissions(source, fs::perms::none);
+  const SpirecRun run = spirec({source});
+  EXPECT_EQ(run.exitCode, kExitInputError);
+  EXPECT_NE(run.err.find("cannot open source file '" + source + "': Permission denied"), std::string::npos) << run.err;
+}
+
+// Each write error carries the reason of the call that failed, not what a
+// later cleanup left in errno ("Success").
+TEST_F(BadInput, WriteErrorsSayWhy) {
+  fs::create_directories(dir_ / "taken");
+  const SpirecRun ontoDirectory = spirec({terrain(), "--choices", path("taken")});
+  EXPECT_EQ(ontoDirectory.exitCode, kExitInputError);
+  EXPECT_NE(ontoDirectory.err.find("cannot write '" + path("taken") + "': Is a directory"), std::string::npos)
+      << ontoDirectory.err;
+  const SpirecRun intoMissingFolder = spirec({terrain(), "--choices", path("missing/terrain.choices")});
+  EXPECT_EQ(intoMissingFolder.exitCode, kExitInputError);
+  EXPECT_NE(intoMissingFolder.err.find("': No such file or directory"), std::string::npos) << intoMissingFolder.err;
+  const std::string file = write("file", "");
+  const SpirecRun throughAFile = spirec({terrain(), "-o", path("file/out"), "--emit=glsl"});
+  EXPECT_EQ(throughAFile.exitCode, kExitInputError);
+  EXPECT_NE(throughAFile.err.find("error[E6003]: cannot create directory '" + path("file/out/Terrain") + "': Not a directory"),
+            std::string::npos)
+      << throughAFile.err;
+}
+
+TEST_F(BadInput, WritingIntoAReadOnlyFolderSaysWhy) {
+  if (runningAsRoot()) GTEST_SKIP() << "root can write into a folder without write permission";
+  fs::create_directories(dir_ / "readonly");
+  fs::permissions(dir_ / "readonly", fs::perms::owner_read | fs::perms::owner_exec);
+  const SpirecRun choices = spirec({terrain(), "--choices", path("readonly/terrain.choices")});
+  EXPECT_EQ(choices.exitCode, kExitInputError);
+  EXPECT_NE(choices.err.find("': Permission denied"), std::string::npos) << choices.err;
+  const SpirecRun kernels = spirec({terrain(), "-o", path("readonly"), "--emit=glsl"});
+  EXPECT_EQ(kernels.exitCode, kExitInputError);
+  EXPECT_NE(kernels.err.find("Permission denied"), std::string::npos) << kernels.err;
+}
+
 }  // namespace
 }  // namespace spire
