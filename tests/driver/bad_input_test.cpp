@@ -78,6 +78,12 @@ size_t count(const std::string& text, const std::string& what) {
 
 std::string readText(const fs::path& file) { return readWholeFile(file.string()).value_or(""); }
 
+// spirec failed on its input and said `message`.
+void expectInputError(const SpirecRun& run, const std::string& message) {
+  EXPECT_EQ(run.exitCode, kExitInputError) << run.err.substr(0, 2000);
+  EXPECT_NE(run.err.find(message), std::string::npos) << run.err.substr(0, 2000);
+}
+
 // Runs `body` on a thread with a stack of `bytes`.
 void onStackOf(size_t bytes, const std::function<void()>& body) {
   pthread_attr_t attributes;
@@ -123,9 +129,8 @@ TEST_F(BadInput, ChainsDoNotDeepenTheStack) {
 // Real nesting is still limited.
 TEST_F(BadInput, DeepParenthesesAreNestingTooDeep) {
   const std::string nested = std::string(300, '(') + "vert_uv.x" + std::string(300, ')');
-  const SpirecRun run = spirec({write("nested.spire", engineShader("  float s = " + nested + ";\n  vec4 output = vec4(s);\n"))});
-  EXPECT_EQ(run.exitCode, kExitInputError);
-  EXPECT_NE(run.err.find("error[E2004]: nesting too deep"), std::string::npos) << run.err;
+  const std::string source = write("nested.spire", engineShader("  float s = " + nested + ";\n  vec4 output = vec4(s);\n"));
+  expectInputError(spirec({source}), "error[E2004]: nesting too deep");
 }
 
 // Diagnostics on a megabyte-long line quote a window of it, not all of it.
@@ -133,8 +138,7 @@ TEST_F(BadInput, DiagnosticsOnAHugeLineStaySmall) {
   std::string line;
   while (line.size() < (4u << 20)) line += "float f() { return 1.0 + $; } ";
   const SpirecRun run = spirec({write("minified.spire", line)});
-  EXPECT_EQ(run.exitCode, kExitInputError);
-  EXPECT_NE(run.err.find("error[E1001]: stray character '$'"), std::string::npos) << run.err.substr(0, 2000);
+  expectInputError(run, "error[E1001]: stray character '$'");
   EXPECT_NE(run.err.find(" 1 | ...urn 1.0 + $; } float f() {"), std::string::npos) << run.err.substr(0, 2000);
   EXPECT_LT(run.err.size(), 20000u);
 }
@@ -146,57 +150,38 @@ std::string terrain() { return (fs::path(SPIRE_SOURCE_DIR) / "examples/terrain.s
 bool runningAsRoot() { return ::geteuid() == 0; }
 
 TEST_F(BadInput, ADirectoryGivenAsAFileSaysSo) {
-  fs::create_directories(dir_ / "shaders.spire");
-  const SpirecRun source = spirec({path("shaders.spire")});
-  EXPECT_EQ(source.exitCode, kExitInputError);
-  EXPECT_NE(source.err.find("error[E1101]: cannot open source file '" + path("shaders.spire") + "': Is a directory"),
-            std::string::npos)
-      << source.err;
-  const SpirecRun decisions = spirec({terrain(), "--decisions", path("shaders.spire")});
-  EXPECT_EQ(decisions.exitCode, kExitInputError);
-  EXPECT_NE(decisions.err.find("error[E1101]: cannot open file '" + path("shaders.spire") + "': Is a directory"),
-            std::string::npos)
-      << decisions.err;
+  const std::string folder = path("shaders.spire");
+  fs::create_directories(folder);
+  expectInputError(spirec({folder}), "error[E1101]: cannot open source file '" + folder + "': Is a directory");
+  expectInputError(spirec({terrain(), "--decisions", folder}),
+                   "error[E1101]: cannot open file '" + folder + "': Is a directory");
 }
 
 TEST_F(BadInput, AnUnreadableFileSaysWhy) {
   if (runningAsRoot()) GTEST_SKIP() << "root can read a file without read permission";
   const std::string source = write("secret.spire", "struct S { float x; };\n");
   fs::permissions(source, fs::perms::none);
-  const SpirecRun run = spirec({source});
-  EXPECT_EQ(run.exitCode, kExitInputError);
-  EXPECT_NE(run.err.find("cannot open source file '" + source + "': Permission denied"), std::string::npos) << run.err;
+  expectInputError(spirec({source}), "cannot open source file '" + source + "': Permission denied");
 }
 
 // Each write error carries the reason of the call that failed, not what a
 // later cleanup left in errno ("Success").
 TEST_F(BadInput, WriteErrorsSayWhy) {
   fs::create_directories(dir_ / "taken");
-  const SpirecRun ontoDirectory = spirec({terrain(), "--choices", path("taken")});
-  EXPECT_EQ(ontoDirectory.exitCode, kExitInputError);
-  EXPECT_NE(ontoDirectory.err.find("cannot write '" + path("taken") + "': Is a directory"), std::string::npos)
-      << ontoDirectory.err;
-  const SpirecRun intoMissingFolder = spirec({terrain(), "--choices", path("missing/terrain.choices")});
-  EXPECT_EQ(intoMissingFolder.exitCode, kExitInputError);
-  EXPECT_NE(intoMissingFolder.err.find("': No such file or directory"), std::string::npos) << intoMissingFolder.err;
-  const std::string file = write("file", "");
-  const SpirecRun throughAFile = spirec({terrain(), "-o", path("file/out"), "--emit=glsl"});
-  EXPECT_EQ(throughAFile.exitCode, kExitInputError);
-  EXPECT_NE(throughAFile.err.find("error[E6003]: cannot create directory '" + path("file/out/Terrain") + "': Not a directory"),
-            std::string::npos)
-      << throughAFile.err;
+  expectInputError(spirec({terrain(), "--choices", path("taken")}),
+                   "cannot write '" + path("taken") + "': Is a directory");
+  expectInputError(spirec({terrain(), "--choices", path("missing/terrain.choices")}), "': No such file or directory");
+  write("file", "");
+  expectInputError(spirec({terrain(), "-o", path("file/out"), "--emit=glsl"}),
+                   "error[E6003]: cannot create directory '" + path("file/out/Terrain") + "': Not a directory");
 }
 
 TEST_F(BadInput, WritingIntoAReadOnlyFolderSaysWhy) {
   if (runningAsRoot()) GTEST_SKIP() << "root can write into a folder without write permission";
   fs::create_directories(dir_ / "readonly");
   fs::permissions(dir_ / "readonly", fs::perms::owner_read | fs::perms::owner_exec);
-  const SpirecRun choices = spirec({terrain(), "--choices", path("readonly/terrain.choices")});
-  EXPECT_EQ(choices.exitCode, kExitInputError);
-  EXPECT_NE(choices.err.find("': Permission denied"), std::string::npos) << choices.err;
-  const SpirecRun kernels = spirec({terrain(), "-o", path("readonly"), "--emit=glsl"});
-  EXPECT_EQ(kernels.exitCode, kExitInputError);
-  EXPECT_NE(kernels.err.find("Permission denied"), std::string::npos) << kernels.err;
+  expectInputError(spirec({terrain(), "--choices", path("readonly/terrain.choices")}), "': Permission denied");
+  expectInputError(spirec({terrain(), "-o", path("readonly"), "--emit=glsl"}), "Permission denied");
 }
 
 }  // namespace
