@@ -85,10 +85,11 @@ std::string GlslWriter::expr(const ast::Expr& e, Precedence minPrecedence) {
       return wrap(Precedence::Unary, op + (separate ? " " : "") + operand);
     }
     case ast::ExprKind::Binary: {
-      const auto& b = ast::cast<ast::BinaryExpr>(e);
-      const Precedence p = ast::precedenceOf(b.op);
-      const auto tighter = static_cast<Precedence>(static_cast<uint8_t>(p) + 1);
-      return wrap(p, fmt::format("{} {} {}", expr(*b.lhs, p), ast::spelling(b.op), expr(*b.rhs, tighter)));
+      // In a loop: generated code writes chains of thousands of terms.
+      return ast::writeChain(
+          ast::cast<ast::BinaryExpr>(e), minPrecedence,
+          [&](const ast::Expr& operand, Precedence context) { return expr(operand, context); },
+          [](ast::BinaryOp op) { return fmt::format(" {} ", ast::spelling(op)); });
     }
     case ast::ExprKind::Assign: {
       const auto& a = ast::cast<ast::AssignExpr>(e);

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-
 #include "codegen/strategy_registry.h"
 #include "sema/analyzer.h"
 #include "support/file_io.h"
@@ -26,12 +25,12 @@ void FrontEnd::addSource(std::string displayPath, std::string text) {
 }
 
 std::optional<FileId> FrontEnd::loadAuxiliaryFile(const std::string& path) {
-  std::optional<std::string> text = options_.readFile ? options_.readFile(path) : readWholeFile(path);
+  auto text = readThrough(options_.readFile, path);
   if (!text) {
-    diags_.report(DiagCode::E1101, {}, fmt::format("cannot open file '{}'", path));
+    diags_.report(DiagCode::E1101, {}, fmt::format("cannot open file '{}': {}", path, text.error().message()));
     return std::nullopt;
   }
-  return sources_.addFile(path, std::move(*text));
+  return sources_.addFile(path, std::move(text).value());
 }
 
 const sem::Model& FrontEnd::analyze() {

@@ -2,7 +2,6 @@
 // the tests, the fuzzer and the benchmarks all go through this one entry.
 #pragma once
 
-#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,6 +10,7 @@
 #include "sema/semantic_model.h"
 #include "sema/strategy_catalog.h"
 #include "support/diagnostic.h"
+#include "support/file_io.h"
 #include "support/source_manager.h"
 #include "syntax/ast.h"
 
@@ -22,7 +22,7 @@ struct FrontEndOptions {
   std::vector<std::string> includeDirs;
   uint32_t errorLimit = 20;
   // See LoadOptions::readFile; the default reads the file system.
-  std::function<std::optional<std::string>(const std::string& path)> readFile;
+  FileReader readFile;
   // Strategies pipelines may name; null means those of
   // codegen::StrategyRegistry::builtin().
   const sem::StrategyCatalog* strategies = nullptr;

@@ -68,9 +68,13 @@ class BodyChecker {
 
   // Expressions (body_checker_expr.cpp)
   const Type* checkUncached(const ast::Expr& expr, ExprInfo& info);
+  // Stores what check() found about `expr` in the model.
+  const Type* record(const ast::Expr& expr, ExprInfo& info, const Type* type);
   const Type* checkName(const ast::NameExpr& e, ExprInfo& info);
   const Type* checkUnary(const ast::UnaryExpr& e, ExprInfo& info);
-  const Type* checkBinary(const ast::BinaryExpr& e, ExprInfo& info);
+  const Type* checkBinaryChain(const ast::BinaryExpr& top);
+  // One node of a chain whose left operand was checked as `lhs`.
+  const Type* checkBinary(const ast::BinaryExpr& e, const Type* lhs);
   const Type* checkAssign(const ast::AssignExpr& e);
   const Type* checkTernary(const ast::TernaryExpr& e);
   const Type* checkCall(const ast::CallExpr& e, ExprInfo& info);

@@ -51,7 +51,10 @@ bool isSwizzleSet(std::string_view member, std::string_view set) {
 
 const Type* BodyChecker::check(const ast::Expr& expr) {
   ExprInfo info;
-  const Type* type = checkUncached(expr, info);
+  return record(expr, info, checkUncached(expr, info));
+}
+
+const Type* BodyChecker::record(const ast::Expr& expr, ExprInfo& info, const Type* type) {
   info.type = type;
   if (!type->isError()) foldConstant(expr, info);
   model_.mutableInfo(expr) = info;
@@ -74,7 +77,7 @@ const Type* BodyChecker::checkUncached(const ast::Expr& expr, ExprInfo& info) {
     case ast::ExprKind::FloatLiteral: return types.floatType();
     case ast::ExprKind::Name: return checkName(ast::cast<ast::NameExpr>(expr), info);
     case ast::ExprKind::Unary: return checkUnary(ast::cast<ast::UnaryExpr>(expr), info);
-    case ast::ExprKind::Binary: return checkBinary(ast::cast<ast::BinaryExpr>(expr), info);
+    case ast::ExprKind::Binary: return checkBinaryChain(ast::cast<ast::BinaryExpr>(expr));
     case ast::ExprKind::Assign: return checkAssign(ast::cast<ast::AssignExpr>(expr));
     case ast::ExprKind::Ternary: return checkTernary(ast::cast<ast::TernaryExpr>(expr));
     case ast::ExprKind::Call: return checkCall(ast::cast<ast::CallExpr>(expr), info);
@@ -139,8 +142,21 @@ const Type* BodyChecker::checkUnary(const ast::UnaryExpr& e, ExprInfo&) {
   return result;
 }
 
-const Type* BodyChecker::checkBinary(const ast::BinaryExpr& e, ExprInfo&) {
-  const Type* lhs = check(*e.lhs);
+// Checks the chain's first operand, then each node from the innermost out
+// (ast::leftSpine), in the order the recursion would. check() records the
+// outermost node, this loop every other one.
+const Type* BodyChecker::checkBinaryChain(const ast::BinaryExpr& top) {
+  const std::vector<const ast::BinaryExpr*> spine = ast::leftSpine(top);
+  const Type* type = check(*spine.front()->lhs);
+  for (size_t i = 0;; ++i) {
+    type = checkBinary(*spine[i], type);
+    if (i + 1 == spine.size()) return type;
+    ExprInfo info;
+    record(*spine[i], info, type);
+  }
+}
+
+const Type* BodyChecker::checkBinary(const ast::BinaryExpr& e, const Type* lhs) {
   const Type* rhs = check(*e.rhs);
   if (lhs->isError() || rhs->isError()) return model_.types().error();
   if (e.op == ast::BinaryOp::Comma) return rhs;

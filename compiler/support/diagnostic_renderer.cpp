@@ -8,48 +8,84 @@
 namespace spire {
 namespace {
 
-// Number of code points in a byte span, matching SourceManager columns.
-uint32_t codePoints(std::string_view text) {
-  uint32_t count = 0;
-  for (char c : text) {
-    if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) ++count;
-  }
-  return count;
-}
-
 std::string location(const SourceManager& sources, const SourceRange& range) {
   if (!range.valid()) return "spirec";
   const LineCol lc = sources.begin(range);
   return fmt::format("{}:{}:{}", sources.file(range.file).path, lc.line, lc.column);
 }
 
-// The source line, then a caret under the first character of the range and
-// tildes under the rest of it (clipped to the first line).
+// A long line (minified or generated code, a line of megabytes) is quoted
+// as a window of this many columns around the caret, with "..." where it is
+// cut, so that a diagnostic stays readable and its size bounded.
+constexpr uint32_t kSnippetColumns = 120;
+constexpr uint32_t kColumnsBeforeCaret = 40;
+constexpr std::string_view kCut = "...";
+
+// The byte `columns` columns after `pos` in `line`, or the line's end.
+size_t columnsAfter(std::string_view line, size_t pos, uint32_t columns) {
+  for (; pos < line.size() && columns > 0; --columns) {
+    ++pos;
+    while (pos < line.size() && !startsColumn(line[pos])) ++pos;
+  }
+  return pos;
+}
+
+// The first byte of the column `columns` columns before `pos`, or 0.
+size_t columnsBefore(std::string_view line, size_t pos, uint32_t columns) {
+  while (pos > 0 && columns > 0) {
+    if (startsColumn(line[--pos])) --columns;
+  }
+  return pos;
+}
+
+// The bytes [begin, end) of a line that are quoted, cut at column starts so
+// that no UTF-8 sequence is split.
+struct Window {
+  size_t begin = 0;
+  size_t end = 0;
+};
+
+Window windowAround(std::string_view line, size_t caret) {
+  if (columnsAfter(line, 0, kSnippetColumns) == line.size()) return {0, line.size()};
+  Window window;
+  window.begin = columnsBefore(line, caret, kColumnsBeforeCaret);
+  window.end = columnsAfter(line, window.begin, kSnippetColumns);
+  // Near the end of the line, show its last columns rather than fewer.
+  if (window.end == line.size()) window.begin = columnsBefore(line, line.size(), kSnippetColumns);
+  return window;
+}
+
+size_t columnsIn(std::string_view text) {
+  return static_cast<size_t>(std::count_if(text.begin(), text.end(), startsColumn));
+}
+
+// The source line (or its window around the caret), then a caret under the
+// first character of the range and tildes under the rest of it, clipped to
+// the first line and to the window.
 void appendSnippet(std::string& out, const SourceManager& sources, const SourceRange& range) {
   if (!range.valid()) return;
   const LineCol begin = sources.begin(range);
-  const LineCol end = sources.end(range);
   const std::string_view line = sources.lineText(range.file, begin.line);
+  const uint32_t lineStart = sources.file(range.file).lineStarts[begin.line - 1];
+  const size_t caret = std::min<size_t>(range.begin - lineStart, line.size());
+  // A range that goes on past this line is marked to the line's end.
+  const size_t rangeEnd = std::clamp<size_t>(range.end - std::min(range.end, lineStart), caret, line.size());
+  const Window window = windowAround(line, caret);
+  const std::string_view before = window.begin > 0 ? kCut : "";
+  const std::string_view after = window.end < line.size() ? kCut : "";
   const std::string gutter = std::to_string(begin.line);
-  const std::string pad(gutter.size(), ' ');
-  fmt::format_to(std::back_inserter(out), " {} | {}\n", gutter, line);
+  fmt::format_to(std::back_inserter(out), " {} | {}{}{}\n", gutter, before,
+                 line.substr(window.begin, window.end - window.begin), after);
 
-  std::string marker;
-  uint32_t column = 1;
+  std::string marker(before.size(), ' ');
   // Keep tabs so the caret lines up however the terminal expands them.
-  for (size_t i = 0; i < line.size() && column < begin.column; ++i) {
-    const auto c = static_cast<unsigned char>(line[i]);
-    if ((c & 0xC0) == 0x80) continue;
-    marker += c == '\t' ? '\t' : ' ';
-    ++column;
+  for (size_t i = window.begin; i < caret; ++i) {
+    if (startsColumn(line[i])) marker += line[i] == '\t' ? '\t' : ' ';
   }
-  const uint32_t lineWidth = codePoints(line);
-  uint32_t width = 1;
-  if (end.line == begin.line && end.column > begin.column) width = end.column - begin.column;
-  else if (end.line > begin.line && lineWidth >= begin.column) width = lineWidth - begin.column + 1;
+  const size_t marked = columnsIn(line.substr(caret, std::min(rangeEnd, window.end) - caret));
   marker += '^';
-  marker.append(width - 1, '~');
-  fmt::format_to(std::back_inserter(out), " {} | {}\n", pad, marker);
+  marker.append(std::max<size_t>(marked, 1) - 1, '~');
+  fmt::format_to(std::back_inserter(out), " {} | {}\n", std::string(gutter.size(), ' '), marker);
 }
 
 }  // namespace

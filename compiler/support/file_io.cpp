@@ -1,49 +1,93 @@
 #include "support/file_io.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <fmt/format.h>
 
 namespace spire {
+namespace {
+
+// errno as an error code, taken right after the call that failed: any later
+// call, even a successful one, may change errno.
+std::error_code lastError() { return {errno != 0 ? errno : EIO, std::generic_category()}; }
+
+class FileDescriptor {
+ public:
+  explicit FileDescriptor(int fd) : fd_(fd) {}
+  ~FileDescriptor() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  FileDescriptor(const FileDescriptor&) = delete;
+  FileDescriptor& operator=(const FileDescriptor&) = delete;
+  int get() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
+}  // namespace
+
+Expected<std::string, std::error_code> readFileBytes(const std::string& path) {
+  const FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (file.get() < 0) return lastError();
+  struct stat info {};
+  if (::fstat(file.get(), &info) != 0) return lastError();
+  // Opening a directory succeeds; reading it would fail less clearly.
+  if (S_ISDIR(info.st_mode)) return std::make_error_code(std::errc::is_a_directory);
+  constexpr size_t kMaxSize = UINT32_MAX;
+  std::string text;
+  // Reserved once for a regular file, so that a large file is not copied as
+  // the string grows; pipes and devices grow it as they go.
+  if (S_ISREG(info.st_mode)) text.reserve(std::min<size_t>(static_cast<size_t>(info.st_size), kMaxSize));
+  char buffer[1 << 16];
+  while (true) {
+    const ssize_t count = ::read(file.get(), buffer, sizeof buffer);
+    if (count < 0 && errno == EINTR) continue;
+    if (count < 0) return lastError();
+    if (count == 0) return text;
+    if (text.size() + static_cast<size_t>(count) > kMaxSize) return std::make_error_code(std::errc::file_too_large);
+    text.append(buffer, static_cast<size_t>(count));
+  }
+}
 
 std::optional<std::string> readWholeFile(const std::string& path) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) return std::nullopt;
-  return text;
+  auto text = readFileBytes(path);
+  if (!text) return std::nullopt;
+  return std::move(text).value();
+}
+
+Expected<std::string, std::error_code> readThrough(const FileReader& reader, const std::string& path) {
+  if (!reader) return readFileBytes(path);
+  if (std::optional<std::string> text = reader(path)) return std::move(*text);
+  return std::make_error_code(std::errc::no_such_file_or_directory);
 }
 
 std::optional<std::string> writeFileAtomically(const std::string& path, std::string_view contents) {
   namespace fs = std::filesystem;
   const fs::path target(path);
+  const auto failure = [&](const std::error_code& error) {
+    return fmt::format("cannot write '{}': {}", path, error.message());
+  };
   // The temporary lives in the target's directory so the rename stays on one
   // file system and is atomic.
   const fs::path temp = target.parent_path() / fmt::format(".{}.tmp{}", target.filename().string(), ::getpid());
   std::FILE* file = std::fopen(temp.c_str(), "wb");
-  if (!file) return fmt::format("cannot write '{}': {}", path, std::strerror(errno));
-  const bool written = std::fwrite(contents.data(), 1, contents.size(), file) == contents.size();
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    return fmt::format("cannot write '{}': {}", path, std::strerror(errno));
-  }
-  std::error_code ec;
-  fs::rename(temp, target, ec);
-  if (ec) {
-    fs::remove(temp, ec);
-    return fmt::format("cannot write '{}': {}", path, ec.message());
-  }
-  return std::nullopt;
+  if (!file) return failure(lastError());
+  std::error_code error;
+  if (std::fwrite(contents.data(), 1, contents.size(), file) != contents.size()) error = lastError();
+  if (std::fclose(file) != 0 && !error) error = lastError();
+  if (!error) fs::rename(temp, target, error);
+  if (!error) return std::nullopt;
+  std::error_code ignored;
+  fs::remove(temp, ignored);
+  return failure(error);
 }
 
 }  // namespace spire

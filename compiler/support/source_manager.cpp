@@ -30,10 +30,7 @@ LineCol SourceManager::lineCol(FileId id, uint32_t offset) const {
   const auto line = static_cast<uint32_t>(it - f.lineStarts.begin());
   const uint32_t lineStart = f.lineStarts[line - 1];
   uint32_t column = 1;
-  for (uint32_t i = lineStart; i < offset; ++i) {
-    // UTF-8 continuation bytes do not start a new column.
-    if ((static_cast<unsigned char>(f.text[i]) & 0xC0) != 0x80) ++column;
-  }
+  for (uint32_t i = lineStart; i < offset; ++i) column += startsColumn(f.text[i]) ? 1 : 0;
   return {line, column};
 }
 

@@ -44,6 +44,9 @@ struct SourceFile {
   std::vector<uint32_t> lineStarts;  // byte offset of each line's first byte
 };
 
+// Every byte but a UTF-8 continuation byte starts a column.
+inline bool startsColumn(char byte) { return (static_cast<unsigned char>(byte) & 0xC0) != 0x80; }
+
 class SourceManager {
  public:
   // `logicalName` defaults to `path`.

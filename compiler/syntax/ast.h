@@ -94,7 +94,33 @@ struct BinaryExpr final : Expr {
   SourceRange opRange;
   BinaryExpr(SourceRange r, BinaryOp o, ExprPtr l, ExprPtr rh, SourceRange opR)
       : Expr(kKind, r), op(o), lhs(std::move(l)), rhs(std::move(rh)), opRange(opR) {}
+  ~BinaryExpr() override;
 };
+
+// A chain of left-associative operators such as `a + b - c * d + ...` is a
+// left spine of binary nodes as deep as the chain is long, and generated
+// shaders write chains of thousands of terms. Whatever walks the tree walks
+// such a spine in a loop, so that its recursion only goes as deep as the
+// code is really nested: this returns the spine's nodes, innermost first.
+// The innermost node's `lhs` is the chain's first operand (not binary);
+// each following node's `lhs` is the node before it.
+inline std::vector<const BinaryExpr*> leftSpine(const BinaryExpr& top) {
+  std::vector<const BinaryExpr*> spine;
+  for (const Expr* e = &top; e && e->kind == ExprKind::Binary; e = static_cast<const BinaryExpr*>(e)->lhs.get()) {
+    spine.push_back(static_cast<const BinaryExpr*>(e));
+  }
+  return {spine.rbegin(), spine.rend()};
+}
+
+// Detaches the left spine node by node, so that each node is destroyed with
+// its `lhs` already empty and the destructors never recurse along a chain.
+inline BinaryExpr::~BinaryExpr() {
+  ExprPtr next = std::move(lhs);
+  while (next && next->kind == ExprKind::Binary) {
+    ExprPtr after = std::move(static_cast<BinaryExpr&>(*next).lhs);
+    next = std::move(after);
+  }
+}
 
 // `Assign` is plain `=`; the others are compound assignments.
 enum class AssignOp : uint8_t { Assign, Mul, Div, Mod, Add, Sub, Shl, Shr, BitAnd, BitXor, BitOr };

@@ -23,6 +23,18 @@ std::string dims(const std::vector<ast::ExprPtr>& sizes) {
   return sizes.empty() ? "" : " (dims" + exprs(sizes) + ")";
 }
 
+// `(binary op lhs rhs)` for every node of a chain, in a loop however long
+// the chain is (ast::leftSpine): the heads outermost first, then the first
+// operand, then each right operand closing its node.
+std::string chain(const ast::BinaryExpr& top) {
+  const std::vector<const ast::BinaryExpr*> spine = ast::leftSpine(top);
+  std::string text;
+  for (auto it = spine.rbegin(); it != spine.rend(); ++it) text += fmt::format("(binary {} ", ast::spelling((*it)->op));
+  text += expr(*spine.front()->lhs);
+  for (const ast::BinaryExpr* b : spine) text += " " + expr(*b->rhs) + ")";
+  return text;
+}
+
 std::string expr(const ast::Expr& e) {
   using namespace ast;
   switch (e.kind) {
@@ -43,10 +55,7 @@ std::string expr(const ast::Expr& e) {
                                                                                                   : "";
       return fmt::format("(unary {}{} {})", fix, spelling(u.op), expr(*u.operand));
     }
-    case ExprKind::Binary: {
-      const auto& b = cast<BinaryExpr>(e);
-      return fmt::format("(binary {} {} {})", spelling(b.op), expr(*b.lhs), expr(*b.rhs));
-    }
+    case ExprKind::Binary: return chain(cast<BinaryExpr>(e));
     case ExprKind::Assign: {
       const auto& a = cast<AssignExpr>(e);
       return fmt::format("(assign {} {} {})", spelling(a.op), expr(*a.target), expr(*a.value));

@@ -10,8 +10,6 @@ namespace {
 
 using Prec = ast::Precedence;
 
-Prec next(Prec p) { return static_cast<Prec>(static_cast<uint8_t>(p) + 1); }
-
 Prec precedence(const ast::Expr& expr) {
   switch (expr.kind) {
     case ast::ExprKind::Binary: return ast::precedenceOf(ast::cast<ast::BinaryExpr>(expr).op);
@@ -45,6 +43,13 @@ std::string list(const std::vector<ast::ExprPtr>& items) {
   return text;
 }
 
+// A chain of binary operators, in a loop however long it is.
+std::string chain(const ast::BinaryExpr& top, Prec context) {
+  return ast::writeChain(top, context, expr, [](ast::BinaryOp op) {
+    return op == ast::BinaryOp::Comma ? std::string(", ") : fmt::format(" {} ", ast::spelling(op));
+  });
+}
+
 std::string unparenthesized(const ast::Expr& e) {
   using namespace ast;
   switch (e.kind) {
@@ -61,12 +66,7 @@ std::string unparenthesized(const ast::Expr& e) {
       const bool glue = operand.front() == op.back() && (op.back() == '+' || op.back() == '-');
       return op + (glue ? " " : "") + operand;
     }
-    case ExprKind::Binary: {
-      const auto& b = cast<BinaryExpr>(e);
-      const Prec p = ast::precedenceOf(b.op);
-      const std::string separator = b.op == BinaryOp::Comma ? ", " : fmt::format(" {} ", spelling(b.op));
-      return expr(*b.lhs, p) + separator + expr(*b.rhs, next(p));
-    }
+    case ExprKind::Binary: return chain(cast<BinaryExpr>(e), Prec::Comma);
     case ExprKind::Assign: {
       // The target is parsed as a conditional-expr, which a bare ternary would
       // swallow the assignment into.
@@ -99,6 +99,7 @@ std::string unparenthesized(const ast::Expr& e) {
 
 // `e` as it must be written where the grammar expects `context` or tighter.
 std::string expr(const ast::Expr& e, Prec context) {
+  if (const auto* b = ast::dyn_cast<ast::BinaryExpr>(&e)) return chain(*b, context);
   std::string text = unparenthesized(e);
   return precedence(e) < context ? "(" + text + ")" : text;
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "syntax/ast.h"
@@ -56,6 +57,10 @@ constexpr Precedence precedenceOf(BinaryOp op) {
   }
   return Precedence::Comma;
 }
+
+// The next level up: where a right operand of a left-associative operator
+// of level `p` must bind.
+constexpr Precedence tighter(Precedence p) { return static_cast<Precedence>(static_cast<uint8_t>(p) + 1); }
 
 constexpr bool isPostfix(UnaryOp op) { return op == UnaryOp::PostIncrement || op == UnaryOp::PostDecrement; }
 
@@ -114,6 +119,32 @@ constexpr std::string_view spelling(AssignOp op) {
     case AssignOp::BitOr: return "|=";
   }
   return "?";
+}
+
+// The text of the chain `top` (see leftSpine) where the grammar expects
+// `context` or tighter, written in one pass and without recursing along the
+// chain: `operand(expr, context)` writes the first operand and each right
+// operand, `separator(op)` each operator with its spacing. A node is
+// parenthesized where it binds more loosely than the place it stands in;
+// all opening parentheses precede the first operand.
+template <class WriteOperand, class WriteSeparator>
+std::string writeChain(const BinaryExpr& top, Precedence context, WriteOperand operand, WriteSeparator separator) {
+  const std::vector<const BinaryExpr*> spine = leftSpine(top);
+  // A node stands as its parent's left operand, or where the chain does.
+  const auto parenthesized = [&](size_t i) {
+    return precedenceOf(spine[i]->op) < (i + 1 < spine.size() ? precedenceOf(spine[i + 1]->op) : context);
+  };
+  std::string text;
+  for (size_t i = 0; i < spine.size(); ++i) {
+    if (parenthesized(i)) text += '(';
+  }
+  text += operand(*spine.front()->lhs, precedenceOf(spine.front()->op));
+  for (size_t i = 0; i < spine.size(); ++i) {
+    text += separator(spine[i]->op);
+    text += operand(*spine[i]->rhs, tighter(precedenceOf(spine[i]->op)));
+    if (parenthesized(i)) text += ')';
+  }
+  return text;
 }
 
 }  // namespace spire::ast

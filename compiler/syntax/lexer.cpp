@@ -93,7 +93,7 @@ class Lexer {
   std::vector<Token> run() {
     skipByteOrderMark();
     for (skipTrivia(); pos_ < text_.size(); skipTrivia()) lexToken();
-    tokens_.push_back({TokenKind::EndOfFile, rangeFrom(pos_), {}, endOfFileMalformed_});
+    tokens_.push_back({TokenKind::EndOfFile, endOfFileMalformed_, false, rangeFrom(pos_), {}});
     return std::move(tokens_);
   }
 
@@ -103,7 +103,7 @@ class Lexer {
     return {file_, static_cast<uint32_t>(begin), static_cast<uint32_t>(pos_)};
   }
   void emit(TokenKind kind, size_t begin, bool malformed = false) {
-    tokens_.push_back({kind, rangeFrom(begin), text_.substr(begin, pos_ - begin), malformed, strayPending_});
+    tokens_.push_back({kind, malformed, strayPending_, rangeFrom(begin), text_.substr(begin, pos_ - begin)});
     strayPending_ = false;
   }
 

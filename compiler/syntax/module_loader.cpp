@@ -113,19 +113,26 @@ struct ModuleLoader::Impl {
     std::vector<Candidate> candidates = {{joinPath(fs::path(includerPath).parent_path(), include.path), includerRoot}};
     for (const auto& dir : options.includeDirs) candidates.push_back({joinPath(dir, include.path), directoryKey(dir)});
 
+    // A candidate that exists but cannot be read (a directory, no
+    // permission) is named with the reason; the others were just not there.
+    std::vector<std::string> unreadable;
     for (auto& candidate : candidates) {
       std::string key = fileKey(candidate.path);
       const auto open = std::find_if(openFiles.begin(), openFiles.end(), [&](const OpenFile& f) { return f.key == key; });
       if (open != openFiles.end()) return reportCycle(include, open);
       if (loaded.contains(key)) return;
-      if (auto text = options.readFile(candidate.path)) {
-        return load(candidate.path, std::move(key), std::move(candidate.root), std::move(*text), program);
+      auto text = readThrough(options.readFile, candidate.path);
+      if (text) return load(candidate.path, std::move(key), std::move(candidate.root), std::move(text).value(), program);
+      if (text.error() != std::errc::no_such_file_or_directory && text.error() != std::errc::not_a_directory) {
+        unreadable.push_back(fmt::format("cannot read '{}': {}", candidate.path, text.error().message()));
       }
     }
     std::string searched;
     for (const auto& candidate : candidates) searched += (searched.empty() ? "'" : ", '") + candidate.path + "'";
-    diags.report(DiagCode::E1101, include.pathRange, fmt::format("cannot open included file '{}'", include.path))
-        .note({}, "searched " + searched);
+    Diagnostic& d =
+        diags.report(DiagCode::E1101, include.pathRange, fmt::format("cannot open included file '{}'", include.path))
+            .note({}, "searched " + searched);
+    for (std::string& reason : unreadable) d.note({}, std::move(reason));
   }
 
   void reportCycle(const ast::UsingDecl& include, std::vector<OpenFile>::const_iterator first) {
@@ -137,21 +144,20 @@ struct ModuleLoader::Impl {
 };
 
 ModuleLoader::ModuleLoader(SourceManager& sources, DiagnosticList& diags, LoadOptions options)
-    : impl_(std::make_unique<Impl>(Impl{sources, diags, std::move(options), {}, {}, {}})) {
-  if (!impl_->options.readFile) impl_->options.readFile = readWholeFile;
-}
+    : impl_(std::make_unique<Impl>(Impl{sources, diags, std::move(options), {}, {}, {}})) {}
 
 ModuleLoader::~ModuleLoader() = default;
 
 bool ModuleLoader::loadFile(const std::string& path, ast::Program& program) {
   std::string key = fileKey(path);
   if (impl_->loaded.contains(key)) return true;
-  auto text = impl_->options.readFile(path);
+  auto text = readThrough(impl_->options.readFile, path);
   if (!text) {
-    impl_->diags.report(DiagCode::E1101, {}, fmt::format("cannot open source file '{}'", path));
+    impl_->diags.report(DiagCode::E1101, {},
+                        fmt::format("cannot open source file '{}': {}", path, text.error().message()));
     return false;
   }
-  impl_->loadInput(path, std::move(key), std::move(*text), program);
+  impl_->loadInput(path, std::move(key), std::move(text).value(), program);
   return true;
 }
 

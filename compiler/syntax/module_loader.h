@@ -1,13 +1,13 @@
 // Loads source files and everything they include with `using "file";`.
 #pragma once
 
-#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "support/diagnostic.h"
+#include "support/file_io.h"
 #include "support/source_manager.h"
 #include "syntax/ast.h"
 #include "syntax/parser.h"
@@ -17,9 +17,9 @@ namespace spire {
 struct LoadOptions {
   std::vector<std::string> includeDirs;  // searched after the including file's directory
   ParseLimits parseLimits;
-  // Reads a whole file; nullopt when it cannot be read. Defaults to the file
-  // system; tests and the fuzzer substitute an in-memory map.
-  std::function<std::optional<std::string>(const std::string& path)> readFile;
+  // Reads a whole file; unset, the file system (whose errors are reported
+  // with their reason). Tests and the fuzzer substitute an in-memory map.
+  FileReader readFile;
 };
 
 // Each file is loaded once (by normalized path) however often it is included;

@@ -1,7 +1,6 @@
-// Expressions, with GLSL's precedence and associativity. Every binary level
-// is a rule of its own; parseLeftAssociative is the loop they share.
-#include <algorithm>
-
+// Expressions, with GLSL's precedence and associativity. The binary levels
+// are parsed by precedence climbing (parseBinary).
+#include "syntax/ast_spelling.h"
 #include "syntax/lexer.h"
 #include "syntax/parser_impl.h"
 
@@ -21,6 +20,33 @@ std::optional<ast::AssignOp> assignmentOperator(TokenKind kind) {
     case TokenKind::AmpAssign: return ast::AssignOp::BitAnd;
     case TokenKind::CaretAssign: return ast::AssignOp::BitXor;
     case TokenKind::PipeAssign: return ast::AssignOp::BitOr;
+    default: return std::nullopt;
+  }
+}
+
+// The binary operator a token stands for; the comma is left to
+// parseExpression, whose operands are assignments.
+std::optional<ast::BinaryOp> binaryOperator(TokenKind kind) {
+  switch (kind) {
+    case TokenKind::Star: return ast::BinaryOp::Mul;
+    case TokenKind::Slash: return ast::BinaryOp::Div;
+    case TokenKind::Percent: return ast::BinaryOp::Mod;
+    case TokenKind::Plus: return ast::BinaryOp::Add;
+    case TokenKind::Minus: return ast::BinaryOp::Sub;
+    case TokenKind::Shl: return ast::BinaryOp::Shl;
+    case TokenKind::Shr: return ast::BinaryOp::Shr;
+    case TokenKind::Less: return ast::BinaryOp::Less;
+    case TokenKind::Greater: return ast::BinaryOp::Greater;
+    case TokenKind::LessEqual: return ast::BinaryOp::LessEqual;
+    case TokenKind::GreaterEqual: return ast::BinaryOp::GreaterEqual;
+    case TokenKind::EqualEqual: return ast::BinaryOp::Equal;
+    case TokenKind::NotEqual: return ast::BinaryOp::NotEqual;
+    case TokenKind::Amp: return ast::BinaryOp::BitAnd;
+    case TokenKind::Caret: return ast::BinaryOp::BitXor;
+    case TokenKind::Pipe: return ast::BinaryOp::BitOr;
+    case TokenKind::AmpAmp: return ast::BinaryOp::LogicalAnd;
+    case TokenKind::CaretCaret: return ast::BinaryOp::LogicalXor;
+    case TokenKind::PipePipe: return ast::BinaryOp::LogicalOr;
     default: return std::nullopt;
   }
 }
@@ -53,27 +79,13 @@ bool Parser::startsExpression() const {
 
 // expression = assignment-expr { "," assignment-expr } ;
 ast::ExprPtr Parser::parseExpression() {
-  static constexpr BinaryOperator kOperators[] = {{TokenKind::Comma, ast::BinaryOp::Comma}};
-  return parseLeftAssociative(&Parser::parseAssignment, kOperators);
-}
-
-// Parses `operand { op operand }` for one of `operators`. Every operator makes
-// the tree one level deeper, and later stages walk it recursively, so a long
-// chain counts against the nesting limit just like parentheses do.
-ast::ExprPtr Parser::parseLeftAssociative(ast::ExprPtr (Parser::*operand)(),
-                                          std::span<const BinaryOperator> operators) {
-  DepthScope scope(*this);
   const uint32_t begin = current().range.begin;
-  ast::ExprPtr lhs = (this->*operand)();
-  while (lhs) {
-    const auto match = std::find_if(operators.begin(), operators.end(),
-                                    [&](const BinaryOperator& candidate) { return at(candidate.token); });
-    if (match == operators.end()) break;
-    if (!nestDeeper()) return nullptr;
-    const Token& op = advance();
-    ast::ExprPtr rhs = (this->*operand)();
+  ast::ExprPtr lhs = parseAssignment();
+  while (lhs && at(TokenKind::Comma)) {
+    const Token& comma = advance();
+    ast::ExprPtr rhs = parseAssignment();
     if (!rhs) return nullptr;
-    lhs = makeExpr<ast::BinaryExpr>(rangeFrom(begin), match->op, std::move(lhs), std::move(rhs), op.range);
+    lhs = makeExpr<ast::BinaryExpr>(rangeFrom(begin), ast::BinaryOp::Comma, std::move(lhs), std::move(rhs), comma.range);
   }
   return lhs;
 }
@@ -96,7 +108,7 @@ ast::ExprPtr Parser::parseAssignment() {
 // conditional-expr = logical-or-expr [ "?" expression ":" assignment-expr ] ;
 ast::ExprPtr Parser::parseConditional() {
   const uint32_t begin = current().range.begin;
-  ast::ExprPtr condition = parseLogicalOr();
+  ast::ExprPtr condition = parseBinary(ast::Precedence::LogicalOr);
   if (!condition || !at(TokenKind::Question)) return condition;
   DepthScope scope(*this);
   if (!nestDeeper()) return nullptr;
@@ -109,78 +121,37 @@ ast::ExprPtr Parser::parseConditional() {
                                     std::move(elseValue));
 }
 
-// logical-or-expr = logical-xor-expr { "||" logical-xor-expr } ;
-ast::ExprPtr Parser::parseLogicalOr() {
-  static constexpr BinaryOperator kOperators[] = {{TokenKind::PipePipe, ast::BinaryOp::LogicalOr}};
-  return parseLeftAssociative(&Parser::parseLogicalXor, kOperators);
-}
-
+// logical-or-expr  = logical-xor-expr { "||" logical-xor-expr } ;
 // logical-xor-expr = logical-and-expr { "^^" logical-and-expr } ;
-ast::ExprPtr Parser::parseLogicalXor() {
-  static constexpr BinaryOperator kOperators[] = {{TokenKind::CaretCaret, ast::BinaryOp::LogicalXor}};
-  return parseLeftAssociative(&Parser::parseLogicalAnd, kOperators);
-}
-
 // logical-and-expr = bit-or-expr { "&&" bit-or-expr } ;
-ast::ExprPtr Parser::parseLogicalAnd() {
-  static constexpr BinaryOperator kOperators[] = {{TokenKind::AmpAmp, ast::BinaryOp::LogicalAnd}};
-  return parseLeftAssociative(&Parser::parseBitOr, kOperators);
-}
-
-// bit-or-expr = bit-xor-expr { "|" bit-xor-expr } ;
-ast::ExprPtr Parser::parseBitOr() {
-  static constexpr BinaryOperator kOperators[] = {{TokenKind::Pipe, ast::BinaryOp::BitOr}};
-  return parseLeftAssociative(&Parser::parseBitXor, kOperators);
-}
-
-// bit-xor-expr = bit-and-expr { "^" bit-and-expr } ;
-ast::ExprPtr Parser::parseBitXor() {
-  static constexpr BinaryOperator kOperators[] = {{TokenKind::Caret, ast::BinaryOp::BitXor}};
-  return parseLeftAssociative(&Parser::parseBitAnd, kOperators);
-}
-
-// bit-and-expr = equality-expr { "&" equality-expr } ;
-ast::ExprPtr Parser::parseBitAnd() {
-  static constexpr BinaryOperator kOperators[] = {{TokenKind::Amp, ast::BinaryOp::BitAnd}};
-  return parseLeftAssociative(&Parser::parseEquality, kOperators);
-}
-
-// equality-expr = relational-expr { ( "==" | "!=" ) relational-expr } ;
-ast::ExprPtr Parser::parseEquality() {
-  static constexpr BinaryOperator kOperators[] = {{TokenKind::EqualEqual, ast::BinaryOp::Equal},
-                                                  {TokenKind::NotEqual, ast::BinaryOp::NotEqual}};
-  return parseLeftAssociative(&Parser::parseRelational, kOperators);
-}
-
-// relational-expr = shift-expr { ( "<" | ">" | "<=" | ">=" ) shift-expr } ;
-ast::ExprPtr Parser::parseRelational() {
-  static constexpr BinaryOperator kOperators[] = {{TokenKind::Less, ast::BinaryOp::Less},
-                                                  {TokenKind::Greater, ast::BinaryOp::Greater},
-                                                  {TokenKind::LessEqual, ast::BinaryOp::LessEqual},
-                                                  {TokenKind::GreaterEqual, ast::BinaryOp::GreaterEqual}};
-  return parseLeftAssociative(&Parser::parseShift, kOperators);
-}
-
-// shift-expr = additive-expr { ( "<<" | ">>" ) additive-expr } ;
-ast::ExprPtr Parser::parseShift() {
-  static constexpr BinaryOperator kOperators[] = {{TokenKind::Shl, ast::BinaryOp::Shl},
-                                                  {TokenKind::Shr, ast::BinaryOp::Shr}};
-  return parseLeftAssociative(&Parser::parseAdditive, kOperators);
-}
-
-// additive-expr = multiplicative-expr { ( "+" | "-" ) multiplicative-expr } ;
-ast::ExprPtr Parser::parseAdditive() {
-  static constexpr BinaryOperator kOperators[] = {{TokenKind::Plus, ast::BinaryOp::Add},
-                                                  {TokenKind::Minus, ast::BinaryOp::Sub}};
-  return parseLeftAssociative(&Parser::parseMultiplicative, kOperators);
-}
-
+// bit-or-expr      = bit-xor-expr { "|" bit-xor-expr } ;
+// bit-xor-expr     = bit-and-expr { "^" bit-and-expr } ;
+// bit-and-expr     = equality-expr { "&" equality-expr } ;
+// equality-expr    = relational-expr { ( "==" | "!=" ) relational-expr } ;
+// relational-expr  = shift-expr { ( "<" | ">" | "<=" | ">=" ) shift-expr } ;
+// shift-expr       = additive-expr { ( "<<" | ">>" ) additive-expr } ;
+// additive-expr    = multiplicative-expr { ( "+" | "-" ) multiplicative-expr } ;
 // multiplicative-expr = unary-expr { ( "*" | "/" | "%" ) unary-expr } ;
-ast::ExprPtr Parser::parseMultiplicative() {
-  static constexpr BinaryOperator kOperators[] = {{TokenKind::Star, ast::BinaryOp::Mul},
-                                                  {TokenKind::Slash, ast::BinaryOp::Div},
-                                                  {TokenKind::Percent, ast::BinaryOp::Mod}};
-  return parseLeftAssociative(&Parser::parseUnary, kOperators);
+//
+// All these levels by precedence climbing: the operand of the loosest
+// operator allowed here (`minPrecedence`), then operators that bind at
+// least as loosely, each folded into the left operand in the loop, so that
+// `a + a + ... + a` is a loop however long. The recursion for a right
+// operand only goes to tighter levels, so it is at most as deep as there
+// are levels; unlike parentheses, a long chain is not nesting and does not
+// count against the nesting limit (generated shaders write such chains).
+ast::ExprPtr Parser::parseBinary(ast::Precedence minPrecedence) {
+  const uint32_t begin = current().range.begin;
+  ast::ExprPtr lhs = parseUnary();
+  while (lhs) {
+    const std::optional<ast::BinaryOp> op = binaryOperator(current().kind);
+    if (!op || ast::precedenceOf(*op) < minPrecedence) break;
+    const Token& opToken = advance();
+    ast::ExprPtr rhs = parseBinary(ast::tighter(ast::precedenceOf(*op)));
+    if (!rhs) return nullptr;
+    lhs = makeExpr<ast::BinaryExpr>(rangeFrom(begin), *op, std::move(lhs), std::move(rhs), opToken.range);
+  }
+  return lhs;
 }
 
 // unary-expr = postfix-expr | ( "+" | "-" | "!" | "~" | "++" | "--" ) unary-expr ;
@@ -331,8 +302,13 @@ ast::ExprPtr Parser::cloneExpr(const ast::Expr& expr) {
       return makeExpr<UnaryExpr>(e.range, e.op, cloneExpr(*e.operand), e.opRange);
     }
     case ExprKind::Binary: {
-      const auto& e = cast<BinaryExpr>(expr);
-      return makeExpr<BinaryExpr>(e.range, e.op, cloneExpr(*e.lhs), cloneExpr(*e.rhs), e.opRange);
+      // Along the chain in a loop (ast::leftSpine), however long it is.
+      const std::vector<const BinaryExpr*> spine = leftSpine(cast<BinaryExpr>(expr));
+      ExprPtr copy = cloneExpr(*spine.front()->lhs);
+      for (const BinaryExpr* e : spine) {
+        copy = makeExpr<BinaryExpr>(e->range, e->op, std::move(copy), cloneExpr(*e->rhs), e->opRange);
+      }
+      return copy;
     }
     case ExprKind::Assign: {
       const auto& e = cast<AssignExpr>(expr);

@@ -13,12 +13,12 @@
 
 #include <cstdint>
 #include <optional>
-#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "syntax/ast.h"
+#include "syntax/ast_spelling.h"
 #include "syntax/parser.h"
 #include "syntax/token.h"
 
@@ -34,11 +34,6 @@ enum class SyncLevel { Statement, Member, TopLevel, WholeConstruct };
 // inside the parentheses the parser skips to the closing ')' and still parses
 // the body, so errors there are reported too.
 enum class HeaderStatus { Ok, SkippedToBody, Dropped };
-
-struct BinaryOperator {
-  TokenKind token;
-  ast::BinaryOp op;
-};
 
 class Parser {
  public:
@@ -158,18 +153,7 @@ class Parser {
   ast::ExprPtr parseExpression();
   ast::ExprPtr parseAssignment();
   ast::ExprPtr parseConditional();
-  ast::ExprPtr parseLeftAssociative(ast::ExprPtr (Parser::*operand)(), std::span<const BinaryOperator> operators);
-  ast::ExprPtr parseLogicalOr();
-  ast::ExprPtr parseLogicalXor();
-  ast::ExprPtr parseLogicalAnd();
-  ast::ExprPtr parseBitOr();
-  ast::ExprPtr parseBitXor();
-  ast::ExprPtr parseBitAnd();
-  ast::ExprPtr parseEquality();
-  ast::ExprPtr parseRelational();
-  ast::ExprPtr parseShift();
-  ast::ExprPtr parseAdditive();
-  ast::ExprPtr parseMultiplicative();
+  ast::ExprPtr parseBinary(ast::Precedence minPrecedence);
   ast::ExprPtr parseUnary();
   ast::ExprPtr parsePostfix();
   ast::ExprPtr parsePrimary();

@@ -17,11 +17,10 @@ enum class TokenKind : uint8_t {
 #include "syntax/token_kinds.def"
 };
 
+// A file is lexed whole before it is parsed, so a token's size counts: the
+// flags come first to pack beside the kind (32 bytes rather than 40).
 struct Token {
   TokenKind kind = TokenKind::EndOfFile;
-  SourceRange range;
-  // The token as written; points into the SourceManager's copy of the file.
-  std::string_view text;
   // The lexer already reported an error for this token (an unterminated
   // string, a bad number, or, on the end-of-file token, an unterminated
   // comment). The parser stays quiet about it to avoid a second error.
@@ -29,7 +28,11 @@ struct Token {
   // A stray character the lexer reported and skipped stood right before this
   // token; an error here is usually that character's consequence.
   bool followsStray = false;
+  SourceRange range;
+  // The token as written; points into the SourceManager's copy of the file.
+  std::string_view text;
 };
+static_assert(sizeof(Token) <= 32);
 
 namespace detail {
 inline constexpr std::array kTokenSpellings = {

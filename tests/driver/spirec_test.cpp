@@ -1,4 +1,5 @@
 #include "driver/spirec.h"
+#include "spirec_run.h"
 #include "support/diagnostic.h"
 
 #include <gtest/gtest.h>
@@ -12,18 +13,8 @@ namespace spire {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct SpirecRun {
-  int exitCode;
-  std::string out;
-  std::string err;
-};
-
-SpirecRun spirec(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  const int code = runSpirec(args, out, err);
-  return {code, out.str(), err.str()};
-}
+using test::spirec;
+using test::SpirecRun;
 
 fs::path sourceDir() { return SPIRE_SOURCE_DIR; }
 

@@ -31,6 +31,46 @@ TEST(Diagnostics, CaretKeepsTabs) {
   EXPECT_NE(renderDiagnostics(sm, list, DiagnosticFormat::Text).find("   | \t^\n"), std::string::npos);
 }
 
+// The text and caret lines of the one diagnostic at byte `begin` of `line`,
+// marking `length` bytes.
+std::string snippetOf(const std::string& line, uint32_t begin, uint32_t length) {
+  SourceManager sm;
+  const FileId f = sm.addFile("t.spire", "first\n" + line + "\nlast\n");
+  DiagnosticList list;
+  list.report(DiagCode::E1001, {f, 6 + begin, 6 + begin + length}, "here");
+  const std::string text = renderDiagnostic(sm, list.all().at(0));
+  return text.substr(text.find('\n') + 1);
+}
+
+// A long line is quoted as a window of 120 columns around the caret, cut at
+// character boundaries, with "..." where it is cut; the caret stays under
+// its character and the marking ends with the window.
+TEST(Diagnostics, LongLinesAreQuotedAroundTheCaret) {
+  std::string line;
+  for (int i = 0; i < 1000; ++i) line += static_cast<char>('a' + i % 26);
+  EXPECT_EQ(snippetOf(line, 500, 3),
+            " 2 | ..." + line.substr(460, 120) + "...\n"
+            "   |    " + std::string(40, ' ') + "^~~\n");
+  EXPECT_EQ(snippetOf(line, 2, 1),
+            " 2 | " + line.substr(0, 120) + "...\n"
+            "   |   ^\n");
+  EXPECT_EQ(snippetOf(line, 995, 500),
+            " 2 | ..." + line.substr(880) + "\n"
+            "   |    " + std::string(115, ' ') + "^~~~~\n");
+  EXPECT_EQ(snippetOf(line, 100, 900),
+            " 2 | ..." + line.substr(60, 120) + "...\n"
+            "   |    " + std::string(40, ' ') + "^" + std::string(79, '~') + "\n");
+  // Up to 120 columns the whole line is quoted, whatever its size in bytes.
+  std::string wide;
+  for (int i = 0; i < 120; ++i) wide += "\xC3\xA9";  // é
+  EXPECT_EQ(snippetOf(wide, 20, 2), " 2 | " + wide + "\n   |           ^\n");
+  // Cutting never splits a character; tabs before the caret are kept.
+  const std::string mixed = wide + "\t" + wide + "x";
+  EXPECT_EQ(snippetOf(mixed, 2 * 120 + 1 + 2 * 20, 2),
+            " 2 | ..." + wide.substr(0, 2 * 19) + "\t" + wide.substr(0, 2 * 100) + "...\n"
+            "   |    " + std::string(19, ' ') + "\t" + std::string(20, ' ') + "^\n");
+}
+
 TEST(Diagnostics, ErrorLimitStopsCollection) {
   DiagnosticList list(2);
   for (int i = 0; i < 10; ++i) list.report(DiagCode::E1001, {}, "x");

@@ -134,8 +134,26 @@ TEST(ModuleLoader, MissingIncludeNamesWhereItLooked) {
 TEST(ModuleLoader, UnreadableRootFile) {
   Loading l;
   EXPECT_FALSE(l.loader().loadFile("missing.spire", l.program));
-  EXPECT_EQ(l.diagnostics(), Lines{"E1101 - cannot open source file 'missing.spire'"});
+  EXPECT_EQ(l.diagnostics(), Lines{"E1101 - cannot open source file 'missing.spire': No such file or directory"});
   EXPECT_TRUE(l.program.modules.empty());
+}
+
+// On the real file system, an include that exists but cannot be read is
+// named with the reason, besides where the loader looked.
+TEST(ModuleLoader, UnreadableIncludeSaysWhy) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "spire_unreadable_include";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "lib.spire");
+  std::ofstream(dir / "main.spire") << "using \"lib.spire\";\n";
+  SourceManager sources;
+  DiagnosticList diags;
+  ast::Program program;
+  ModuleLoader(sources, diags, {}).loadFile((dir / "main.spire").string(), program);
+  EXPECT_EQ(test::describe(sources, diags),
+            (Lines{"E1101 1:7 cannot open included file 'lib.spire'",
+                   "  note - searched '" + (dir / "lib.spire").string() + "'",
+                   "  note - cannot read '" + (dir / "lib.spire").string() + "': Is a directory"}));
+  std::filesystem::remove_all(dir);
 }
 
 TEST(ModuleLoader, InMemorySourceIncludesRelativeToItsDisplayPath) {

@@ -55,6 +55,23 @@ TEST(RoundTrip, ExpressionsNeedingParentheses) {
                   "expressions");
 }
 
+// Chains of binary operators are printed, dumped and copied (a type shared
+// by two fields) in a loop: 10000 terms would otherwise recurse 10000 deep.
+// Parentheses inside a chain must survive, wherever they stand.
+TEST(RoundTrip, LongOperatorChains) {
+  std::string sum = "((a - b) - (c - d)) * e";
+  std::string size = "1";
+  for (int i = 0; i < 10000; ++i) {
+    sum += i % 5 == 0 ? " - (a + b) * c" : i % 3 == 0 ? " / d" : " + a";
+    size += "+1";
+  }
+  expectRoundTrip("void f() { x = " + sum + "; y = (" + sum + ", a) << b; }\n"
+                  "struct S { float[" + size + "] a, b; };",
+                  "long chains");
+  EXPECT_EQ(test::dumpOf("(a - b) * c - d / (e + f)"),
+            "(binary - (binary * (binary - (name a) (name b)) (name c)) (binary / (name d) (binary + (name e) (name f))))");
+}
+
 // The examples of docs/language.md must be valid, too.
 TEST(RoundTrip, DocumentationExamples) {
   const std::string doc = readFile(fs::path(SPIRE_SOURCE_DIR) / "docs" / "language.md");

@@ -1,0 +1,188 @@
+// spirec on inputs that are valid but extreme (operator chains of thousands
+// of terms, a 50 MB line) or plainly wrong (empty sources, directories,
+// unreadable files, unwritable outputs, decision files for another shader),
+// run as a user would run it.
+#include <gtest/gtest.h>
+#include <pthread.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include "driver/spirec.h"
+#include "spirec_run.h"
+#include "support/file_io.h"
+
+namespace spire {
+namespace {
+
+namespace fs = std::filesystem;
+using test::spirec;
+using test::SpirecRun;
+
+// A fresh folder per test, removed afterwards (permissions restored first).
+class BadInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("spire_bad_input_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    for (const auto& entry : fs::recursive_directory_iterator(dir_, ignored)) {
+      fs::permissions(entry.path(), fs::perms::owner_all, fs::perm_options::add, ignored);
+    }
+    fs::remove_all(dir_, ignored);
+  }
+
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+    return (dir_ / name).string();
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  fs::path dir_;
+};
+
+std::string engineShader(const std::string& components) {
+  return "using \"" + (fs::path(SPIRE_SOURCE_DIR) / "pipelines/engine.spire").string() + "\";\n" +
+         "shader Sum using EnginePipeline {\n"
+         "  @FrameUniform mat4 matMVP;\n"
+         "  vec4 projPos = matMVP * vec4(vert_pos, 1.0);\n" +
+         components + "}\n";
+}
+
+// `first op first op ...` with `terms` terms.
+std::string chain(int terms, const std::string& term, const std::string& op) {
+  std::string text = term;
+  for (int i = 1; i < terms; ++i) text += op + term;
+  return text;
+}
+
+// A component and a function that both compute a sum of `terms` terms.
+std::string sumShader(int terms) {
+  return "float twice(float a) { return " + chain(terms, "a", " - ") + " + a * 2.0; }\n" +
+         engineShader("  float s = " + chain(terms, "vert_uv.x", " + ") + ";\n" +
+                      "  vec4 output = vec4(vert_normal * twice(s), 1.0);\n");
+}
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+std::string readText(const fs::path& file) { return readWholeFile(file.string()).value_or(""); }
+
+// spirec failed on its input and said `message`.
+void expectInputError(const SpirecRun& run, const std::string& message) {
+  EXPECT_EQ(run.exitCode, kExitInputError) << run.err.substr(0, 2000);
+  EXPECT_NE(run.err.find(message), std::string::npos) << run.err.substr(0, 2000);
+}
+
+// Runs `body` on a thread with a stack of `bytes`.
+void onStackOf(size_t bytes, const std::function<void()>& body) {
+  pthread_attr_t attributes;
+  pthread_attr_init(&attributes);
+  pthread_attr_setstacksize(&attributes, bytes);
+  pthread_t thread;
+  auto run = [](void* argument) -> void* {
+    (*static_cast<const std::function<void()>*>(argument))();
+    return nullptr;
+  };
+  ASSERT_EQ(pthread_create(&thread, &attributes, run, const_cast<std::function<void()>*>(&body)), 0);
+  pthread_join(thread, nullptr);
+  pthread_attr_destroy(&attributes);
+}
+
+// A flat sum is not nesting: generated shaders write such chains, and they
+// compile to kernels (SPIR-V included) with every term kept.
+TEST_F(BadInput, LongSumsCompileEndToEnd) {
+  for (int terms : {250, 10000}) {
+    SCOPED_TRACE(terms);
+    const std::string out = path("out" + std::to_string(terms));
+    const SpirecRun run = spirec({write("sum.spire", sumShader(terms)), "-o", out, "--dump-placement"});
+    ASSERT_EQ(run.exitCode, kExitSuccess) << run.err.substr(0, 2000);
+    EXPECT_EQ(run.err, "");
+    EXPECT_NE(run.out.find("Sum.s = "), std::string::npos);
+    const std::string kernels = readText(fs::path(out) / "Sum/Vertex.glsl") + readText(fs::path(out) / "Sum/Fragment.glsl");
+    EXPECT_EQ(count(kernels, "vert_uv.x + "), static_cast<size_t>(terms - 1));
+    EXPECT_EQ(count(kernels, "a - "), static_cast<size_t>(terms - 1));
+    EXPECT_TRUE(fs::exists(fs::path(out) / "Sum/Fragment.spv"));
+  }
+}
+
+// No stage recurses along a chain: 100000 terms compile on a 4 MiB stack,
+// where a few dozen bytes of stack per term would already overflow it.
+// GLSL only: glslang itself recurses along a chain.
+TEST_F(BadInput, ChainsDoNotDeepenTheStack) {
+  const std::string source = write("sum.spire", sumShader(100000));
+  SpirecRun run{};
+  onStackOf(4u << 20, [&] { run = spirec({source, "-o", path("out"), "--emit=glsl", "--dump-placement"}); });
+  EXPECT_EQ(run.exitCode, kExitSuccess) << run.err.substr(0, 2000);
+}
+
+// Real nesting is still limited.
+TEST_F(BadInput, DeepParenthesesAreNestingTooDeep) {
+  const std::string nested = std::string(300, '(') + "vert_uv.x" + std::string(300, ')');
+  const std::string source = write("nested.spire", engineShader("  float s = " + nested + ";\n  vec4 output = vec4(s);\n"));
+  expectInputError(spirec({source}), "error[E2004]: nesting too deep");
+}
+
+// Diagnostics on a megabyte-long line quote a window of it, not all of it.
+TEST_F(BadInput, DiagnosticsOnAHugeLineStaySmall) {
+  std::string line;
+  while (line.size() < (4u << 20)) line += "float f() { return 1.0 + $; } ";
+  const SpirecRun run = spirec({write("minified.spire", line)});
+  expectInputError(run, "error[E1001]: stray character '$'");
+  EXPECT_NE(run.err.find(" 1 | ...urn 1.0 + $; } float f() {"), std::string::npos) << run.err.substr(0, 2000);
+  EXPECT_LT(run.err.size(), 20000u);
+}
+
+std::string terrain() { return (fs::path(SPIRE_SOURCE_DIR) / "examples/terrain.spire").string(); }
+
+// Permissions do not stop root, so tests of unreadable or unwritable files
+// are skipped when running as root.
+bool runningAsRoot() { return ::geteuid() == 0; }
+
+TEST_F(BadInput, ADirectoryGivenAsAFileSaysSo) {
+  const std::string folder = path("shaders.spire");
+  fs::create_directories(folder);
+  expectInputError(spirec({folder}), "error[E1101]: cannot open source file '" + folder + "': Is a directory");
+  expectInputError(spirec({terrain(), "--decisions", folder}),
+                   "error[E1101]: cannot open file '" + folder + "': Is a directory");
+}
+
+TEST_F(BadInput, AnUnreadableFileSaysWhy) {
+  if (runningAsRoot()) GTEST_SKIP() << "root can read a file without read permission";
+  const std::string source = write("secret.spire", "struct S { float x; };\n");
+  fs::permissions(source, fs::perms::none);
+  expectInputError(spirec({source}), "cannot open source file '" + source + "': Permission denied");
+}
+
+// Each write error carries the reason of the call that failed, not what a
+// later cleanup left in errno ("Success").
+TEST_F(BadInput, WriteErrorsSayWhy) {
+  fs::create_directories(dir_ / "taken");
+  expectInputError(spirec({terrain(), "--choices", path("taken")}),
+                   "cannot write '" + path("taken") + "': Is a directory");
+  expectInputError(spirec({terrain(), "--choices", path("missing/terrain.choices")}), "': No such file or directory");
+  write("file", "");
+  expectInputError(spirec({terrain(), "-o", path("file/out"), "--emit=glsl"}),
+                   "error[E6003]: cannot create directory '" + path("file/out/Terrain") + "': Not a directory");
+}
+
+TEST_F(BadInput, WritingIntoAReadOnlyFolderSaysWhy) {
+  if (runningAsRoot()) GTEST_SKIP() << "root can write into a folder without write permission";
+  fs::create_directories(dir_ / "readonly");
+  fs::permissions(dir_ / "readonly", fs::perms::owner_read | fs::perms::owner_exec);
+  expectInputError(spirec({terrain(), "--choices", path("readonly/terrain.choices")}), "': Permission denied");
+  expectInputError(spirec({terrain(), "-o", path("readonly"), "--emit=glsl"}), "Permission denied");
+}
+
+}  // namespace
+}  // namespace spire
