@@ -13,7 +13,7 @@
 #include "measure/image_metrics.h"
 #include "measure/report_table.h"
 #include "renderer/error_report.h"
-#include "renderer/tool_arguments.h"
+#include "driver/tool_arguments.h"
 #include "renderer/host_allocator.h"
 #include "renderer/scene_renderer.h"
 #include "scene/texture.h"
@@ -79,13 +79,13 @@ int listDevices(const Options& options, std::ostream& out, std::ostream& err) {
   auto ctx = vk::Context::create(contextOptions);
   if (!ctx) {
     err << fmt::format("spire-demo: error: no usable Vulkan device: {}\n", ctx.error().message());
-    return engine::kToolNoDevice;
+    return kExitNoDevice;
   }
   for (const vk::PhysicalDeviceInfo& device : ctx->physicalDevices()) {
     out << fmt::format("{} {} ({}){}\n", &device == &ctx->selectedDevice() ? "*" : " ", device.name,
                        vk::deviceTypeName(device.type), &device == &ctx->selectedDevice() ? "  [selected]" : "");
   }
-  return engine::kToolSuccess;
+  return kExitSuccess;
 }
 
 }  // namespace
@@ -94,13 +94,13 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   CLI::App app{"spire-demo: renders a scene's Spire shader variants on Vulkan and measures their speed/accuracy trade",
                "spire-demo"};
   Options options;
+  addVersionFlag(app);
   app.add_option("scene", options.scenePath, "Scene file (docs/scene.md)")->type_name("SCENE.json");
   app.add_option("--variant", options.variants,
                  "Render with decision file PATH applied to every instance (repeatable; replaces the scene's "
                  "\"variants\"; the first is the reference)")
       ->type_name("PATH");
-  app.add_option("-o,--output", options.outputDir, "Write PNGs, comparison.png and report.md to DIR")
-      ->type_name("DIR");
+  addOutputDirectory(app, options.outputDir, "Write PNGs, comparison.png and report.md to DIR");
   app.add_option("--frames", options.frames,
                  "Measured frames per variant (default: the scene's); with --window, close it after N frames")
       ->type_name("N");
@@ -117,12 +117,11 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   app.add_flag("--window", options.window,
                "Show the variants in a window instead of measuring them (needs a display): keys 1-9 switch "
                "variants, dragging orbits the camera, Space pauses it, Escape quits");
-  if (const auto status = engine::parseToolArguments(app, args, "spire-demo", out, err)) return *status;
+  if (const auto status = parseToolArguments(app, args, out, err)) return *status;
   if (options.listDevices) return listDevices(options, out, err);
   engine::stabilizeHostAllocator();
   if (options.scenePath.empty()) {
-    err << "spire-demo: error: a scene file is required\nRun 'spire-demo --help' for usage.\n";
-    return engine::kToolUsageError;
+    return usageError("spire-demo", "a scene file is required", err);
   }
 
   SourceManager sources;
@@ -131,7 +130,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   const auto scene = scene::loadSceneFile(options.scenePath, sources, diags);
   if (!scene) {
     reporter.flush();
-    return engine::kToolInputError;
+    return kExitInputError;
   }
   std::vector<VariantRun> runs;
   for (const std::string& path : options.variants) runs.push_back({fs::path(path).stem().string(), fs::path(path)});
@@ -154,7 +153,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     auto opened = GlfwWindow::open(scene->width, scene->height, fmt::format("spire-demo | {}", options.scenePath));
     if (!opened) {
       err << fmt::format("spire-demo: error: {}\n", opened.error());
-      return engine::kToolInputError;
+      return kExitInputError;
     }
     window.emplace(std::move(opened).value());
     contextOptions.instanceExtensions = window->vulkanInstanceExtensions();
@@ -163,7 +162,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   auto ctx = vk::Context::create(contextOptions, surfaceFactory);
   if (!ctx) {
     err << fmt::format("spire-demo: error: no usable Vulkan device: {}\n", ctx.error().message());
-    return engine::kToolNoDevice;
+    return kExitNoDevice;
   }
   out << fmt::format("device: {} ({})\n", ctx->selectedDevice().name, vk::deviceTypeName(ctx->selectedDevice().type));
 
@@ -277,7 +276,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                        return names;
                      }());
 
-  return engine::reportValidation(*ctx, engine::kToolSuccess, err);
+  return engine::reportValidation(*ctx, kExitSuccess, err);
 }
 
 }  // namespace spire::demo

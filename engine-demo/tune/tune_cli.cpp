@@ -23,7 +23,7 @@
 
 #include "measure/image_metrics.h"
 #include "renderer/error_report.h"
-#include "renderer/tool_arguments.h"
+#include "driver/tool_arguments.h"
 #include "renderer/host_allocator.h"
 #include "renderer/scene_renderer.h"
 #include "support/file_io.h"
@@ -336,6 +336,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   CLI::App app{"spire-tune: explores a shader's optimization choices on a scene and measures the speed/accuracy trade",
                "spire-tune"};
   Options o;
+  addVersionFlag(app);
   app.add_option("scene", o.scenePath, "Scene file (docs/scene.md)")->required()->type_name("SCENE.json");
   app.add_option("--shader", o.shader, "The shader to tune (an instance of the scene must use it)")
       ->required()
@@ -359,7 +360,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   app.add_option("--bake-size", o.bakeSize, "PrebakeTex size without a TextureSize hint")
       ->check(CLI::Range(1U, 8192U))
       ->type_name("N");
-  app.add_option("-o,--output", o.outputDir, "Output directory (an interrupted run resumes from it)")->type_name("DIR");
+  addOutputDirectory(app, o.outputDir, "Output directory (an interrupted run resumes from it)");
   app.add_option("--time-budget", o.timeBudgetMs, "Write the most accurate variant within MS per frame")->type_name("MS");
   app.add_option("--error-budget", o.errorBudget, "Write the fastest variant within RMSE E")->type_name("E");
   app.add_option("--reference", o.reference, "Decision file of the reference (default: the scene's first variant)")
@@ -380,7 +381,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       ->check(CLI::IsMember({"run", "off", "inherit"}))
       ->type_name("MODE");
   app.add_option("--worker", o.worker, "Internal: measure shard K")->group("");
-  if (const auto status = engine::parseToolArguments(app, args, "spire-tune", out, err)) return *status;
+  if (const auto status = parseToolArguments(app, args, out, err)) return *status;
   const vk::HostTimer wall;
   engine::stabilizeHostAllocator();
   // Workers inherit the coordinator's setting.
@@ -388,7 +389,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   if (o.worker < 0) {
     if (const auto failed = shaderCache.apply(o.shaderCache)) {
       err << fmt::format("spire-tune: error: {}\n", *failed);
-      return engine::kToolInputError;
+      return kExitInputError;
     }
   }
 
@@ -398,7 +399,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   const auto scene = scene::loadSceneFile(o.scenePath, sources, diags);
   if (!scene) {
     reporter.flush();
-    return engine::kToolInputError;
+    return kExitInputError;
   }
   const auto instance = std::find_if(scene->instances.begin(), scene->instances.end(),
                                      [&](const scene::InstanceDesc& i) { return i.shader == o.shader; });
@@ -414,7 +415,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   auto ctx = vk::Context::create(contextOptions);
   if (!ctx) {
     err << fmt::format("spire-tune: error: no usable Vulkan device: {}\n", ctx.error().message());
-    return engine::kToolNoDevice;
+    return kExitNoDevice;
   }
   engine::TextureBakeOptions bakeOptions;
   bakeOptions.defaultSize = o.bakeSize;
@@ -441,7 +442,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     auto range = parseParameter(text, *instance, spaceError);
     if (!range) {
       err << fmt::format("spire-tune: error: {}\n", spaceError);
-      return engine::kToolUsageError;
+      return kExitUsageError;
     }
     ranges.push_back(*range);
   }
@@ -489,7 +490,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     // Exploring variants leaves some material values unused by design, so
     // only errors are worth printing here.
     if (diags.hasErrors()) reporter.flush();
-    return engine::reportValidation(*ctx, engine::kToolSuccess, err);
+    return engine::reportValidation(*ctx, kExitSuccess, err);
   };
   if (o.worker >= 0) return measureShard(o.worker, nullptr);
 
@@ -503,12 +504,12 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   if (already < total) {
     if (o.jobs == 1 || workerProgram.empty()) {
       Progress progress(err, total, already);
-      if (const int status = measureShard(-1, &progress); status != engine::kToolSuccess) return status;
+      if (const int status = measureShard(-1, &progress); status != kExitSuccess) return status;
     } else if (const auto failed = WorkQueue::create(queuePath(o))) {
       return reporter.fail({*failed, {}, {}});
     } else if (!runWorkers(o, workerProgram, args, already, total, err)) {
       err << "spire-tune: error: a worker failed (its messages are above); rerun to resume\n";
-      return engine::kToolInputError;
+      return kExitInputError;
     }
   }
 
@@ -575,7 +576,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   const auto writeBest = [&](std::optional<size_t> best, const std::string& file, const std::string& why) -> int {
     if (!best) {
       out << fmt::format("no variant meets the {}; {} not written\n", why, file);
-      return engine::kToolSuccess;
+      return kExitSuccess;
     }
     const TunePoint point = pointAt(space->axes, results[*best].index);
     auto program = tuner.program(point);
@@ -592,7 +593,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (auto failed = writeFileAtomically((fs::path(o.outputDir) / file).string(), text)) return reporter.fail({*failed, {}, {}});
     out << fmt::format("{}: variant {} ({}) -> {}/{}\n", why, results[*best].index,
                        placementsText(components, results[*best]), o.outputDir, file);
-    return engine::kToolSuccess;
+    return kExitSuccess;
   };
   if (int s = writeBest(bestInTime, "best_time_budget.decisions", fmt::format("time budget {:.3f} ms", timeBudget)); s) return s;
   if (int s = writeBest(bestInError, "best_error_budget.decisions", fmt::format("error budget RMSE {:.4g}", errorBudget)); s) return s;
@@ -651,7 +652,7 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                      split.compileMs / 1000, split.firstUseMs / 1000, split.renderMs / 1000, split.errorMs / 1000);
   out << fmt::format("wrote {0}/variants.csv, pareto.csv, plot.png, report.md, front/\n", o.outputDir);
   out << fmt::format("{} variants in {:.1f} s\n", results.size(), wall.elapsedMs() / 1000.0);
-  return engine::reportValidation(*ctx, engine::kToolSuccess, err);
+  return engine::reportValidation(*ctx, kExitSuccess, err);
 }
 
 }  // namespace spire::tune
