@@ -24,6 +24,7 @@
 #include "measure/image_metrics.h"
 #include "renderer/error_report.h"
 #include "driver/tool_arguments.h"
+#include "graph/decision_file.h"
 #include "renderer/host_allocator.h"
 #include "renderer/scene_renderer.h"
 #include "support/file_io.h"
@@ -310,15 +311,15 @@ bool runWorkers(const Options& o, const std::string& program, const std::vector<
 
 std::string decisionFile(const std::string& shader, const engine::VariantProgram& program, const std::string& why,
                          const ShaderLibrary::Attributes& attributes) {
-  std::string text = fmt::format("// spire-tune: {}\n", why);
-  if (!attributes.empty()) text += "// Formats of the baked textures chosen from their values (data-layout selection).\n";
+  std::string comment = "spire-tune: " + why;
+  if (!attributes.empty()) comment += "\nFormats of the baked textures chosen from their values (data-layout selection).";
+  graph::DecisionFile decisions;
   for (const auto& [component, placement] : program.placement) {
-    if (const auto it = attributes.find(component); it != attributes.end()) {
-      for (const auto& [name, value] : it->second) text += fmt::format("[{}: \"{}\"] ", name, value);
-    }
-    text += fmt::format("{}.{} = {}\n", shader, component, placement);
+    const auto found = attributes.find(component);
+    decisions.lines.push_back(graph::makeDecision(shader, component, placement,
+                                                  found == attributes.end() ? decltype(found->second){} : found->second));
   }
-  return text;
+  return graph::writeDecisionFile(decisions, comment);
 }
 
 std::string placementsText(const std::vector<std::string>& components, const VariantResult& r) {
