@@ -16,6 +16,7 @@
 #include "driver/tool_arguments.h"
 #include "renderer/host_allocator.h"
 #include "renderer/scene_renderer.h"
+#include "renderer/view_error.h"
 #include "scene/texture.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
@@ -215,16 +216,9 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
 
   std::vector<measure::ReportRow> rows;
   for (const VariantResult& result : results) {
-    measure::ErrorAccumulator accumulated;
-    for (size_t v = 0; v < result.views.size(); ++v) {
-      const engine::Capture& reference = results.front().views[v];
-      std::vector<uint8_t> coverage = reference.coverage;
-      for (size_t i = 0; i < coverage.size(); ++i) coverage[i] |= result.views[v].coverage[i];
-      auto error = measure::compareImages(reference.color, result.views[v].color, &coverage);
-      if (!error) return reporter.fail({error.error(), {}, {}});
-      accumulated.add(*error);
-    }
-    const measure::ImageError error = accumulated.total();
+    const auto viewsError = engine::viewsError(results.front().views, result.views);
+    if (!viewsError) return reporter.fail({viewsError.error(), {}, {}});
+    const measure::ImageError& error = *viewsError;
     measure::ReportRow row;
     row.variant = result.name;
     row.frameMs = result.stats.medianGpuMs;

@@ -6,6 +6,7 @@
 #include <fmt/ranges.h>
 
 #include "measure/image_metrics.h"
+#include "renderer/view_error.h"
 #include "vk/timer.h"
 
 namespace spire::tune {
@@ -114,10 +115,7 @@ VariantResult Tuner::measure(const TunePoint& point) {
         split_.firstUseMs += capture->timing.hostMs;
       }
       const vk::HostTimer errorTimer;
-      const engine::Capture& reference = reference_[s][v];
-      std::vector<uint8_t> coverage = reference.coverage;
-      for (size_t i = 0; i < coverage.size(); ++i) coverage[i] |= capture->coverage[i];
-      auto error = measure::compareImages(reference.color, capture->color, &coverage);
+      auto error = engine::viewError(reference_[s][v], *capture);
       errorMs += errorTimer.elapsedMs();
       if (!error) {
         result.status = "failed: " + error.error();
