@@ -1,4 +1,4 @@
-#include "renderer/error_report.h"
+#include "tool/error_report.h"
 
 #include <fmt/format.h>
 
