@@ -72,8 +72,8 @@ int measureShard(const TuneOptions& options, engine::ToolRun& run, TuneSession& 
                  Progress* progress) {
   if (const auto status = measurePoints(options, run, session, worker, progress)) return *status;
   const TimeSplit& s = session.tuner->timeSplit();
-  if (auto failed = writeFileAtomically(splitPath(options, std::max(worker, 0)).string(),
-                                        fmt::format("{} {} {} {}\n", s.compileMs, s.firstUseMs, s.renderMs, s.errorMs))) {
+  const std::string text = fmt::format("{} {} {} {}\n", s.compileMs, s.firstUseMs, s.renderMs, s.errorMs);
+  if (auto failed = writeFileAtomically(splitPath(options, std::max(worker, 0)).string(), text)) {
     return run.fail(*failed);
   }
   // Exploring variants leaves some material values unused by design, so

@@ -100,12 +100,15 @@ std::string placementsText(const std::vector<std::string>& components, const Var
 std::string decisionFile(const std::string& shader, const engine::VariantProgram& program, const std::string& why,
                          const ShaderLibrary::Attributes& attributes) {
   std::string comment = "spire-tune: " + why;
-  if (!attributes.empty()) comment += "\nFormats of the baked textures chosen from their values (data-layout selection).";
+  if (!attributes.empty()) {
+    comment += "\nFormats of the baked textures chosen from their values (data-layout selection).";
+  }
   graph::DecisionFile decisions;
   for (const auto& [component, placement] : program.placement) {
     const auto found = attributes.find(component);
-    decisions.lines.push_back(graph::makeDecision(shader, component, placement,
-                                                  found == attributes.end() ? decltype(found->second){} : found->second));
+    const auto none = decltype(found->second){};
+    decisions.lines.push_back(
+        graph::makeDecision(shader, component, placement, found == attributes.end() ? none : found->second));
   }
   return graph::writeDecisionFile(decisions, comment);
 }
@@ -158,7 +161,8 @@ std::string reportHeader(const TuneOptions& options, const engine::ToolRun& run,
       "# spire-tune report\n\nShader `{}` on `{}` ({}), {} variants of {} components{}; error is RMSE against the "
       "reference over {} camera view(s); time is the median GPU frame time of {} frames after {} unmeasured ones "
       "(the captures of the camera views first).\n\n"
-      "![error against time](plot.png)\n\n## Pareto front\n\n| variant | {} | frame ms | RMSE | image |\n|---|{}---|---|---|\n",
+      "![error against time](plot.png)\n\n## Pareto front\n\n"
+      "| variant | {} | frame ms | RMSE | image |\n|---|{}---|---|---|\n",
       options.shader, options.scenePath, run.context().selectedDevice().name, variants, session.components.size(),
       session.space.sampled ? " (sampled)" : "", run.scene().camera.views.size(), options.frames,
       session.tuner->unmeasuredFrames(), fmt::join(session.components, " | "), separators);
@@ -213,8 +217,8 @@ std::optional<int> writeReport(const TuneOptions& options, engine::ToolRun& run,
   if (const auto status = appendFrontTable(options, run, session, results, summary, report)) return status;
   report += reportFindings(options, session, results, summary, split);
   if (!layoutReport.empty()) {
-    report += "\n## Data-layout selection\n\nEach baked output of the chosen variants, analysed in a 32-bit float bake; "
-              "the error is what the selected format adds to the image against that bake.\n" + layoutReport;
+    report += "\n## Data-layout selection\n\nEach baked output of the chosen variants, analysed in a 32-bit float "
+              "bake; the error is what the selected format adds to the image against that bake.\n" + layoutReport;
   }
   if (auto failed = writeFileAtomically((fs::path(options.outputDir) / "report.md").string(), report)) {
     return run.fail(*failed);
@@ -223,18 +227,20 @@ std::optional<int> writeReport(const TuneOptions& options, engine::ToolRun& run,
 }
 
 void printSummary(const TuneOptions& options, const TuneSession& session, const std::vector<VariantResult>& results,
-                  const FrontSummary& summary, const TimeSplit& split, const vk::HostTimer& wall, std::ostream& out,
-                  std::ostream& err) {
+                  const FrontSummary& summary, const TimeSplit& split, const vk::HostTimer& wall,
+                  std::ostream& out, std::ostream& err) {
   for (const VariantResult& r : results) {
     if (r.nanPixels + r.infPixels > 0 && !r.sameAs) {
       err << fmt::format("spire-tune: warning: variant {} ({}) produced {} NaN and {} Inf pixels, first under {}\n",
                          r.index, placementsText(session.components, r), r.nanPixels, r.infPixels, r.hazardInputs);
     }
   }
-  out << fmt::format("front: {} variants; {} with NaN/Inf pixels; {} infeasible; {} measured once for identical kernels\n",
-                     summary.front.size(), summary.hazards, summary.infeasible, summary.reused);
-  out << fmt::format("time split (summed over workers): compile {:.1f} s, first use {:.1f} s, render {:.1f} s, error {:.1f} s\n",
-                     split.compileMs / 1000, split.firstUseMs / 1000, split.renderMs / 1000, split.errorMs / 1000);
+  out << fmt::format(
+      "front: {} variants; {} with NaN/Inf pixels; {} infeasible; {} measured once for identical kernels\n",
+      summary.front.size(), summary.hazards, summary.infeasible, summary.reused);
+  out << fmt::format(
+      "time split (summed over workers): compile {:.1f} s, first use {:.1f} s, render {:.1f} s, error {:.1f} s\n",
+      split.compileMs / 1000, split.firstUseMs / 1000, split.renderMs / 1000, split.errorMs / 1000);
   out << fmt::format("wrote {0}/variants.csv, pareto.csv, plot.png, report.md, front/\n", options.outputDir);
   out << fmt::format("{} variants in {:.1f} s\n", results.size(), wall.elapsedMs() / 1000.0);
 }
