@@ -8,6 +8,7 @@
 
 #include "driver/compiler.h"
 #include "driver/shader_library.h"
+#include "driver/tool_arguments.h"
 #include "graph/decision_file.h"
 #include "reflection/reflection_json.h"
 #include "sema/group_members.h"
@@ -100,7 +101,7 @@ void writeDirectories(const std::vector<OutputDirectory>& directories, Diagnosti
 int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   CLI::App app{"spirec: the Spire shader compiler", "spirec"};
   Options options;
-  app.set_version_flag("--version", std::string("spirec ") + SPIRE_VERSION);
+  addVersionFlag(app);
   app.add_option("files", options.files, "Spire source files")->required()->type_name("FILE...");
   app.add_option("-I", options.includeDirs, "Search DIR for 'using' includes after the including file's folder")
       ->type_name("DIR")
@@ -123,16 +124,7 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
   app.add_option("--shader", options.shader, "Restrict output to one shader")->type_name("NAME");
   app.add_option("--max-errors", options.maxErrors, "Stop after N errors (0: no limit)")->type_name("N");
 
-  std::vector<std::string> reversed(args.rbegin(), args.rend());
-  try {
-    app.parse(reversed);
-  } catch (const CLI::Success&) {
-    out << (app.get_option("--version")->count() ? std::string("spirec ") + SPIRE_VERSION + "\n" : app.help());
-    return kExitSuccess;
-  } catch (const CLI::ParseError& e) {
-    err << fmt::format("spirec: error: {}\nRun 'spirec --help' for usage.\n", e.what());
-    return kExitUsageError;
-  }
+  if (const auto status = parseToolArguments(app, args, out, err)) return *status;
   options.choices = choices->count() > 0;
   const DiagnosticFormat format = options.diagnosticsFormat == "json" ? DiagnosticFormat::Json : DiagnosticFormat::Text;
 

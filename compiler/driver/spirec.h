@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "driver/exit_codes.h"
+
 namespace spire {
 
-enum ExitCode : int { kExitSuccess = 0, kExitInputError = 1, kExitUsageError = 2 };
-
 // Runs spirec with `args` (without the program name). Results go to `out`,
-// diagnostics and usage errors to `err`.
+// diagnostics and usage errors to `err`. Returns an ExitCode.
 int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 }  // namespace spire

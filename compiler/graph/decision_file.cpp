@@ -58,10 +58,20 @@ class LineParser {
         ++pos_;
         return value;
       }
-      if (text_[pos_] == '\\' && pos_ + 1 < end_) ++pos_;
+      if (text_[pos_] == '\\' && pos_ + 1 < end_) {
+        value += unescaped(text_[++pos_]);
+        continue;
+      }
       value += text_[pos_];
     }
     return std::nullopt;
+  }
+  // The character an escape `\c` stands for; quoteDecisionString is its
+  // inverse.
+  static char unescaped(char c) {
+    if (c == 'n') return '\n';
+    if (c == 'r') return '\r';
+    return c;
   }
   SourceRange here() {
     skipSpace();
@@ -164,6 +174,46 @@ DecisionFile parseDecisionFile(const SourceManager& sources, FileId file, Diagno
     if (diags.limitReached()) break;
   }
   return result;
+}
+
+DecisionLine makeDecision(std::string prefix, std::string component, std::string_view placement,
+                          std::vector<std::pair<std::string, std::string>> attributes) {
+  DecisionLine line;
+  line.prefix = std::move(prefix);
+  line.component = std::move(component);
+  const size_t colon = placement.find(':');
+  line.world = placement.substr(0, colon);
+  if (colon != std::string_view::npos) line.variation = placement.substr(colon + 1);
+  line.attributes = std::move(attributes);
+  return line;
+}
+
+std::string quoteDecisionString(std::string_view value) {
+  std::string quoted = "\"";
+  for (const char c : value) {
+    if (c == '\n') quoted += "\\n";
+    else if (c == '\r') quoted += "\\r";
+    else if (c == '"' || c == '\\') quoted += {'\\', c};
+    else quoted += c;
+  }
+  return quoted + '"';
+}
+
+std::string writeDecisionLine(const DecisionLine& line) {
+  std::string text;
+  for (const auto& [name, value] : line.attributes) text += fmt::format("[{}: {}] ", name, quoteDecisionString(value));
+  return text + spell(line) + "\n";
+}
+
+std::string writeDecisionFile(const DecisionFile& decisions, std::string_view comment) {
+  std::string text;
+  for (size_t begin = 0; begin < comment.size();) {
+    const size_t end = std::min(comment.find('\n', begin), comment.size());
+    text += fmt::format("// {}\n", comment.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  for (const DecisionLine& line : decisions.lines) text += writeDecisionLine(line);
+  return text;
 }
 
 void checkDecisionPrefixes(const DecisionFile& decisions, const sem::Model& model, DiagnosticList& diags) {

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -32,8 +33,26 @@ struct DecisionFile {
   std::vector<DecisionLine> lines;
 };
 
-// Syntax errors are E5001 errors; the malformed line is skipped.
+// Syntax errors are E5001 errors; the malformed line is skipped. In an
+// attribute value, `\n` is a line feed, `\r` a carriage return and a
+// backslash before any other character is that character (`\"`, `\\`).
 DecisionFile parseDecisionFile(const SourceManager& sources, FileId file, DiagnosticList& diags);
+
+// The one writer of decision text: parseDecisionFile reads back what these
+// write (the same prefixes, components, placements and attribute values,
+// whatever bytes the values hold). Names are written as they are; attribute
+// names must be identifiers.
+//
+// A decision for `prefix.component` at `placement` as choice files spell it
+// ("World" or "World:variation").
+DecisionLine makeDecision(std::string prefix, std::string component, std::string_view placement,
+                          std::vector<std::pair<std::string, std::string>> attributes = {});
+// `value` quoted, with quotes, backslashes and line breaks escaped.
+std::string quoteDecisionString(std::string_view value);
+// One line: its attributes, then `prefix.component = world[:variation]`.
+std::string writeDecisionLine(const DecisionLine& line);
+// `comment` as `//` lines (one per line of it), then every decision line.
+std::string writeDecisionFile(const DecisionFile& decisions, std::string_view comment = {});
 
 // Warns (W5001) about lines whose prefix names no shader or group at all.
 void checkDecisionPrefixes(const DecisionFile& decisions, const sem::Model& model, DiagnosticList& diags);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <set>
 
+#include "graph/decision_file.h"
 #include "sema/route_selection.h"
 
 namespace spire::graph {
@@ -187,7 +188,7 @@ std::string Variant::placementText() const {
   for (sem::ComponentId c : live_) {
     const ComponentNode& node = graph_->node(c);
     if (node.isInput) continue;
-    out += fmt::format("{}.{} = {}\n", node.choicePrefix, node.component->name, graph_->altName(node, *choice_[c]));
+    out += writeDecisionLine(makeDecision(node.choicePrefix, node.component->name, graph_->altName(node, *choice_[c])));
   }
   return out;
 }

@@ -9,16 +9,15 @@
 
 #include "demo/glfw_window.h"
 #include "demo/window.h"
+#include "driver/tool_arguments.h"
 #include "measure/comparison_image.h"
 #include "measure/image_metrics.h"
 #include "measure/report_table.h"
-#include "renderer/error_report.h"
-#include "renderer/tool_arguments.h"
-#include "renderer/host_allocator.h"
 #include "renderer/scene_renderer.h"
+#include "renderer/view_error.h"
 #include "scene/texture.h"
-#include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
+#include "tool/tool_run.h"
 #include "vk/context.h"
 
 namespace spire::demo {
@@ -26,6 +25,8 @@ namespace spire::demo {
 namespace {
 
 namespace fs = std::filesystem;
+
+constexpr const char* kTool = "spire-demo";
 
 struct Options {
   std::string scenePath;
@@ -53,6 +54,12 @@ struct VariantResult {
   scene::Image image;  // view 0, 8 bits
 };
 
+// The frames of one run: the warm-up first, then the measured ones.
+struct FramePlan {
+  uint32_t warmup = 1;
+  uint32_t measured = 1;
+};
+
 double prebakeMs(const std::vector<engine::BakeRecord>& bakes) {
   double total = 0.0;
   for (const engine::BakeRecord& bake : bakes) total += bake.reused ? 0.0 : bake.milliseconds;
@@ -69,38 +76,14 @@ std::string bakeSummary(const std::vector<engine::BakeRecord>& bakes) {
   return text;
 }
 
-std::optional<std::string> writeText(const fs::path& path, const std::string& text) {
-  return writeFileAtomically(path.string(), text);
-}
-
-int listDevices(const Options& options, std::ostream& out, std::ostream& err) {
-  vk::ContextOptions contextOptions;
-  contextOptions.deviceFilter = options.device;
-  auto ctx = vk::Context::create(contextOptions);
-  if (!ctx) {
-    err << fmt::format("spire-demo: error: no usable Vulkan device: {}\n", ctx.error().message());
-    return engine::kToolNoDevice;
-  }
-  for (const vk::PhysicalDeviceInfo& device : ctx->physicalDevices()) {
-    out << fmt::format("{} {} ({}){}\n", &device == &ctx->selectedDevice() ? "*" : " ", device.name,
-                       vk::deviceTypeName(device.type), &device == &ctx->selectedDevice() ? "  [selected]" : "");
-  }
-  return engine::kToolSuccess;
-}
-
-}  // namespace
-
-int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  CLI::App app{"spire-demo: renders a scene's Spire shader variants on Vulkan and measures their speed/accuracy trade",
-               "spire-demo"};
-  Options options;
+void defineOptions(CLI::App& app, Options& options) {
+  addVersionFlag(app);
   app.add_option("scene", options.scenePath, "Scene file (docs/scene.md)")->type_name("SCENE.json");
   app.add_option("--variant", options.variants,
                  "Render with decision file PATH applied to every instance (repeatable; replaces the scene's "
                  "\"variants\"; the first is the reference)")
       ->type_name("PATH");
-  app.add_option("-o,--output", options.outputDir, "Write PNGs, comparison.png and report.md to DIR")
-      ->type_name("DIR");
+  addOutputDirectory(app, options.outputDir, "Write PNGs, comparison.png and report.md to DIR");
   app.add_option("--frames", options.frames,
                  "Measured frames per variant (default: the scene's); with --window, close it after N frames")
       ->type_name("N");
@@ -117,115 +100,116 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   app.add_flag("--window", options.window,
                "Show the variants in a window instead of measuring them (needs a display): keys 1-9 switch "
                "variants, dragging orbits the camera, Space pauses it, Escape quits");
-  if (const auto status = engine::parseToolArguments(app, args, "spire-demo", out, err)) return *status;
-  if (options.listDevices) return listDevices(options, out, err);
-  engine::stabilizeHostAllocator();
-  if (options.scenePath.empty()) {
-    err << "spire-demo: error: a scene file is required\nRun 'spire-demo --help' for usage.\n";
-    return engine::kToolUsageError;
-  }
+}
 
-  SourceManager sources;
-  DiagnosticList diags;
-  engine::ErrorReporter reporter(sources, diags, err, "spire-demo");
-  const auto scene = scene::loadSceneFile(options.scenePath, sources, diags);
-  if (!scene) {
-    reporter.flush();
-    return engine::kToolInputError;
+int listDevices(const Options& options, std::ostream& out, std::ostream& err) {
+  engine::ToolRun run(kTool, err);
+  if (const auto status = run.openDevice({options.device, false, {}, {}})) return *status;
+  const vk::Context& ctx = run.context();
+  for (const vk::PhysicalDeviceInfo& device : ctx.physicalDevices()) {
+    out << fmt::format("{} {} ({}){}\n", &device == &ctx.selectedDevice() ? "*" : " ", device.name,
+                       vk::deviceTypeName(device.type), &device == &ctx.selectedDevice() ? "  [selected]" : "");
   }
+  return kExitSuccess;
+}
+
+// The --variant files, else the scene's variants, else the scene as it is.
+std::vector<VariantRun> variantRuns(const Options& options, const scene::SceneFile& scene) {
   std::vector<VariantRun> runs;
   for (const std::string& path : options.variants) runs.push_back({fs::path(path).stem().string(), fs::path(path)});
   if (runs.empty()) {
-    for (const scene::VariantDesc& variant : scene->variants) runs.push_back({variant.name, variant.decisions});
+    for (const scene::VariantDesc& variant : scene.variants) runs.push_back({variant.name, variant.decisions});
   }
   if (runs.empty()) runs.push_back({"scene", std::nullopt});
-  const uint32_t warmup = std::max<uint32_t>(1, options.warmup.value_or(scene->warmupFrames));
-  const uint32_t frames = std::max<uint32_t>(1, options.frames.value_or(scene->frames));
+  return runs;
+}
 
-  vk::ContextOptions contextOptions;
-  contextOptions.validation = options.validation;
-  contextOptions.deviceFilter = options.device;
-  contextOptions.applicationName = "spire-demo";
-  // Opened before the context, which makes its surface on it and must be
-  // destroyed first.
-  std::optional<GlfwWindow> window;
-  vk::SurfaceFactory surfaceFactory;
+// Opens the device, and with --window first the window whose surface the
+// context presents to; prints the device.
+std::optional<int> openDevice(const Options& options, engine::ToolRun& run, std::optional<GlfwWindow>& window,
+                              std::ostream& out, std::ostream& err) {
+  engine::DeviceOptions device{options.device, options.validation, {}, {}};
   if (options.window) {
-    auto opened = GlfwWindow::open(scene->width, scene->height, fmt::format("spire-demo | {}", options.scenePath));
+    auto opened = GlfwWindow::open(run.scene().width, run.scene().height,
+                                   fmt::format("spire-demo | {}", options.scenePath));
     if (!opened) {
       err << fmt::format("spire-demo: error: {}\n", opened.error());
-      return engine::kToolInputError;
+      return kExitInputError;
     }
     window.emplace(std::move(opened).value());
-    contextOptions.instanceExtensions = window->vulkanInstanceExtensions();
-    surfaceFactory = [&window](VkInstance instance) { return window->createSurface(instance); };
+    device.instanceExtensions = window->vulkanInstanceExtensions();
+    device.surfaceFactory = [&window](VkInstance instance) { return window->createSurface(instance); };
   }
-  auto ctx = vk::Context::create(contextOptions, surfaceFactory);
-  if (!ctx) {
-    err << fmt::format("spire-demo: error: no usable Vulkan device: {}\n", ctx.error().message());
-    return engine::kToolNoDevice;
-  }
-  out << fmt::format("device: {} ({})\n", ctx->selectedDevice().name, vk::deviceTypeName(ctx->selectedDevice().type));
+  if (const auto status = run.openDevice(device)) return status;
+  const vk::PhysicalDeviceInfo& selected = run.context().selectedDevice();
+  out << fmt::format("device: {} ({})\n", selected.name, vk::deviceTypeName(selected.type));
+  return std::nullopt;
+}
 
-  engine::TextureBakeOptions bakeOptions;
-  bakeOptions.defaultSize = options.bakeSize;
-  engine::SceneRenderer renderer(*ctx, *scene, diags, bakeOptions);
-  // Every variant is compiled, baked and warmed up before any is timed, and
-  // the measured frames then alternate between variants, so that no variant
-  // is timed under different conditions (a cold renderer, load-time work)
-  // than the others and the ratios come from one interleaved run.
-  std::vector<engine::PreparedScene> prepared;
-  std::vector<VariantResult> results;
-  std::vector<std::vector<engine::FrameTiming>> timings(runs.size());
-  for (const VariantRun& run : runs) {
-    auto programs = renderer.compile(run.decisions);
-    if (!programs) return reporter.fail(programs.error());
+// Compiles and prepares (bakes) every variant before any is measured.
+std::optional<int> prepareVariants(engine::ToolRun& run, const std::vector<VariantRun>& runs,
+                                   std::vector<engine::PreparedScene>& prepared, std::vector<VariantResult>& results,
+                                   std::ostream& err) {
+  engine::SceneRenderer& renderer = run.renderer();
+  for (const VariantRun& variant : runs) {
+    auto programs = renderer.compile(variant.decisions);
+    if (!programs) return run.fail(programs.error());
     err << renderer.compilerWarnings();
     auto scenePrepared = renderer.prepare(*programs);
-    reporter.flush();
-    if (!scenePrepared) return reporter.fail(scenePrepared.error());
-    results.push_back({run.name, {}, scenePrepared->bakes, {}, {}});
+    run.reporter().flush();
+    if (!scenePrepared) return run.fail(scenePrepared.error());
+    results.push_back({variant.name, {}, scenePrepared->bakes, {}, {}});
     prepared.push_back(std::move(scenePrepared).value());
   }
-  if (window) {
-    std::vector<std::string> names;
-    for (const VariantRun& run : runs) names.push_back(run.name);
-    const WindowOptions windowOptions{fs::path(options.scenePath).filename().string(), options.frames};
-    return engine::reportValidation(*ctx, runWindow(*window, renderer, prepared, names, windowOptions, out, reporter), err);
-  }
-  for (uint32_t f = 0; f < warmup + frames; ++f) {
-    for (size_t v = 0; v < runs.size(); ++v) {
-      auto timing = renderer.renderFrame(prepared[v], f);
-      if (!timing) return reporter.fail(timing.error());
+  return std::nullopt;
+}
+
+// Every variant is compiled, baked and warmed up before any is timed, and
+// the measured frames then alternate between variants, so that no variant
+// is timed under different conditions (a cold renderer, load-time work)
+// than the others and the ratios come from one interleaved run.
+std::optional<int> measureFrames(engine::ToolRun& run, const std::vector<engine::PreparedScene>& prepared,
+                                 const FramePlan& plan, std::vector<VariantResult>& results) {
+  std::vector<std::vector<engine::FrameTiming>> timings(prepared.size());
+  for (uint32_t f = 0; f < plan.warmup + plan.measured; ++f) {
+    for (size_t v = 0; v < prepared.size(); ++v) {
+      auto timing = run.renderer().renderFrame(prepared[v], f);
+      if (!timing) return run.fail(timing.error());
       if (f == 0) results[v].stats.firstFrameMs = timing->hostMs;
-      if (f >= warmup) timings[v].push_back(*timing);
+      if (f >= plan.warmup) timings[v].push_back(*timing);
     }
   }
-  for (size_t v = 0; v < runs.size(); ++v) {
+  for (size_t v = 0; v < prepared.size(); ++v) {
+    results[v].stats = engine::summarizeFrames(results[v].stats.firstFrameMs, timings[v]);
+  }
+  return std::nullopt;
+}
+
+// Renders every camera view of every variant and prints its timings.
+std::optional<int> captureViews(engine::ToolRun& run, const std::vector<engine::PreparedScene>& prepared,
+                                const FramePlan& plan, std::vector<VariantResult>& results, std::ostream& out) {
+  for (size_t v = 0; v < prepared.size(); ++v) {
     VariantResult& result = results[v];
-    result.stats = engine::summarizeFrames(result.stats.firstFrameMs, timings[v]);
-    for (const scene::CameraView& view : scene->camera.views) {
-      auto capture = renderer.capture(prepared[v], view);
-      if (!capture) return reporter.fail(capture.error());
+    for (const scene::CameraView& view : run.scene().camera.views) {
+      auto capture = run.renderer().capture(prepared[v], view);
+      if (!capture) return run.fail(capture.error());
       result.views.push_back(std::move(capture).value());
     }
     result.image = measure::toRgba8(result.views.front().color);
     out << fmt::format("{}: {:.3f} ms/frame (median of {}), first frame {:.1f} ms, bakes: {}\n", result.name,
-                       result.stats.medianGpuMs, frames, result.stats.firstFrameMs, bakeSummary(result.bakes));
+                       result.stats.medianGpuMs, plan.measured, result.stats.firstFrameMs, bakeSummary(result.bakes));
   }
+  return std::nullopt;
+}
 
-  std::vector<measure::ReportRow> rows;
+// One row per variant: its times, and its error against the first variant
+// over every view; warns about variants with NaN or Inf pixels.
+std::optional<int> reportRows(engine::ToolRun& run, const std::vector<VariantResult>& results,
+                              std::vector<measure::ReportRow>& rows, std::ostream& err) {
   for (const VariantResult& result : results) {
-    measure::ErrorAccumulator accumulated;
-    for (size_t v = 0; v < result.views.size(); ++v) {
-      const engine::Capture& reference = results.front().views[v];
-      std::vector<uint8_t> coverage = reference.coverage;
-      for (size_t i = 0; i < coverage.size(); ++i) coverage[i] |= result.views[v].coverage[i];
-      auto error = measure::compareImages(reference.color, result.views[v].color, &coverage);
-      if (!error) return reporter.fail({error.error(), {}, {}});
-      accumulated.add(*error);
-    }
-    const measure::ImageError error = accumulated.total();
+    const auto viewsError = engine::viewsError(results.front().views, result.views);
+    if (!viewsError) return run.fail(viewsError.error());
+    const measure::ImageError& error = *viewsError;
     measure::ReportRow row;
     row.variant = result.name;
     row.frameMs = result.stats.medianGpuMs;
@@ -242,42 +226,108 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                          result.name, error.nanPixels, error.infPixels);
     }
   }
-  out << measure::formatTextTable(rows);
+  return std::nullopt;
+}
 
-  std::error_code ec;
-  fs::create_directories(options.outputDir, ec);
-  if (ec) return reporter.fail({fmt::format("cannot create '{}': {}", options.outputDir, ec.message()), {}, {}});
+// DIR/<variant>.png and DIR/comparison.png, captioned with speedup and RMSE.
+std::optional<int> writeImages(engine::ToolRun& run, const fs::path& dir, const std::vector<VariantResult>& results,
+                               const std::vector<measure::ReportRow>& rows) {
   std::vector<measure::Panel> panels;
   for (size_t i = 0; i < results.size(); ++i) {
-    const fs::path png = fs::path(options.outputDir) / (results[i].name + ".png");
-    if (auto written = scene::writePng(png, results[i].image); !written) {
-      return reporter.fail({written.error(), {}, {}});
+    if (auto written = scene::writePng(dir / (results[i].name + ".png"), results[i].image); !written) {
+      return run.fail(written.error());
     }
     panels.push_back({results[i].image, fmt::format("{} {:.2f}X RMSE {:.4f}", results[i].name, rows[i].speedup,
                                                     rows[i].rmse)});
   }
   auto comparison = measure::makeComparisonImage(panels);
-  if (!comparison) return reporter.fail({comparison.error(), {}, {}});
-  if (auto written = scene::writePng(fs::path(options.outputDir) / "comparison.png", *comparison); !written) {
-    return reporter.fail({written.error(), {}, {}});
-  }
+  if (!comparison) return run.fail(comparison.error());
+  if (auto written = scene::writePng(dir / "comparison.png", *comparison); !written) return run.fail(written.error());
+  return std::nullopt;
+}
+
+std::string reportText(const Options& options, const engine::ToolRun& run, const FramePlan& plan,
+                       const std::vector<VariantResult>& results, const std::vector<measure::ReportRow>& rows) {
+  const scene::SceneFile& scene = run.scene();
   std::string report = fmt::format(
       "# spire-demo report\n\nScene `{}` on {}, {}x{}, {} measured frames after {} warm-up, error over {} camera "
       "view(s) against `{}`.\n\n{}\n| variant | bakes |\n| --- | --- |\n",
-      options.scenePath, ctx->selectedDevice().name, scene->width, scene->height, frames, warmup,
-      scene->camera.views.size(), results.front().name, measure::formatMarkdownTable(rows));
-  for (const VariantResult& result : results) report += fmt::format("| {} | {} |\n", result.name, bakeSummary(result.bakes));
-  if (auto error = writeText(fs::path(options.outputDir) / "report.md", report)) {
-    return reporter.fail({*error, {}, {}});
+      options.scenePath, run.context().selectedDevice().name, scene.width, scene.height, plan.measured, plan.warmup,
+      scene.camera.views.size(), results.front().name, measure::formatMarkdownTable(rows));
+  for (const VariantResult& result : results) {
+    report += fmt::format("| {} | {} |\n", result.name, bakeSummary(result.bakes));
   }
-  out << fmt::format("wrote {}/{{{}}}.png, comparison.png, report.md\n", options.outputDir,
-                     [&] {
-                       std::string names;
-                       for (const VariantResult& r : results) names += (names.empty() ? "" : ",") + r.name;
-                       return names;
-                     }());
+  return report;
+}
 
-  return engine::reportValidation(*ctx, engine::kToolSuccess, err);
+// The PNGs, comparison.png and report.md in the output directory.
+std::optional<int> writeOutputs(const Options& options, engine::ToolRun& run, const FramePlan& plan,
+                                const std::vector<VariantResult>& results, const std::vector<measure::ReportRow>& rows,
+                                std::ostream& out) {
+  std::error_code ec;
+  fs::create_directories(options.outputDir, ec);
+  if (ec) return run.fail(fmt::format("cannot create '{}': {}", options.outputDir, ec.message()));
+  if (const auto status = writeImages(run, options.outputDir, results, rows)) return status;
+  const std::string report = reportText(options, run, plan, results, rows);
+  if (auto error = writeFileAtomically((fs::path(options.outputDir) / "report.md").string(), report)) {
+    return run.fail(*error);
+  }
+  std::string names;
+  for (const VariantResult& result : results) names += (names.empty() ? "" : ",") + result.name;
+  out << fmt::format("wrote {}/{{{}}}.png, comparison.png, report.md\n", options.outputDir, names);
+  return std::nullopt;
+}
+
+// Measures the prepared variants and writes what the measurement found.
+int measureVariants(const Options& options, engine::ToolRun& run, const std::vector<engine::PreparedScene>& prepared,
+                    std::vector<VariantResult>& results, std::ostream& out, std::ostream& err) {
+  const FramePlan plan{std::max<uint32_t>(1, options.warmup.value_or(run.scene().warmupFrames)),
+                       std::max<uint32_t>(1, options.frames.value_or(run.scene().frames))};
+  if (const auto status = measureFrames(run, prepared, plan, results)) return *status;
+  if (const auto status = captureViews(run, prepared, plan, results, out)) return *status;
+  std::vector<measure::ReportRow> rows;
+  if (const auto status = reportRows(run, results, rows, err)) return *status;
+  out << measure::formatTextTable(rows);
+  if (const auto status = writeOutputs(options, run, plan, results, rows, out)) return *status;
+  return kExitSuccess;
+}
+
+int showVariants(const Options& options, engine::ToolRun& run, GlfwWindow& window,
+                 const std::vector<engine::PreparedScene>& prepared, const std::vector<VariantResult>& results,
+                 std::ostream& out) {
+  std::vector<std::string> names;
+  for (const VariantResult& result : results) names.push_back(result.name);
+  const WindowOptions windowOptions{fs::path(options.scenePath).filename().string(), options.frames};
+  return runWindow(window, run.renderer(), prepared, names, windowOptions, out, run.reporter());
+}
+
+}  // namespace
+
+int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  CLI::App app{"spire-demo: renders a scene's Spire shader variants on Vulkan and measures their speed/accuracy trade",
+               kTool};
+  Options options;
+  defineOptions(app, options);
+  if (const auto status = parseToolArguments(app, args, out, err)) return *status;
+  if (options.listDevices) return listDevices(options, out, err);
+  if (options.scenePath.empty()) return usageError(kTool, "a scene file is required", err);
+
+  // Declared before the run: the context makes its surface on the window
+  // and must be destroyed first.
+  std::optional<GlfwWindow> window;
+  engine::ToolRun run(kTool, err);
+  if (const auto status = run.loadScene(options.scenePath)) return *status;
+  if (const auto status = openDevice(options, run, window, out, err)) return *status;
+  run.startRenderer(options.bakeSize);
+  std::vector<engine::PreparedScene> prepared;
+  std::vector<VariantResult> results;
+  if (const auto status = prepareVariants(run, variantRuns(options, run.scene()), prepared, results, err)) {
+    return *status;
+  }
+  if (window) return run.finish(showVariants(options, run, *window, prepared, results, out));
+  // A failed measurement has said why; validation is reported on success.
+  const int status = measureVariants(options, run, prepared, results, out, err);
+  return status == kExitSuccess ? run.finish(status) : status;
 }
 
 }  // namespace spire::demo

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "demo/glfw_window.h"
-#include "renderer/error_report.h"
+#include "tool/error_report.h"
 #include "renderer/scene_renderer.h"
 
 namespace spire::demo {

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "measure/image_metrics.h"
+#include "renderer/view_error.h"
 #include "renderer/world_roles.h"
 
 namespace spire::tune {
@@ -35,15 +35,9 @@ Expected<std::vector<Capture>> renderViews(engine::SceneRenderer& renderer, size
 }
 
 Expected<double> viewsRmse(const std::vector<Capture>& reference, const std::vector<Capture>& test) {
-  measure::ErrorAccumulator accumulated;
-  for (size_t v = 0; v < reference.size(); ++v) {
-    std::vector<uint8_t> coverage = reference[v].coverage;
-    for (size_t i = 0; i < coverage.size(); ++i) coverage[i] |= test[v].coverage[i];
-    auto error = measure::compareImages(reference[v].color, test[v].color, &coverage);
-    if (!error) return Error{error.error(), {}, {}};
-    accumulated.add(*error);
-  }
-  return accumulated.total().rmse;
+  auto error = engine::viewsError(reference, test);
+  if (!error) return Error{error.error(), {}, {}};
+  return error->rmse;
 }
 
 std::vector<std::pair<std::string, std::string>> attributesOf(const engine::BakeLayout& layout) {

@@ -6,6 +6,7 @@
 #include <fmt/ranges.h>
 
 #include "measure/image_metrics.h"
+#include "renderer/view_error.h"
 #include "vk/timer.h"
 
 namespace spire::tune {
@@ -62,7 +63,7 @@ VariantResult Tuner::measure(const TunePoint& point) {
   result.index = point.index;
   for (const Axis& axis : axes_) result.placements.push_back(point.decisions.at(axis.component));
 
-  vk::HostTimer timer;
+  const vk::HostTimer timer;
   std::vector<std::string> skipped;
   auto programs = programsFor(point, &skipped);
   split_.compileMs += timer.elapsedMs();
@@ -85,61 +86,35 @@ VariantResult Tuner::measure(const TunePoint& point) {
     return same;
   }
 
-  timer.restart();
+  if (auto failed = measureImages(*programs, result)) {
+    result.status = "failed: " + *failed;
+    return result;
+  }
+  byKernels_[result.kernels] = result;
+  return result;
+}
+
+std::optional<std::string> Tuner::measureImages(const std::vector<engine::VariantProgram>& programs,
+                                                VariantResult& result) {
+  const vk::HostTimer timer;
   measure::ErrorAccumulator accumulated;
   double errorMs = 0.0;
-  const auto& views = renderer_.scene().camera.views;
   const std::vector<ParameterSample> parameterSamples = samples();
   for (size_t s = 0; s < parameterSamples.size(); ++s) {
     renderer_.setParameterOverrides(parameterSamples[s]);
-    auto prepared = renderer_.prepare(*programs);
+    auto prepared = renderer_.prepare(programs);
     renderer_.setParameterOverrides({});
-    if (!prepared) {
-      result.status = "failed: " + prepared.error().message;
-      return result;
-    }
+    if (!prepared) return prepared.error().message;
     if (s == 0) {
       for (const engine::BakeRecord& bake : prepared->bakes) result.prebakeMs += bake.reused ? 0.0 : bake.milliseconds;
     }
-    for (size_t v = 0; v < views.size(); ++v) {
-      auto capture = renderer_.capture(*prepared, views[v]);
-      if (!capture) {
-        result.status = "failed: " + capture.error().message;
-        return result;
-      }
-      // The first frame of a variant is its first use: lavapipe compiles the
-      // kernels at the first draw.
-      if (s == 0 && v == 0) {
-        result.firstFrameMs = capture->timing.hostMs;
-        split_.firstUseMs += capture->timing.hostMs;
-      }
-      const vk::HostTimer errorTimer;
-      const engine::Capture& reference = reference_[s][v];
-      std::vector<uint8_t> coverage = reference.coverage;
-      for (size_t i = 0; i < coverage.size(); ++i) coverage[i] |= capture->coverage[i];
-      auto error = measure::compareImages(reference.color, capture->color, &coverage);
-      errorMs += errorTimer.elapsedMs();
-      if (!error) {
-        result.status = "failed: " + error.error();
-        return result;
-      }
-      accumulated.add(*error);
-      if (result.hazardInputs.empty() && error->nanPixels + error->infPixels > 0) {
-        result.hazardInputs = fmt::format("camera view {}", v);
-        for (const auto& [component, values] : parameterSamples[s]) {
-          result.hazardInputs += fmt::format(" {}={}", component, fmt::join(values, ","));
-        }
-      }
-    }
+    if (auto failed = compareViews(*prepared, s, parameterSamples[s], result, accumulated, errorMs)) return failed;
     if (s == 0) {
       // The captures above were the warm-up: only what the option asks for
       // beyond them is rendered before the measured frames.
-      const uint32_t warmup = unmeasuredFrames() - static_cast<uint32_t>(views.size());
-      auto stats = renderer_.measure(*prepared, warmup, options_.frames);
-      if (!stats) {
-        result.status = "failed: " + stats.error().message;
-        return result;
-      }
+      const auto views = static_cast<uint32_t>(renderer_.scene().camera.views.size());
+      auto stats = renderer_.measure(*prepared, unmeasuredFrames() - views, options_.frames);
+      if (!stats) return stats.error().message;
       result.frameMs = stats->medianGpuMs;
     }
   }
@@ -151,8 +126,35 @@ VariantResult Tuner::measure(const TunePoint& point) {
   result.maxError = total.maxError;
   result.nanPixels = total.nanPixels;
   result.infPixels = total.infPixels;
-  byKernels_[result.kernels] = result;
-  return result;
+  return std::nullopt;
+}
+
+std::optional<std::string> Tuner::compareViews(const engine::PreparedScene& prepared, size_t s,
+                                               const ParameterSample& sample, VariantResult& result,
+                                               measure::ErrorAccumulator& accumulated, double& errorMs) {
+  const auto& views = renderer_.scene().camera.views;
+  for (size_t v = 0; v < views.size(); ++v) {
+    auto capture = renderer_.capture(prepared, views[v]);
+    if (!capture) return capture.error().message;
+    // The first frame of a variant is its first use: lavapipe compiles the
+    // kernels at the first draw.
+    if (s == 0 && v == 0) {
+      result.firstFrameMs = capture->timing.hostMs;
+      split_.firstUseMs += capture->timing.hostMs;
+    }
+    const vk::HostTimer errorTimer;
+    auto error = engine::viewError(reference_[s][v], *capture);
+    errorMs += errorTimer.elapsedMs();
+    if (!error) return error.error();
+    accumulated.add(*error);
+    if (result.hazardInputs.empty() && error->nanPixels + error->infPixels > 0) {
+      result.hazardInputs = fmt::format("camera view {}", v);
+      for (const auto& [component, values] : sample) {
+        result.hazardInputs += fmt::format(" {}={}", component, fmt::join(values, ","));
+      }
+    }
+  }
+  return std::nullopt;
 }
 
 uint32_t Tuner::unmeasuredFrames() const {

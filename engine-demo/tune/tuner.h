@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "measure/image_metrics.h"
 #include "renderer/scene_renderer.h"
 #include "tune/results_csv.h"
 #include "tune/tune_space.h"
@@ -60,6 +61,15 @@ class Tuner {
   uint32_t unmeasuredFrames() const;
 
  private:
+  // The images and times of a variant that is not measured yet: its bakes,
+  // every camera view under every parameter sample against the reference,
+  // and its frame time under the first. The error message on failure.
+  std::optional<std::string> measureImages(const std::vector<engine::VariantProgram>& programs, VariantResult& result);
+  // The views of `prepared` (under sample `s`) against the reference's,
+  // added to `accumulated`; the first capture of sample 0 is the first use.
+  std::optional<std::string> compareViews(const engine::PreparedScene& prepared, size_t s,
+                                          const ParameterSample& sample, VariantResult& result,
+                                          measure::ErrorAccumulator& accumulated, double& errorMs);
   engine::Expected<std::vector<engine::VariantProgram>> programsFor(const TunePoint& point, std::vector<std::string>* skipped);
 
   engine::SceneRenderer& renderer_;

@@ -91,7 +91,22 @@ std::optional<size_t> selectPhysicalDevice(std::span<const PhysicalDeviceInfo> d
 Expected<Context> Context::create(const ContextOptions& options, const SurfaceFactory& surfaceFactory) {
   Context ctx;
   ctx.log_ = std::make_unique<ValidationLog>();
+  const auto requested = requestedApiVersion();
+  if (!requested) return requested.error();
+  if (auto ok = ctx.createInstance(options, *requested); !ok) return ok.error();
+  if (surfaceFactory) {
+    auto surface = surfaceFactory(ctx.instance());
+    if (!surface) return surface.error();
+    ctx.surface_ = Surface(*surface, {ctx.instance()});
+  }
+  if (auto ok = ctx.pickPhysicalDevice(options.deviceFilter, *requested); !ok) return ok.error();
+  if (auto ok = ctx.pickQueueFamily(); !ok) return ok.error();
+  if (auto ok = ctx.createDevice(); !ok) return ok.error();
+  if (auto ok = ctx.createCommandPool(); !ok) return ok.error();
+  return ctx;
+}
 
+Expected<uint32_t> Context::requestedApiVersion() {
   uint32_t instanceVersion = VK_API_VERSION_1_0;
   if (auto result = vkEnumerateInstanceVersion(&instanceVersion); result != VK_SUCCESS) {
     return VkError{result, "vkEnumerateInstanceVersion", {}};
@@ -99,20 +114,21 @@ Expected<Context> Context::create(const ContextOptions& options, const SurfaceFa
   if (instanceVersion < VK_API_VERSION_1_1) {
     return VkError{VK_ERROR_INCOMPATIBLE_DRIVER, "Context::create", "the Vulkan loader is older than 1.1"};
   }
-  const uint32_t requested = std::min(instanceVersion, VK_API_VERSION_1_3);
+  return std::min(instanceVersion, VK_API_VERSION_1_3);
+}
 
+Expected<void> Context::createInstance(const ContextOptions& options, uint32_t apiVersion) {
   VkApplicationInfo app{};
-
   app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
   app.pApplicationName = options.applicationName.c_str();
   app.pEngineName = "spire-engine";
-  app.apiVersion = requested;
+  app.apiVersion = apiVersion;
 
   std::vector<const char*> layers;
   std::vector<const char*> extensions;
   // Chained into the instance info so messages from vkCreateInstance and
   // vkDestroyInstance themselves are recorded too.
-  VkDebugUtilsMessengerCreateInfoEXT debugInfo = messengerInfo(ctx.log_.get());
+  VkDebugUtilsMessengerCreateInfoEXT debugInfo = messengerInfo(log_.get());
   VkInstanceCreateInfo instanceInfo{};
   instanceInfo.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
   if (options.validation) {
@@ -134,59 +150,62 @@ Expected<Context> Context::create(const ContextOptions& options, const SurfaceFa
   if (auto result = vkCreateInstance(&instanceInfo, nullptr, &instance); result != VK_SUCCESS) {
     return VkError{result, "vkCreateInstance", {}};
   }
-  ctx.instance_ = Instance(instance, {});
+  instance_ = Instance(instance, {});
+  return options.validation ? createMessenger() : Expected<void>();
+}
 
-  if (options.validation) {
-    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
-    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
-    if (create == nullptr || destroy == nullptr) {
-      return VkError{VK_ERROR_EXTENSION_NOT_PRESENT, "Context::create", "VK_EXT_debug_utils entry points missing"};
-    }
-    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
-    if (auto result = create(instance, &debugInfo, nullptr, &messenger); result != VK_SUCCESS) {
-      return VkError{result, "vkCreateDebugUtilsMessengerEXT", {}};
-    }
-    ctx.messenger_ = DebugMessenger(messenger, {instance, destroy});
+Expected<void> Context::createMessenger() {
+  const VkInstance instance = instance_.get();
+  auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+      vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+  auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+      vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+  if (create == nullptr || destroy == nullptr) {
+    return VkError{VK_ERROR_EXTENSION_NOT_PRESENT, "Context::create", "VK_EXT_debug_utils entry points missing"};
   }
-
-  if (surfaceFactory) {
-    auto surface = surfaceFactory(instance);
-    if (!surface) return surface.error();
-    ctx.surface_ = Surface(*surface, {instance});
+  const VkDebugUtilsMessengerCreateInfoEXT debugInfo = messengerInfo(log_.get());
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  if (auto result = create(instance, &debugInfo, nullptr, &messenger); result != VK_SUCCESS) {
+    return VkError{result, "vkCreateDebugUtilsMessengerEXT", {}};
   }
+  messenger_ = DebugMessenger(messenger, {instance, destroy});
+  return {};
+}
 
+Expected<void> Context::pickPhysicalDevice(const std::string& filter, uint32_t apiVersion) {
   uint32_t deviceCount = 0;
-  if (auto result = vkEnumeratePhysicalDevices(instance, &deviceCount, nullptr); result != VK_SUCCESS) {
+  if (auto result = vkEnumeratePhysicalDevices(instance(), &deviceCount, nullptr); result != VK_SUCCESS) {
     return VkError{result, "vkEnumeratePhysicalDevices", {}};
   }
   std::vector<VkPhysicalDevice> handles(deviceCount);
-  vkEnumeratePhysicalDevices(instance, &deviceCount, handles.data());
+  vkEnumeratePhysicalDevices(instance(), &deviceCount, handles.data());
   for (VkPhysicalDevice handle : handles) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(handle, &props);
-    ctx.devices_.push_back({handle, props.deviceName, props.deviceType, props.apiVersion});
+    devices_.push_back({handle, props.deviceName, props.deviceType, props.apiVersion});
   }
-  const auto selected = selectPhysicalDevice(ctx.devices_, options.deviceFilter);
+  const auto selected = selectPhysicalDevice(devices_, filter);
   if (!selected) {
     return VkError{VK_ERROR_INITIALIZATION_FAILED, "Context::create",
-                   ctx.devices_.empty() ? std::string("no Vulkan device found")
-                                        : fmt::format("no device matches '{}'", options.deviceFilter)};
+                   devices_.empty() ? std::string("no Vulkan device found")
+                                    : fmt::format("no device matches '{}'", filter)};
   }
-  ctx.selected_ = *selected;
-  const VkPhysicalDevice physical = ctx.devices_[ctx.selected_].handle;
-  vkGetPhysicalDeviceProperties(physical, &ctx.properties_);
-  vkGetPhysicalDeviceMemoryProperties(physical, &ctx.memory_);
-  ctx.apiVersion_ = std::min(requested, ctx.properties_.apiVersion);
-  if (ctx.apiVersion_ < VK_API_VERSION_1_1) {
+  selected_ = *selected;
+  vkGetPhysicalDeviceProperties(physicalDevice(), &properties_);
+  vkGetPhysicalDeviceMemoryProperties(physicalDevice(), &memory_);
+  apiVersion_ = std::min(apiVersion, properties_.apiVersion);
+  if (apiVersion_ < VK_API_VERSION_1_1) {
     return VkError{VK_ERROR_INCOMPATIBLE_DRIVER, "Context::create",
-                   fmt::format("'{}' supports only Vulkan 1.0", ctx.properties_.deviceName)};
+                   fmt::format("'{}' supports only Vulkan 1.0", properties_.deviceName)};
   }
+  return {};
+}
 
-  // One family doing graphics and compute (and presenting, with a window)
-  // keeps submission and ownership trivial; every conformant implementation
-  // with graphics has one, and in practice it is also the one that presents.
+// One family doing graphics and compute (and presenting, with a window)
+// keeps submission and ownership trivial; every conformant implementation
+// with graphics has one, and in practice it is also the one that presents.
+Expected<void> Context::pickQueueFamily() {
+  const VkPhysicalDevice physical = physicalDevice();
   uint32_t familyCount = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physical, &familyCount, nullptr);
   std::vector<VkQueueFamilyProperties> families(familyCount);
@@ -194,40 +213,42 @@ Expected<Context> Context::create(const ContextOptions& options, const SurfaceFa
   const VkQueueFlags wanted = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
   const auto usable = [&](uint32_t index) {
     if ((families[index].queueFlags & wanted) != wanted) return false;
-    if (!ctx.surface_) return true;
+    if (!surface_) return true;
     VkBool32 presents = VK_FALSE;
-    return vkGetPhysicalDeviceSurfaceSupportKHR(physical, index, ctx.surface_.get(), &presents) == VK_SUCCESS &&
+    return vkGetPhysicalDeviceSurfaceSupportKHR(physical, index, surface_.get(), &presents) == VK_SUCCESS &&
            presents == VK_TRUE;
   };
   uint32_t family = 0;
   while (family < familyCount && !usable(family)) ++family;
   if (family == familyCount) {
     std::string detail =
-        ctx.surface_ ? fmt::format("'{}' has no graphics+compute queue family that can present to the window",
-                                   ctx.properties_.deviceName)
-                     : std::string("no graphics+compute queue family");
+        surface_ ? fmt::format("'{}' has no graphics+compute queue family that can present to the window",
+                               properties_.deviceName)
+                 : std::string("no graphics+compute queue family");
     return VkError{VK_ERROR_FEATURE_NOT_PRESENT, "Context::create", std::move(detail)};
   }
-  ctx.queueFamily_ = family;
-  ctx.timestampValidBits_ = families[family].timestampValidBits;
+  queueFamily_ = family;
+  timestampValidBits_ = families[family].timestampValidBits;
+  return {};
+}
 
-  std::vector<const char*> deviceExtensions;
-  if (ctx.surface_) {
+Expected<std::vector<const char*>> Context::deviceExtensions() const {
+  const VkPhysicalDevice physical = physicalDevice();
+  std::vector<const char*> extensions;
+  if (surface_) {
     if (!deviceExtensionAvailable(physical, VK_KHR_SWAPCHAIN_EXTENSION_NAME)) {
       return VkError{VK_ERROR_FEATURE_NOT_PRESENT, "Context::create",
-                     fmt::format("'{}' has no {}", ctx.properties_.deviceName, VK_KHR_SWAPCHAIN_EXTENSION_NAME)};
+                     fmt::format("'{}' has no {}", properties_.deviceName, VK_KHR_SWAPCHAIN_EXTENSION_NAME)};
     }
-    deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
   }
   // Dynamic rendering: core feature on 1.3, otherwise the KHR extension.
-  const bool core13 = ctx.apiVersion_ >= VK_API_VERSION_1_3;
-  if (!core13) {
+  if (apiVersion_ < VK_API_VERSION_1_3) {
     if (!deviceExtensionAvailable(physical, VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME)) {
       return VkError{VK_ERROR_FEATURE_NOT_PRESENT, "Context::create",
-                     fmt::format("'{}' has neither Vulkan 1.3 nor VK_KHR_dynamic_rendering",
-                                 ctx.properties_.deviceName)};
+                     fmt::format("'{}' has neither Vulkan 1.3 nor VK_KHR_dynamic_rendering", properties_.deviceName)};
     }
-    deviceExtensions.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
+    extensions.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
   }
   VkPhysicalDeviceDynamicRenderingFeatures dynamicRendering{};
   dynamicRendering.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES;
@@ -238,11 +259,16 @@ Expected<Context> Context::create(const ContextOptions& options, const SurfaceFa
   if (dynamicRendering.dynamicRendering != VK_TRUE) {
     return VkError{VK_ERROR_FEATURE_NOT_PRESENT, "Context::create", "dynamicRendering feature not supported"};
   }
+  return extensions;
+}
 
+Expected<void> Context::createDevice() {
+  const auto extensions = deviceExtensions();
+  if (!extensions) return extensions.error();
   const float priority = 1.0F;
   VkDeviceQueueCreateInfo queueInfo{};
   queueInfo.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
-  queueInfo.queueFamilyIndex = ctx.queueFamily_;
+  queueInfo.queueFamilyIndex = queueFamily_;
   queueInfo.queueCount = 1;
   queueInfo.pQueuePriorities = &priority;
   // Enable only what the library uses, not everything the device supports,
@@ -255,34 +281,36 @@ Expected<Context> Context::create(const ContextOptions& options, const SurfaceFa
   deviceInfo.pNext = &enabledDynamic;
   deviceInfo.queueCreateInfoCount = 1;
   deviceInfo.pQueueCreateInfos = &queueInfo;
-  deviceInfo.enabledExtensionCount = static_cast<uint32_t>(deviceExtensions.size());
-  deviceInfo.ppEnabledExtensionNames = deviceExtensions.data();
+  deviceInfo.enabledExtensionCount = static_cast<uint32_t>(extensions->size());
+  deviceInfo.ppEnabledExtensionNames = extensions->data();
   VkDevice device = VK_NULL_HANDLE;
-  if (auto result = vkCreateDevice(physical, &deviceInfo, nullptr, &device); result != VK_SUCCESS) {
+  if (auto result = vkCreateDevice(physicalDevice(), &deviceInfo, nullptr, &device); result != VK_SUCCESS) {
     return VkError{result, "vkCreateDevice", {}};
   }
-  ctx.device_ = Device(device, {});
-  vkGetDeviceQueue(device, ctx.queueFamily_, 0, &ctx.queue_);
-
-  ctx.cmdBeginRendering = reinterpret_cast<PFN_vkCmdBeginRendering>(
+  device_ = Device(device, {});
+  vkGetDeviceQueue(device, queueFamily_, 0, &queue_);
+  const bool core13 = apiVersion_ >= VK_API_VERSION_1_3;
+  cmdBeginRendering = reinterpret_cast<PFN_vkCmdBeginRendering>(
       vkGetDeviceProcAddr(device, core13 ? "vkCmdBeginRendering" : "vkCmdBeginRenderingKHR"));
-  ctx.cmdEndRendering = reinterpret_cast<PFN_vkCmdEndRendering>(
+  cmdEndRendering = reinterpret_cast<PFN_vkCmdEndRendering>(
       vkGetDeviceProcAddr(device, core13 ? "vkCmdEndRendering" : "vkCmdEndRenderingKHR"));
-  if (ctx.cmdBeginRendering == nullptr || ctx.cmdEndRendering == nullptr) {
+  if (cmdBeginRendering == nullptr || cmdEndRendering == nullptr) {
     return VkError{VK_ERROR_FEATURE_NOT_PRESENT, "Context::create", "dynamic rendering entry points missing"};
   }
+  return {};
+}
 
+Expected<void> Context::createCommandPool() {
   VkCommandPoolCreateInfo poolInfo{};
-
   poolInfo.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
   poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  poolInfo.queueFamilyIndex = ctx.queueFamily_;
+  poolInfo.queueFamilyIndex = queueFamily_;
   VkCommandPool pool = VK_NULL_HANDLE;
-  if (auto result = vkCreateCommandPool(device, &poolInfo, nullptr, &pool); result != VK_SUCCESS) {
+  if (auto result = vkCreateCommandPool(device(), &poolInfo, nullptr, &pool); result != VK_SUCCESS) {
     return VkError{result, "vkCreateCommandPool", {}};
   }
-  ctx.commandPool_ = makeDeviceHandle<VkCommandPool, vkDestroyCommandPool>(device, pool);
-  return ctx;
+  commandPool_ = makeDeviceHandle<VkCommandPool, vkDestroyCommandPool>(device(), pool);
+  return {};
 }
 
 Expected<uint32_t> Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags properties) const {

@@ -109,6 +109,23 @@ class Context {
  private:
   Context() = default;
 
+  // The steps of create(), in order; each fills in what the next needs.
+  // The API version to ask for: the loader's, at most 1.3, at least 1.1.
+  static Expected<uint32_t> requestedApiVersion();
+  // The instance, with the validation layer and its messenger when asked.
+  Expected<void> createInstance(const ContextOptions& options, uint32_t apiVersion);
+  Expected<void> createMessenger();
+  // The device `filter` selects, its properties and the version to use.
+  Expected<void> pickPhysicalDevice(const std::string& filter, uint32_t apiVersion);
+  // A graphics+compute family (that presents to the surface, with one).
+  Expected<void> pickQueueFamily();
+  // The extensions the device needs (swapchain with a surface, dynamic
+  // rendering before 1.3); an error when it lacks them or the feature.
+  Expected<std::vector<const char*>> deviceExtensions() const;
+  // The device, its queue and the dynamic rendering entry points.
+  Expected<void> createDevice();
+  Expected<void> createCommandPool();
+
   // Declaration order is destruction order reversed: the log outlives the
   // messenger and instance that write to it; the pool dies before the device;
   // the surface after the device and before the instance.

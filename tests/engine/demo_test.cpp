@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "demo/demo.h"
+#include "driver/exit_codes.h"
 #include "engine/device_fixture.h"
 #include "scene/texture.h"
 
@@ -32,6 +33,20 @@ class DemoTest : public vk::testing::DeviceTest {
 std::string readFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The conventions every Spire tool shares (driver/tool_arguments.h); all
+// of them hold before any device is needed.
+TEST(DemoCommandLine, FollowsTheToolConventions) {
+  std::ostringstream out, err;
+  EXPECT_EQ(runDemo({"--version"}, out, err), kExitSuccess);
+  EXPECT_EQ(out.str().rfind("spire-demo ", 0), 0U) << out.str();
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"examples/scenes/terrain.json", "-o", ""}, {"examples/scenes/terrain.json", "--no-such-flag"}, {}}) {
+    std::ostringstream usageOut, usageErr;
+    EXPECT_EQ(runDemo(args, usageOut, usageErr), kExitUsageError) << usageErr.str();
+    EXPECT_NE(usageErr.str().find("Run 'spire-demo --help' for usage."), std::string::npos) << usageErr.str();
+  }
 }
 
 TEST_F(DemoTest, SceneErrorsMatchGoldenDiagnostics) {

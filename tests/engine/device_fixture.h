@@ -1,7 +1,8 @@
 // The fixture of every test that needs a Vulkan device: one context for the
 // suite (instance and device creation with validation dominate the run time on
 // lavapipe), with VK_LAYER_KHRONOS_validation on. A test fails on any
-// validation message; without a usable Vulkan driver it skips with the reason.
+// validation message; without a usable Vulkan driver it skips with the reason,
+// or fails under CI=true (device_verdict.h).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -11,10 +12,12 @@
 #include <link.h>
 #endif
 
+#include <cstdlib>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "engine/device_verdict.h"
 #include "vk/context.h"
 
 namespace spire::vk::testing {
@@ -39,12 +42,6 @@ inline void pinLoadedLibraries() {
 }
 #endif
 
-// Failures that mean "no usable Vulkan here" rather than a bug in the library.
-inline bool vulkanUnavailable(const VkError& error) {
-  return error.result == VK_ERROR_INCOMPATIBLE_DRIVER || error.result == VK_ERROR_INITIALIZATION_FAILED ||
-         error.result == VK_ERROR_LAYER_NOT_PRESENT;
-}
-
 class DeviceTest : public ::testing::Test {
  protected:
   // One context for the suite: instance and device creation with validation
@@ -60,10 +57,9 @@ class DeviceTest : public ::testing::Test {
   static void TearDownTestSuite() { context_.reset(); }
 
   void SetUp() override {
-    if (!context_->ok()) {
-      if (vulkanUnavailable(context_->error())) GTEST_SKIP() << "no Vulkan: " << context_->error().message();
-      FAIL() << context_->error().message();
-    }
+    const DeviceVerdict verdict = deviceVerdict(context_->ok() ? nullptr : &context_->error(), std::getenv("CI"));
+    if (verdict.action == DeviceAction::Skip) GTEST_SKIP() << verdict.message;
+    if (verdict.action == DeviceAction::Fail) FAIL() << verdict.message;
     ctx().clearValidationMessages();
   }
 

@@ -19,6 +19,7 @@
 #include "measure/image_metrics.h"
 #include "renderer/bake_analysis.h"
 #include "renderer/scene_renderer.h"
+#include "renderer/view_error.h"
 #include "scene/texture.h"
 #include "support/diagnostic_renderer.h"
 
@@ -86,9 +87,7 @@ class RendererTest : public vk::testing::DeviceTest {
 
   // The error of `test` against `reference` over pixels either covers.
   static measure::ImageError compare(const Capture& reference, const Capture& test) {
-    std::vector<uint8_t> coverage = reference.coverage;
-    for (size_t i = 0; i < coverage.size(); ++i) coverage[i] |= test.coverage[i];
-    auto error = measure::compareImages(reference.color, test.color, &coverage);
+    auto error = engine::viewError(reference, test);
     EXPECT_TRUE(error) << error.error();
     return error ? *error : measure::ImageError{};
   }

@@ -304,8 +304,10 @@ TEST(Swapchain, PresentsAndRebuildsInAWindow) {
   options.validation = true;
   options.instanceExtensions = window->vulkanInstanceExtensions();
   auto ctx = vk::Context::create(options, [&](VkInstance instance) { return window->createSurface(instance); });
-  if (!ctx && vk::testing::vulkanUnavailable(ctx.error())) GTEST_SKIP() << ctx.error().message();
-  ASSERT_TRUE(ctx.ok()) << ctx.error().message();
+  const vk::testing::DeviceVerdict verdict =
+      vk::testing::deviceVerdict(ctx ? nullptr : &ctx.error(), std::getenv("CI"));
+  if (verdict.action == vk::testing::DeviceAction::Skip) GTEST_SKIP() << verdict.message;
+  ASSERT_TRUE(ctx.ok()) << verdict.message;
 #if defined(__SANITIZE_ADDRESS__)
   vk::testing::pinLoadedLibraries();  // as the device fixture does, for the same reason
 #endif

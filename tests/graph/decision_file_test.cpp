@@ -43,6 +43,49 @@ TEST(DecisionFile, MalformedLinesAreErrorsWithLocations) {
   EXPECT_EQ(sources.begin(diags.all()[2].range).column, 20u);
 }
 
+// What the writer writes, the parser reads back, whatever bytes attribute
+// values hold: quotes, backslashes, line breaks, '//' and non-ASCII text.
+TEST(DecisionFile, WritingThenParsingRoundTrips) {
+  graph::DecisionFile written;
+  written.lines.push_back(graph::makeDecision("Terrain", "albedo", "PrebakeTex",
+                                              {{"Format", "RGBA8"},
+                                               {"Quote", "say \"hi\""},
+                                               {"Backslash", "C:\\dir\\"},
+                                               {"Lines", "one\ntwo\r\nthree"},
+                                               {"Comment", "a // b ] c"},
+                                               {"Unicode", "\xC3\xA9t\xC3\xA9 \xE6\xBC\xA2 \xF0\x9F\x8C\x84"},
+                                               {"Empty", ""}}));
+  written.lines.push_back(graph::makeDecision("TerrainLOD<BaseMaterialLQ>", "lighting", "Fragment:ggx"));
+  const std::string text = graph::writeDecisionFile(written, "header\nsecond line");
+  EXPECT_EQ(text.substr(0, text.find("[")), "// header\n// second line\n");
+  EXPECT_NE(text.find("[Quote: \"say \\\"hi\\\"\"]"), std::string::npos) << text;
+
+  SourceManager sources;
+  DiagnosticList diags;
+  const auto read = parse(sources, diags, text);
+  ASSERT_EQ(diags.all().size(), 0u) << renderDiagnostics(sources, diags, DiagnosticFormat::Text) << text;
+  ASSERT_EQ(read.lines.size(), written.lines.size()) << text;
+  for (size_t i = 0; i < read.lines.size(); ++i) {
+    EXPECT_EQ(read.lines[i].prefix, written.lines[i].prefix);
+    EXPECT_EQ(read.lines[i].component, written.lines[i].component);
+    EXPECT_EQ(read.lines[i].world, written.lines[i].world);
+    EXPECT_EQ(read.lines[i].variation, written.lines[i].variation);
+    EXPECT_EQ(read.lines[i].attributes, written.lines[i].attributes);
+  }
+  EXPECT_EQ(read.lines[1].variation, "ggx");
+}
+
+// Escapes the parser reads; a backslash before any other character is that
+// character.
+TEST(DecisionFile, ReadsEscapesInAttributeValues) {
+  SourceManager sources;
+  DiagnosticList diags;
+  const auto file = parse(sources, diags, "[A: \"x\\ny\\rz\\q\\\\\\\"\"] T.c = V\n");
+  ASSERT_EQ(diags.all().size(), 0u) << renderDiagnostics(sources, diags, DiagnosticFormat::Text);
+  ASSERT_EQ(file.lines.size(), 1u);
+  EXPECT_EQ(file.lines[0].attributes.front().second, "x\ny\rzq\\\"");
+}
+
 TEST(DecisionFile, AttributesReachTheVariant) {
   auto c = testing_util::compileShader({std::string(SPIRE_SOURCE_DIR) + "/examples/terrain.spire"}, "", "Terrain");
   ASSERT_TRUE(c.graph) << c.rendered();

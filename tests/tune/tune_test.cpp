@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include "driver/exit_codes.h"
 #include "engine/device_fixture.h"
 #include "scene/scene_file.h"
 #include "tune/format_selection.h"
@@ -173,6 +174,21 @@ TEST(WorkQueue, HandsOutEveryChunkOnceThenStops) {
   error.clear();
   EXPECT_FALSE(first.next(11, error));
   EXPECT_NE(error.find("cannot use the work queue"), std::string::npos) << error;
+}
+
+// The conventions every Spire tool shares (driver/tool_arguments.h); all
+// of them hold before any device is needed.
+TEST(TuneCommandLine, FollowsTheToolConventions) {
+  std::ostringstream out, err;
+  EXPECT_EQ(runTune({"--version"}, out, err), kExitSuccess);
+  EXPECT_EQ(out.str().rfind("spire-tune ", 0), 0U) << out.str();
+  const std::string scene = "examples/scenes/terrain.json";
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {scene, "--shader", "Terrain", "-o", ""}, {scene, "--shader", "Terrain", "--no-such-flag"}, {scene}}) {
+    std::ostringstream usageOut, usageErr;
+    EXPECT_EQ(runTune(args, usageOut, usageErr), kExitUsageError) << usageErr.str();
+    EXPECT_NE(usageErr.str().find("Run 'spire-tune --help' for usage."), std::string::npos) << usageErr.str();
+  }
 }
 
 class TuneRun : public vk::testing::DeviceTest {};

@@ -1,4 +1,4 @@
-#include "renderer/error_report.h"
+#include "tool/error_report.h"
 
 #include <fmt/format.h>
 
@@ -15,7 +15,7 @@ void ErrorReporter::flush() {
 int reportValidation(const vk::Context& ctx, int status, std::ostream& err) {
   const std::vector<std::string> messages = ctx.validationMessages();
   for (const std::string& message : messages) err << "validation: " << message << "\n";
-  return messages.empty() ? status : kToolInputError;
+  return messages.empty() ? status : kExitInputError;
 }
 
 int ErrorReporter::fail(const Error& error) {
@@ -26,7 +26,7 @@ int ErrorReporter::fail(const Error& error) {
     err_ << fmt::format("{}: error: {}\n", tool_, error.message);
   }
   err_ << error.details;
-  return 1;
+  return kExitInputError;
 }
 
 }  // namespace spire::engine

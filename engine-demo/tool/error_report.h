@@ -6,6 +6,7 @@
 
 #include <ostream>
 
+#include "driver/exit_codes.h"
 #include "renderer/error.h"
 #include "support/diagnostic.h"
 #include "support/source_manager.h"
@@ -16,11 +17,8 @@ class Context;
 
 namespace spire::engine {
 
-// The exit status of the engine's command-line tools.
-enum ToolExit : int { kToolSuccess = 0, kToolInputError = 1, kToolUsageError = 2, kToolNoDevice = 3 };
-
 // Prints the Vulkan validation messages of a run; any message makes the run
-// fail (kToolInputError), whatever `status` it had otherwise.
+// fail (kExitInputError), whatever `status` it had otherwise.
 int reportValidation(const vk::Context& ctx, int status, std::ostream& err);
 
 class ErrorReporter {

@@ -1,0 +1,45 @@
+#include "tool/tool_run.h"
+
+#include <fmt/format.h>
+
+#include "driver/exit_codes.h"
+#include "renderer/host_allocator.h"
+
+namespace spire::engine {
+
+ToolRun::ToolRun(std::string tool, std::ostream& err)
+    : tool_(std::move(tool)), err_(err), reporter_(sources_, diags_, err, tool_) {
+  stabilizeHostAllocator();
+}
+
+std::optional<int> ToolRun::loadScene(const std::string& path) {
+  scene_ = scene::loadSceneFile(path, sources_, diags_);
+  if (scene_) return std::nullopt;
+  reporter_.flush();
+  return kExitInputError;
+}
+
+std::optional<int> ToolRun::openDevice(const DeviceOptions& options) {
+  vk::ContextOptions contextOptions;
+  contextOptions.validation = options.validation;
+  contextOptions.deviceFilter = options.filter;
+  contextOptions.applicationName = tool_;
+  contextOptions.instanceExtensions = options.instanceExtensions;
+  auto context = vk::Context::create(contextOptions, options.surfaceFactory);
+  if (!context) {
+    err_ << fmt::format("{}: error: no usable Vulkan device: {}\n", tool_, context.error().message());
+    return kExitNoDevice;
+  }
+  context_.emplace(std::move(context).value());
+  return std::nullopt;
+}
+
+SceneRenderer& ToolRun::startRenderer(uint32_t defaultBakeSize) {
+  TextureBakeOptions bakeOptions;
+  bakeOptions.defaultSize = defaultBakeSize;
+  return renderer_.emplace(*context_, *scene_, diags_, bakeOptions);
+}
+
+int ToolRun::finish(int status) const { return reportValidation(*context_, status, err_); }
+
+}  // namespace spire::engine

@@ -1,0 +1,35 @@
+// Material parameters the tuner samples (--param NAME=MIN:MAX): the error of
+// a variant that looks right at the scene's values may not be at others, so
+// the tuner measures it over samples of each parameter's range.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/scene_file.h"
+#include "tune/tuner.h"
+
+namespace spire::tune {
+
+struct ParameterRange {
+  std::string component;
+  double minimum = 0.0;
+  double maximum = 0.0;
+  size_t arity = 1;
+};
+
+// Parameter samples as in Pellacini 2005: every parameter at its minimum,
+// every one at its maximum, then `randomSamples` uniform draws (seeded, so
+// workers and reruns agree).
+std::vector<ParameterSample> parameterSamples(const std::vector<ParameterRange>& ranges, uint32_t randomSamples,
+                                              uint64_t seed);
+
+// Parses NAME=MIN:MAX against the instance's material, which gives the
+// value's arity (every component of a vector gets the same range).
+std::optional<ParameterRange> parseParameter(const std::string& text, const scene::InstanceDesc& instance,
+                                             std::string& error);
+
+}  // namespace spire::tune

@@ -1,0 +1,60 @@
+#include "tune/tune_options.h"
+
+#include "driver/tool_arguments.h"
+
+namespace spire::tune {
+
+void defineTuneOptions(CLI::App& app, TuneOptions& options) {
+  addVersionFlag(app);
+  app.add_option("scene", options.scenePath, "Scene file (docs/scene.md)")->required()->type_name("SCENE.json");
+  app.add_option("--shader", options.shader, "The shader to tune (an instance of the scene must use it)")
+      ->required()
+      ->type_name("NAME");
+  app.add_option("--components", options.components,
+                 "Components to explore (default: every choice); NAME@World keeps one world for NAME")
+      ->delimiter(',')
+      ->type_name("A,B,...");
+  app.add_option("--only", options.only, "Keep placements in these worlds or with these variation names")
+      ->delimiter(',')
+      ->type_name("NAME,...");
+  app.add_option("--max-variants", options.maxVariants, "Sample the product when it has more variants")->type_name("N");
+  app.add_option("--seed", options.seed, "Seed of the sample")->type_name("N");
+  app.add_option("--frames", options.frames, "Measured frames per variant (median; at least 3)")
+      ->check(CLI::Range(3U, 1000U))
+      ->type_name("N");
+  app.add_option("--warmup", options.warmup,
+                 "Unmeasured frames before the measured ones (the captures of the camera views count)")
+      ->check(CLI::Range(1U, 100U))
+      ->type_name("N");
+  app.add_option("-j,--jobs", options.jobs, "Worker processes (default: one per core)")
+      ->check(CLI::Range(1U, 64U))
+      ->type_name("N");
+  app.add_option("--bake-size", options.bakeSize, "PrebakeTex size without a TextureSize hint")
+      ->check(CLI::Range(1U, 8192U))
+      ->type_name("N");
+  addOutputDirectory(app, options.outputDir, "Output directory (an interrupted run resumes from it)");
+  app.add_option("--time-budget", options.timeBudgetMs, "Write the most accurate variant within MS per frame")
+      ->type_name("MS");
+  app.add_option("--error-budget", options.errorBudget, "Write the fastest variant within RMSE E")->type_name("E");
+  app.add_option("--reference", options.reference,
+                 "Decision file of the reference (default: the scene's first variant)")
+      ->type_name("PATH");
+  app.add_option("--device", options.device, "Vulkan device whose name contains TEXT")->type_name("TEXT");
+  app.add_flag("--validation", options.validation, "Enable VK_LAYER_KHRONOS_validation; any message fails the run");
+  app.add_option("--param", options.params,
+                 "Measure error over samples of a material parameter's range (repeatable): its minimum, its maximum "
+                 "and random values")
+      ->type_name("NAME=MIN:MAX");
+  app.add_option("--param-samples", options.paramSamples, "Random samples besides the minimum and maximum")
+      ->check(CLI::Range(0U, 100U))
+      ->type_name("N");
+  app.add_option("--shader-cache", options.shaderCache,
+                 "lavapipe's shader cache: 'run' (default) a fresh one for this run, shared by its workers, so a kernel "
+                 "that variants share is compiled once; 'off' compiles every pipeline in full; 'inherit' keeps the "
+                 "environment's MESA_SHADER_CACHE_* settings")
+      ->check(CLI::IsMember({"run", "off", "inherit"}))
+      ->type_name("MODE");
+  app.add_option("--worker", options.worker, "Internal: measure shard K")->group("");
+}
+
+}  // namespace spire::tune

@@ -1,0 +1,42 @@
+// The spire-tune command line: what a tuning run explores, how it measures
+// and where it writes (docs/engine.md, "The tuner").
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace spire::tune {
+
+struct TuneOptions {
+  std::string scenePath;
+  std::string shader;
+  std::vector<std::string> components;
+  std::vector<std::string> only;
+  uint64_t maxVariants = 4096;
+  uint64_t seed = 1;
+  uint32_t frames = 3;
+  uint32_t warmup = 1;
+  uint32_t jobs = std::max(1U, std::thread::hardware_concurrency());
+  uint32_t bakeSize = 512;
+  std::string outputDir = "out/tune";
+  std::optional<double> timeBudgetMs;
+  std::optional<double> errorBudget;
+  std::string reference;
+  std::string device;
+  bool validation = false;
+  int worker = -1;  // a worker process (--worker K); -1 in the coordinator
+  std::string shaderCache = "run";
+  std::vector<std::string> params;  // NAME=MIN:MAX
+  uint32_t paramSamples = 1;
+};
+
+// Adds every option of spire-tune to `app`, read into `options`.
+void defineTuneOptions(CLI::App& app, TuneOptions& options);
+
+}  // namespace spire::tune

@@ -1,0 +1,26 @@
+// spire-tune --jobs N: N copies of the tuner's own executable as worker
+// processes (started with --worker K), which take chunks of the points from
+// the work queue and append their rows to their shard; lavapipe is limited
+// to one thread in each so that the workers share the cores instead of
+// fighting over them.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace spire::tune {
+
+struct WorkerPlan {
+  std::string program;            // the spire-tune executable
+  std::vector<std::string> args;  // the coordinator's arguments; each worker adds --worker K
+  std::vector<std::filesystem::path> shards;  // one per worker: the rows it measured
+};
+
+// Runs the workers to the end, showing progress from the rows in their
+// shards; false when one could not start or did not exit with 0.
+bool runWorkers(const WorkerPlan& plan, size_t already, size_t total, std::ostream& err);
+
+}  // namespace spire::tune
