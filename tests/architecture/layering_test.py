@@ -30,8 +30,9 @@ ALLOWED = {
     "scene": {"support"},
     "measure": {"support", "scene"},
     "renderer": {"support", "reflection", "graph", "codegen", "driver", "vk", "scene", "measure"},
-    "tune": {"support", "graph", "renderer", "vk", "scene", "measure"},
-    "demo": {"support", "renderer", "vk", "scene", "measure"},
+    "tool": {"support", "driver", "renderer", "vk", "scene", "measure"},
+    "tune": {"support", "graph", "driver", "renderer", "tool", "vk", "scene", "measure"},
+    "demo": {"support", "driver", "renderer", "tool", "vk", "scene", "measure"},
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/')

@@ -173,7 +173,7 @@ TEST_F(BadInput, WriteErrorsSayWhy) {
   expectInputError(spirec({terrain(), "--choices", path("missing/terrain.choices")}), "': No such file or directory");
   write("file", "");
   expectInputError(spirec({terrain(), "-o", path("file/out"), "--emit=glsl"}),
-                   "error[E6003]: cannot create directory '" + path("file/out/Terrain") + "': Not a directory");
+                   "error[E6003]: cannot create directory '" + path("file/out") + "': Not a directory");
 }
 
 TEST_F(BadInput, WritingIntoAReadOnlyFolderSaysWhy) {
