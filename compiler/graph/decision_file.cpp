@@ -7,6 +7,7 @@
 #include <map>
 
 #include "support/spelling.h"
+#include "syntax/utf8.h"
 
 namespace spire::graph {
 namespace {
@@ -87,8 +88,14 @@ std::optional<DecisionLine> parseLine(LineParser& p, FileId file, DiagnosticList
     if (!attr) return fail("expected an attribute name after '['");
     std::string value;
     if (p.accept(':')) {
+      const SourceRange literal = p.here();
       auto text = p.stringLiteral();
       if (!text) return fail("expected a quoted attribute value, as in [Format: \"RGBA8\"]");
+      // The value reaches reflection.json, and JSON holds only UTF-8 text.
+      if (utf8::firstInvalidByte(*text) != std::string::npos) {
+        diags.report(DiagCode::E5001, literal, "the attribute value is not valid UTF-8 text");
+        return std::nullopt;
+      }
       value = *text;
     }
     if (!p.accept(']')) return fail("expected ']' to close the attribute");
