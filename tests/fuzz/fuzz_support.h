@@ -40,6 +40,23 @@ ShaderLibrary& exampleLibrary();
 // and give up on leak detection).
 FileId mirrorWith(const SourceManager& from, SourceManager& to, std::string path, std::string text);
 
+// compileVariant through the library's variant cache, emptied whenever it
+// holds kCachedVariants: most mutations lead to a variant compiled before,
+// and generating it again would find nothing new (a crash would have
+// happened the first time, and replays the same from an empty cache).
+// `fresh`: this call generated the variant (check it; a cached one was).
+inline constexpr size_t kCachedVariants = 256;
+template <class Decided>
+CompileResult compileCached(ShaderLibrary& library, std::string_view shader, const Decided& decisions,
+                            const CompileOptions& options, bool& fresh) {
+  auto& cache = library.compiledVariants();
+  if (cache.size() >= kCachedVariants) cache.clear();
+  const size_t before = cache.size();
+  CompileResult result = compileVariant(library, shader, decisions, options);
+  fresh = cache.size() > before;
+  return result;
+}
+
 // Checks what every compiled variant must satisfy: one kernel per reflection
 // kernel, reflection that survives its own JSON writer and reader
 // (`fromJson(toJson(v)) == v`), and with SPIR-V, code and a spirvHash for

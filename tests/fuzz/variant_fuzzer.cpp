@@ -13,7 +13,9 @@
 //            attributes, hostile values included.
 // Past the end every byte reads as 0. About one input in 64 (by a hash of all
 // of it, so that mutating any byte re-rolls it) is compiled with SPIR-V:
-// glslang and spirv-val, a hundred times slower than the rest.
+// glslang and spirv-val, a hundred times slower than the rest. Variants go
+// through a bounded cache (fuzz_support.h): one compiled before is not
+// generated or checked again.
 //
 // Findings: a crash; a kernel glslang or the validator rejects (E6002: the
 // compiler generated invalid code); reflection that does not survive its JSON
@@ -144,12 +146,14 @@ void compareWithGlslOnly(ShaderLibrary& library, const std::string& shader, cons
 void compileAndCheck(ShaderLibrary& library, const std::string& shader, const Decisions& decisions, bool spirv) {
   CompileOptions options;
   options.spirv = spirv;
-  const CompileResult result = compileVariant(library, shader, decisions, options);
+  bool fresh = false;
+  const CompileResult result = fuzz::compileCached(library, shader, decisions, options, fresh);
   if (!result) {
     if (fuzz::hasInternalError(result.error().diagnostics)) internalError(library, result.error());
     if (result.error().message.empty()) fuzz::fail("a refused variant without a message");
     return;
   }
+  if (!fresh) return;  // checked when it was compiled
   fuzz::checkCompiled(**result, spirv);
   if (spirv) compareWithGlslOnly(library, shader, decisions, **result);
 }
@@ -182,8 +186,5 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   ShaderLibrary& library = fuzz::exampleLibrary();
   const Target& target = exampleTargets()[pick % exampleTargets().size()];
   compileAndCheck(library, target.shader, readDecisions(target.choices, in), spirv);
-  // Each input starts from an empty variant cache: what an input covers must
-  // not depend on the inputs before it, and the cache must not grow forever.
-  library.compiledVariants().clear();
   return 0;
 }
