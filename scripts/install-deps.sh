@@ -18,8 +18,9 @@ PACKAGES=(
   # xvfb and xauth, which xvfb-run needs but xvfb only recommends: the
   # window tests without a display)
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth python3-jsonschema
-  # libFuzzer target (fuzz preset)
-  clang libclang-rt-14-dev
+  # libFuzzer targets (fuzz preset); llvm: llvm-symbolizer, which
+  # bench/fuzz-all's coverage report (-print_coverage) needs
+  clang libclang-rt-14-dev llvm
 )
 
 missing=()

@@ -10,6 +10,7 @@
 #include "sema/attribute_catalog.h"
 #include "support/file_io.h"
 #include "support/spelling.h"
+#include "support/utf8.h"
 
 namespace spire {
 namespace {
@@ -89,6 +90,25 @@ CompileResult finish(ShaderLibrary& library, const std::optional<graph::Variant>
   return CompiledVariantPtr(std::move(withWarnings));
 }
 
+// The attributes whose values are UTF-8 text; the others are skipped with a
+// warning, as a decision file refuses them (E5001): they would reach
+// reflection.json, and JSON holds only UTF-8 text.
+ShaderLibrary::Attributes utf8Attributes(const ShaderLibrary::Attributes& attributes, DiagnosticList& diags) {
+  ShaderLibrary::Attributes kept;
+  for (const auto& [component, list] : attributes) {
+    for (const auto& [name, value] : list) {
+      if (utf8::firstInvalidByte(value) == std::string::npos) {
+        kept[component].emplace_back(name, value);
+        continue;
+      }
+      diags.report(DiagCode::W5003, {},
+                   fmt::format("the attribute '{}' of '{}' is not applied: its value is not valid UTF-8 text", name,
+                               component));
+    }
+  }
+  return kept;
+}
+
 }  // namespace
 
 CompiledVariantPtr compileVariant(ShaderLibrary& library, const graph::Variant& variant, const CompileOptions& options,
@@ -134,13 +154,14 @@ CompileResult compileVariant(ShaderLibrary& library, std::string_view shader, co
                              const CompileOptions& options) {
   CompileError error;
   if (!findShader(library, shader, error)) return error;
+  DiagnosticList diags;
+  const ShaderLibrary::Attributes attributes = utf8Attributes(decisions.attributes, diags);
   std::vector<std::string> skipped;
   const std::optional<graph::Variant> variant =
-      library.buildVariant(shader, decisions.placement, &skipped, decisions.attributes);
-  DiagnosticList diags;
+      library.buildVariant(shader, decisions.placement, &skipped, attributes);
   // In-memory attributes get the check a decision file's get when it is read.
-  for (const auto& [component, attributes] : decisions.attributes) {
-    for (const auto& [name, value] : attributes) {
+  for (const auto& [component, list] : attributes) {
+    for (const auto& [name, value] : list) {
       if (auto problem = sem::checkAttribute(sem::AttributeSite::Decision, name, value)) {
         diags.report(problem->isError ? DiagCode::E5010 : DiagCode::W5011, {},
                      fmt::format("'{}': {}", component, problem->message));

@@ -8,6 +8,7 @@
 
 #include "sema/attribute_catalog.h"
 #include "support/spelling.h"
+#include "support/utf8.h"
 
 namespace spire::graph {
 namespace {
@@ -99,10 +100,15 @@ std::optional<DecisionLine> parseLine(LineParser& p, FileId file, DiagnosticList
     std::optional<std::string> value;
     SourceRange valueRange = attr->second;
     if (p.accept(':')) {
-      const uint32_t valueBegin = p.here().begin;
+      const SourceRange literal = p.here();
       value = p.stringLiteral();
       if (!value) return fail("expected a quoted attribute value, as in [Format: \"RGBA8\"]");
-      valueRange = {file, valueBegin, p.position()};
+      // The value reaches reflection.json, and JSON holds only UTF-8 text.
+      if (utf8::firstInvalidByte(*value) != std::string::npos) {
+        diags.report(DiagCode::E5001, literal, "the attribute value is not valid UTF-8 text");
+        return std::nullopt;
+      }
+      valueRange = {file, literal.begin, p.position()};
     }
     if (!p.accept(']')) return fail("expected ']' to close the attribute");
     if (auto problem = sem::checkAttribute(sem::AttributeSite::Decision, attr->first, value)) {

@@ -168,7 +168,10 @@ Json toJson(const Variant& variant) {
 }
 
 std::string kernelKey(std::string_view glsl, const Kernel& kernel) {
-  return contentHash(std::string(glsl) + '\n' + interfaceJson(kernel).dump());
+  // Replacing invalid UTF-8 (which no input should carry this far) keeps a
+  // key from throwing in the middle of code generation.
+  return contentHash(std::string(glsl) + '\n' +
+                     interfaceJson(kernel).dump(-1, ' ', false, Json::error_handler_t::replace));
 }
 
 }  // namespace spire::reflection

@@ -14,28 +14,15 @@
 // in-memory reader that knows no files.
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <optional>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "codegen/kernel_generator.h"
 #include "driver/shader_library.h"
-#include "support/diagnostic_renderer.h"
-
-namespace {
-
-// Reports a broken invariant as a crash so that libFuzzer records the input.
-[[noreturn]] void fail(const char* what) {
-  std::fprintf(stderr, "spire fuzz invariant violated: %s\n", what);
-  std::abort();
-}
-
-}  // namespace
+#include "fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using spire::fuzz::fail;
   spire::FrontEndOptions options;
   options.errorLimit = 20;
   options.readFile = [](const std::string&) -> std::optional<std::string> { return std::nullopt; };
@@ -51,24 +38,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                                       spire::codegen::StrategyRegistry::builtin(), library.diagnostics());
     }
   }
-  spire::FrontEnd& frontEnd = library.frontEnd();
-
-  const spire::DiagnosticList& diags = frontEnd.diagnostics();
-  const std::string text = spire::renderDiagnostics(frontEnd.sources(), diags, spire::DiagnosticFormat::Text);
-  const std::string json = spire::renderDiagnostics(frontEnd.sources(), diags, spire::DiagnosticFormat::Json);
-
-  // Cheap oracles beyond "does not crash":
-  //  - every diagnostic shows up in the text rendering;
-  //  - the JSON rendering is valid JSON that agrees with the list.
-  if (!diags.all().empty() && text.empty()) fail("diagnostics rendered as empty text");
-  const nlohmann::json parsed = nlohmann::json::parse(json, nullptr, /*allow_exceptions=*/false);
-  if (parsed.is_discarded()) fail("JSON diagnostics are not valid JSON");
-  if (!parsed.contains("diagnostics") || !parsed["diagnostics"].is_array() ||
-      parsed["diagnostics"].size() != diags.all().size()) {
-    fail("JSON diagnostics do not match the diagnostic list");
-  }
-  if (!parsed.contains("errorCount") || parsed["errorCount"] != diags.errorCount()) {
-    fail("JSON errorCount does not match the diagnostic list");
-  }
+  // Cheap oracles beyond "does not crash": every diagnostic shows up in the
+  // text rendering, and the JSON rendering is valid JSON that agrees with
+  // the list.
+  spire::fuzz::checkRenderings(library.sources(), library.diagnostics());
   return 0;
 }

@@ -1,7 +1,9 @@
-// Runs the fuzz target (frontend_fuzzer.cpp) once over every file given on the
-// command line, descending into directories. This is how CI replays the seed
-// corpus (and any crash reproducer added to it) without libFuzzer: the CTest
-// FuzzCorpusRegression, under ASan/UBSan in the asan preset.
+// Runs a fuzz target (the LLVMFuzzerTestOneInput it is linked with; see
+// CMakeLists.txt beside this file) once over every file given on the command
+// line, descending into directories. This is how CI replays the seed corpora
+// (and any crash reproducer added to them) without libFuzzer: the CTests
+// FuzzCorpusRegression, FuzzDecisionsCorpusRegression and
+// FuzzVariantCorpusRegression, under ASan/UBSan in the asan preset.
 //
 //   spire_fuzz_replay tests/fuzz/corpus [more files or dirs...]
 #include <algorithm>
@@ -44,16 +46,17 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s <corpus dir or file>...\n", argv[0]);
     return 2;
   }
+  const std::string name = fs::path(argv[0]).filename().string();
   std::vector<fs::path> inputs;
   for (int i = 1; i < argc; ++i) {
     if (!collect(argv[i], inputs)) {
-      std::fprintf(stderr, "spire_fuzz_replay: cannot read %s\n", argv[i]);
+      std::fprintf(stderr, "%s: cannot read %s\n", name.c_str(), argv[i]);
       return 2;
     }
   }
   std::sort(inputs.begin(), inputs.end());
   if (inputs.empty()) {
-    std::fprintf(stderr, "spire_fuzz_replay: no inputs found\n");
+    std::fprintf(stderr, "%s: no inputs found\n", name.c_str());
     return 2;
   }
 
@@ -64,7 +67,7 @@ int main(int argc, char** argv) {
   for (const fs::path& path : inputs) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-      std::fprintf(stderr, "spire_fuzz_replay: cannot open %s\n", path.c_str());
+      std::fprintf(stderr, "%s: cannot open %s\n", name.c_str(), path.c_str());
       return 2;
     }
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -79,7 +82,7 @@ int main(int argc, char** argv) {
     }
   }
   const double totalMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-  std::printf("spire_fuzz_replay: %zu inputs, 0 crashes, %.1f ms (slowest %s: %.1f ms)\n", inputs.size(), totalMs,
+  std::printf("%s: %zu inputs, 0 crashes, %.1f ms (slowest %s: %.1f ms)\n", name.c_str(), inputs.size(), totalMs,
               slowest.c_str(), slowestMs);
   return 0;
 }

@@ -86,6 +86,19 @@ TEST(DecisionFile, ReadsEscapesInAttributeValues) {
   EXPECT_EQ(file.lines[0].attributes.front().second, "x\ny\rzq\\\"");
 }
 
+// Found by spire_decisions_fuzzer: the value went into reflection.json, whose
+// writer threw on invalid UTF-8, and spirec died of the uncaught exception.
+TEST(DecisionFile, AttributeValuesMustBeUtf8) {
+  SourceManager sources;
+  DiagnosticList diags;
+  const auto file = parse(sources, diags, "[Format: \"\xff\"] Terrain.albedo = PrebakeTex\n[Label: \"\xc3\xa9\"] T.c = V\n");
+  ASSERT_EQ(file.lines.size(), 1u);
+  EXPECT_EQ(file.lines[0].attributes[0].second, "\xc3\xa9");
+  ASSERT_EQ(diags.all().size(), 1u);
+  EXPECT_EQ(diags.all()[0].code, DiagCode::E5001);
+  EXPECT_EQ(sources.begin(diags.all()[0].range).column, 10u);
+}
+
 TEST(DecisionFile, AttributesReachTheVariant) {
   auto c = testing_util::compileShader({std::string(SPIRE_SOURCE_DIR) + "/examples/terrain.spire"}, "", "Terrain");
   ASSERT_TRUE(c.graph) << c.rendered();

@@ -72,6 +72,24 @@ nlohmann::ordered_json terrainReflection() {
   return compiled ? toJson((*compiled)->reflection) : nlohmann::ordered_json{};
 }
 
+// Found by spire_variant_fuzzer: an attribute value that is not UTF-8 went
+// into the kernel key's JSON, whose writer threw during code generation.
+TEST(ReflectionJson, AttributeValuesThatAreNotUtf8AreSkipped) {
+  ShaderLibrary library;
+  library.addFile(std::string(SPIRE_SOURCE_DIR) + "/examples/terrain.spire");
+  ASSERT_TRUE(library.compile());
+  CompileOptions glslOnly;
+  glslOnly.spirv = false;
+  const Decisions decisions{{{"albedo", "PrebakeTex"}}, {{"albedo", {{"Format", "\xff"}, {"TextureSize", "512"}}}}};
+  const auto compiled = compileVariant(library, "Terrain", decisions, glslOnly);
+  ASSERT_TRUE(compiled);
+  ASSERT_EQ((*compiled)->warnings.size(), 1u);
+  EXPECT_EQ((*compiled)->warnings[0].code, DiagCode::W5003);
+  const std::string json = toJson((*compiled)->reflection).dump();
+  EXPECT_NE(json.find("TextureSize"), std::string::npos);
+  EXPECT_EQ(json.find("Format"), std::string::npos);
+}
+
 std::string errorOf(const nlohmann::ordered_json& document) {
   const auto variant = fromJson(document);
   return variant ? std::string("(accepted)") : variant.error();
