@@ -143,6 +143,17 @@ TEST_F(BadInput, DiagnosticsOnAHugeLineStaySmall) {
   EXPECT_LT(run.err.size(), 20000u);
 }
 
+// A source that declares nothing fails at its first line instead of
+// compiling to nothing.
+TEST_F(BadInput, AnEmptySourceIsAnError) {
+  for (const std::string text : {"", "  \n\t\r\n", "// nothing yet\n/* still\n nothing */\n"}) {
+    SCOPED_TRACE(text);
+    const std::string source = write("empty.spire", text);
+    expectInputError(spirec({source, "--choices"}),
+                     source + ":1:1: error[E1104]: '" + source + "' declares nothing: it is empty or holds only comments");
+  }
+}
+
 std::string terrain() { return (fs::path(SPIRE_SOURCE_DIR) / "examples/terrain.spire").string(); }
 
 // Permissions do not stop root, so tests of unreadable or unwritable files
