@@ -195,5 +195,53 @@ TEST_F(BadInput, WritingIntoAReadOnlyFolderSaysWhy) {
   expectInputError(spirec({terrain(), "-o", path("readonly"), "--emit=glsl"}), "Permission denied");
 }
 
+// An empty output folder, decision file or shader name is a usage error,
+// not "no output", "no decisions" or "every shader".
+TEST_F(BadInput, EmptyOptionValuesAreUsageErrors) {
+  for (const std::string option : {"-o", "--output", "--decisions", "--shader"}) {
+    SCOPED_TRACE(option);
+    const SpirecRun run = spirec({terrain(), option, ""});
+    EXPECT_EQ(run.exitCode, kExitUsageError);
+    EXPECT_NE(run.err.find("spirec: error: "), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("must not be empty"), std::string::npos) << run.err;
+    EXPECT_EQ(run.out, "");
+  }
+  EXPECT_EQ(spirec({terrain(), "--output="}).exitCode, kExitUsageError);
+}
+
+// A decision file with one decision that applies and one that names an
+// unknown world (W5001).
+constexpr const char* kOneBadDecision = "Terrain.albedo = PrebakeTex\nTerrain.normal = Vertx\n";
+
+// With --warnings-as-errors (or -Werror) a warning fails the run: it is
+// reported as an error that says why, and nothing is written.
+TEST_F(BadInput, WarningsAsErrors) {
+  const std::string decisions = write("terrain.decisions", kOneBadDecision);
+  const SpirecRun lenient = spirec({terrain(), "--decisions", decisions, "-o", path("out"), "--emit=glsl"});
+  EXPECT_EQ(lenient.exitCode, kExitSuccess) << lenient.err;
+  EXPECT_NE(lenient.err.find("warning[W5001]: unknown world 'Vertx'"), std::string::npos) << lenient.err;
+  fs::remove_all(path("out"));
+  const std::vector<std::vector<std::string>> flags = {{"--warnings-as-errors"}, {"-Werror"}, {"-W", "error"}};
+  for (const std::vector<std::string>& flag : flags) {
+    SCOPED_TRACE(flag.front());
+    std::vector<std::string> args = {terrain(), "--decisions", decisions, "-o", path("out"), "--dump-placement"};
+    args.insert(args.end(), flag.begin(), flag.end());
+    const SpirecRun strict = spirec(args);
+    expectInputError(strict, decisions + ":2:18: error[W5001]: unknown world 'Vertx'");
+    EXPECT_NE(strict.err.find("note: treated as an error (--warnings-as-errors)\n1 error generated.\n"),
+              std::string::npos)
+        << strict.err;
+    EXPECT_EQ(strict.out, "");
+    EXPECT_FALSE(fs::exists(path("out")));
+  }
+  const SpirecRun json = spirec({terrain(), "--decisions", decisions, "-Werror", "--diagnostics-format=json"});
+  EXPECT_EQ(json.exitCode, kExitInputError);
+  EXPECT_NE(json.err.find("\"severity\": \"error\",\n      \"code\": \"W5001\""), std::string::npos) << json.err;
+  EXPECT_NE(json.err.find("\"errorCount\": 1,\n  \"warningCount\": 0"), std::string::npos) << json.err;
+  EXPECT_EQ(spirec({terrain(), "-Wall"}).exitCode, kExitUsageError);
+  // Without warnings the flag changes nothing.
+  EXPECT_EQ(spirec({terrain(), "--choices", "-Werror"}).exitCode, kExitSuccess);
+}
+
 }  // namespace
 }  // namespace spire
