@@ -211,9 +211,11 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
       }
     }
     if (!diags.hasErrors()) {
+      const std::vector<const graph::ChoiceSpace*> selected = spaces;
       std::erase_if(spaces, [&](const graph::ChoiceSpace* space) {
         return !buildVariantOutputs(library, *space, decisions, options, diags, output, kernelFiles);
       });
+      if (!diags.hasErrors()) graph::checkSomeDecisionApplies(decisions, selected, diags);
     }
   }
   if (!diags.hasErrors() && options.choices) {

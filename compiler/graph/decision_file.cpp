@@ -142,40 +142,21 @@ bool appliesTo(const std::string& prefix, const sem::Shader& shader) {
   return shader.derivedFrom && shader.decl->name == prefix;
 }
 
-}  // namespace
+// The lines of a decision file that apply to one shader, as requests for
+// buildVariant, each with the line it comes from.
+struct Requests {
+  std::vector<DecisionRequest> requests;
+  std::vector<const DecisionLine*> origins;
+};
 
-DecisionFile parseDecisionFile(const SourceManager& sources, FileId file, DiagnosticList& diags) {
-  DecisionFile result;
-  const SourceFile& f = sources.file(file);
-  for (size_t i = 0; i < f.lineStarts.size(); ++i) {
-    const uint32_t begin = f.lineStarts[i];
-    const uint32_t end = i + 1 < f.lineStarts.size() ? f.lineStarts[i + 1] - 1 : static_cast<uint32_t>(f.text.size());
-    if (begin > end) continue;
-    LineParser parser(f.text, file, begin, end);
-    if (parser.atEnd()) continue;
-    if (auto line = parseLine(parser, file, diags)) result.lines.push_back(std::move(*line));
-    if (diags.limitReached()) break;
-  }
-  return result;
-}
-
-void checkDecisionPrefixes(const DecisionFile& decisions, const sem::Model& model, DiagnosticList& diags) {
-  std::vector<std::string_view> names;
-  for (const auto& s : model.shaders) names.push_back(s->name);
-  for (const auto& g : model.groups) names.push_back(g->name);
-  for (const DecisionLine& line : decisions.lines) {
-    if (model.findShader(line.prefix) || model.findGroup(line.prefix)) continue;
-    const auto suggestion = closestSpelling(line.prefix, names);
-    diags.report(DiagCode::W5001, line.prefixRange, fmt::format("unknown shader '{}'; {}", line.prefix, skipped(suggestion)));
-  }
-}
-
-std::optional<Variant> applyDecisions(const DecisionFile& decisions, const ChoiceSpace& space, DiagnosticList& diags) {
+// The unknown names (W5001), placements outside the space (W5003) and
+// duplicates (W5004) among the lines for the space's shader are reported
+// and skipped; lines for other shaders are left out silently.
+Requests collectRequests(const DecisionFile& decisions, const ChoiceSpace& space, DiagnosticList& diags) {
   const ShaderGraph& graph = space.graph();
   const sem::Shader& shader = graph.shader();
   const sem::Pipeline& pipeline = graph.pipeline();
-  std::vector<DecisionRequest> requests;
-  std::vector<const DecisionLine*> origins;
+  Requests result;
   std::map<sem::ComponentId, const DecisionLine*> decided;
 
   for (const DecisionLine& line : decisions.lines) {
@@ -239,10 +220,44 @@ std::optional<Variant> applyDecisions(const DecisionFile& decisions, const Choic
     } else {
       decided[id] = &line;
     }
-    requests.push_back({id, *alt, line.attributes});
-    origins.push_back(&line);
+    result.requests.push_back({id, *alt, line.attributes});
+    result.origins.push_back(&line);
   }
+  return result;
+}
 
+
+}  // namespace
+
+DecisionFile parseDecisionFile(const SourceManager& sources, FileId file, DiagnosticList& diags) {
+  DecisionFile result;
+  const SourceFile& f = sources.file(file);
+  for (size_t i = 0; i < f.lineStarts.size(); ++i) {
+    const uint32_t begin = f.lineStarts[i];
+    const uint32_t end = i + 1 < f.lineStarts.size() ? f.lineStarts[i + 1] - 1 : static_cast<uint32_t>(f.text.size());
+    if (begin > end) continue;
+    LineParser parser(f.text, file, begin, end);
+    if (parser.atEnd()) continue;
+    if (auto line = parseLine(parser, file, diags)) result.lines.push_back(std::move(*line));
+    if (diags.limitReached()) break;
+  }
+  return result;
+}
+
+void checkDecisionPrefixes(const DecisionFile& decisions, const sem::Model& model, DiagnosticList& diags) {
+  std::vector<std::string_view> names;
+  for (const auto& s : model.shaders) names.push_back(s->name);
+  for (const auto& g : model.groups) names.push_back(g->name);
+  for (const DecisionLine& line : decisions.lines) {
+    if (model.findShader(line.prefix) || model.findGroup(line.prefix)) continue;
+    const auto suggestion = closestSpelling(line.prefix, names);
+    diags.report(DiagCode::W5001, line.prefixRange, fmt::format("unknown shader '{}'; {}", line.prefix, skipped(suggestion)));
+  }
+}
+
+std::optional<Variant> applyDecisions(const DecisionFile& decisions, const ChoiceSpace& space, DiagnosticList& diags) {
+  const sem::Shader& shader = space.graph().shader();
+  const auto [requests, origins] = collectRequests(decisions, space, diags);
   VariantResult result = buildVariant(space, requests);
   for (size_t i = 0; i < requests.size(); ++i) {
     const DecisionOutcome& outcome = result.outcomes[i];
@@ -259,6 +274,39 @@ std::optional<Variant> applyDecisions(const DecisionFile& decisions, const Choic
     diags.report(DiagCode::E4017, shader.decl->nameRange, fmt::format("shader '{}' has no valid variant", shader.name));
   }
   return std::move(result.variant);
+}
+
+void checkSomeDecisionApplies(const DecisionFile& decisions, const std::vector<const ChoiceSpace*>& spaces,
+                              DiagnosticList& diags) {
+  if (decisions.lines.empty() || spaces.empty()) return;
+  bool named = false;
+  for (const ChoiceSpace* space : spaces) {
+    // Quietly: applyDecisions has already said why lines are skipped.
+    DiagnosticList quiet(UINT32_MAX);
+    const Requests requests = collectRequests(decisions, *space, quiet);
+    const VariantResult result = buildVariant(*space, requests.requests);
+    const auto applied = [](const DecisionOutcome& o) { return o.status == DecisionStatus::Applied; };
+    if (std::any_of(result.outcomes.begin(), result.outcomes.end(), applied)) return;
+    named = named || std::any_of(decisions.lines.begin(), decisions.lines.end(), [&](const DecisionLine& line) {
+              return appliesTo(line.prefix, space->graph().shader());
+            });
+  }
+  const auto quoted = [](std::vector<std::string_view> names) {
+    std::string text;
+    for (std::string_view name : names) text += fmt::format("{}'{}'", text.empty() ? "" : ", ", name);
+    return text;
+  };
+  std::vector<std::string_view> shaders;
+  for (const ChoiceSpace* space : spaces) shaders.push_back(space->graph().shader().name);
+  std::vector<std::string_view> prefixes;
+  for (const DecisionLine& line : decisions.lines) {
+    if (std::find(prefixes.begin(), prefixes.end(), line.prefix) == prefixes.end()) prefixes.push_back(line.prefix);
+  }
+  diags.report(DiagCode::E5002, decisions.lines.front().prefixRange,
+               fmt::format("no decision in this file applies to {} {}: {}", shaders.size() == 1 ? "shader" : "shaders",
+                           quoted(shaders),
+                           named ? fmt::format("every decision for {} is skipped", shaders.size() == 1 ? "it" : "them")
+                                 : "its decisions are for " + quoted(prefixes)));
 }
 
 }  // namespace spire::graph

@@ -243,5 +243,32 @@ TEST_F(BadInput, WarningsAsErrors) {
   EXPECT_EQ(spirec({terrain(), "--choices", "-Werror"}).exitCode, kExitSuccess);
 }
 
+// A decision file none of whose decisions takes effect is an error: written
+// for another shader, or with every decision skipped.
+TEST_F(BadInput, ADecisionFileThatDecidesNothingIsAnError) {
+  const std::string couch = (fs::path(SPIRE_SOURCE_DIR) / "examples/couch.spire").string();
+  const std::string forTerrain = (fs::path(SPIRE_SOURCE_DIR) / "examples/decisions/terrain_baked_albedo.decisions").string();
+  const SpirecRun other = spirec({couch, "--decisions", forTerrain, "-o", path("out"), "--emit=glsl"});
+  expectInputError(other, "error[E5002]: no decision in this file applies to shader 'Couch': its decisions are for 'Terrain'");
+  EXPECT_NE(other.err.find("warning[W5001]: unknown shader 'Terrain'"), std::string::npos) << other.err;
+  EXPECT_FALSE(fs::exists(path("out")));
+  const std::string skipped = write("skipped.decisions", "// stale\nTerrain.albedoo = Vertex\nTerrain.normal = Vertx\n");
+  const SpirecRun stale = spirec({terrain(), "--decisions", skipped});
+  expectInputError(stale, skipped + ":2:1: error[E5002]: no decision in this file applies to shader 'Terrain': "
+                                    "every decision for it is skipped");
+  // No decisions at all ask for the default variant.
+  const std::string none = write("none.decisions", "// defaults everywhere\n\n");
+  EXPECT_EQ(spirec({terrain(), "--decisions", none, "--dump-placement"}).exitCode, kExitSuccess);
+  // A file applied to several shaders needs to apply to one of them only.
+  const std::string lod = (fs::path(SPIRE_SOURCE_DIR) / "examples/lod_library.spire").string();
+  const std::string forLq = write("lq.decisions", "BaseMaterialLQ.nDotL = Vertex\n");
+  const SpirecRun library = spirec({lod, "--decisions", forLq, "--dump-placement"});
+  EXPECT_EQ(library.exitCode, kExitSuccess) << library.err;
+  EXPECT_EQ(library.err, "");
+  expectInputError(spirec({lod, "--decisions", forLq, "--shader", "TerrainLOD<BaseMaterialHQ>"}),
+                   "error[E5002]: no decision in this file applies to shader 'TerrainLOD<BaseMaterialHQ>': "
+                   "its decisions are for 'BaseMaterialLQ'");
+}
+
 }  // namespace
 }  // namespace spire
