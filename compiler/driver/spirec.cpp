@@ -31,7 +31,14 @@ struct Options {
   bool dumpPlacement = false;
   std::string shader;
   uint32_t maxErrors = 20;
+  bool warningsAsErrors = false;
+  std::vector<std::string> warningFlags;  // `-Werror` is `-W error`
 };
+
+// An empty path or name is a slip (`-o "$OUT"` with OUT unset), never what
+// was meant; it would otherwise quietly mean "no output" or "every shader".
+const CLI::Validator kNotEmpty(
+    [](std::string& value) { return value.empty() ? std::string("must not be empty") : std::string(); }, "");
 
 // One shader's output: DIR/<Shader>/ as a set of files.
 struct OutputDirectory {
@@ -114,18 +121,28 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
                       ->expected(0, 1)
                       ->type_name("[PATH]");
   app.add_option("--decisions", options.decisionsPath, "Apply the decision file PATH to every shader it names")
+      ->check(kNotEmpty)
       ->type_name("PATH");
-  app.add_option("-o,--output", options.outputDir, "Write kernels and reflection to DIR/<Shader>/")->type_name("DIR");
+  app.add_option("-o,--output", options.outputDir, "Write kernels and reflection to DIR/<Shader>/")
+      ->check(kNotEmpty)
+      ->type_name("DIR");
   app.add_option("--emit", options.emit, "What -o writes besides reflection.json")
       ->check(CLI::IsMember({"glsl", "spirv", "both"}))
       ->type_name("glsl|spirv|both");
   app.add_flag("--dump-placement", options.dumpPlacement,
                "Print each variant's placement (as a decision file) and what each world computes, imports and exports");
-  app.add_option("--shader", options.shader, "Restrict output to one shader")->type_name("NAME");
+  app.add_option("--shader", options.shader, "Restrict output to one shader")->check(kNotEmpty)->type_name("NAME");
   app.add_option("--max-errors", options.maxErrors, "Stop after N errors (0: no limit)")->type_name("N");
+  app.add_flag("--warnings-as-errors", options.warningsAsErrors,
+               "Fail on any warning, reporting each warning as an error");
+  app.add_option("-W", options.warningFlags, "-Werror: the same as --warnings-as-errors")
+      ->check(CLI::IsMember({"error"}))
+      ->type_name("error")
+      ->allow_extra_args(false);
 
   if (const auto status = parseToolArguments(app, args, out, err)) return *status;
   options.choices = choices->count() > 0;
+  options.warningsAsErrors |= !options.warningFlags.empty();
   const DiagnosticFormat format = options.diagnosticsFormat == "json" ? DiagnosticFormat::Json : DiagnosticFormat::Text;
 
   FrontEndOptions feOptions;
@@ -164,15 +181,18 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
       }
     }
     if (!diags.hasErrors()) {
+      const std::vector<const graph::ChoiceSpace*> selected = spaces;
       std::erase_if(spaces, [&](const graph::ChoiceSpace* space) {
         return !buildVariantOutputs(library, *space, decisions, options, diags, output, directories);
       });
+      if (!diags.hasErrors()) graph::checkSomeDecisionApplies(decisions, selected, diags);
     }
   }
   if (!diags.hasErrors() && options.choices) {
     choicesText = graph::writeChoiceFile(spaces);
   }
 
+  if (options.warningsAsErrors) diags.promoteWarnings("treated as an error (--warnings-as-errors)");
   if (!diags.hasErrors()) writeDirectories(directories, diags);
   const std::string rendered = renderDiagnostics(library.sources(), diags, format);
   if (format == DiagnosticFormat::Json || !rendered.empty()) err << rendered;

@@ -165,6 +165,91 @@ bool appliesTo(const std::string& prefix, const sem::Shader& shader) {
   return shader.derivedFrom && shader.decl->name == prefix;
 }
 
+// The lines of a decision file that apply to one shader, as requests for
+// buildVariant, each with the line it comes from.
+struct Requests {
+  std::vector<DecisionRequest> requests;
+  std::vector<const DecisionLine*> origins;
+};
+
+// The unknown names (W5001), placements outside the space (W5003) and
+// duplicates (W5004) among the lines for the space's shader are reported
+// and skipped; lines for other shaders are left out silently.
+Requests collectRequests(const DecisionFile& decisions, const ChoiceSpace& space, DiagnosticList& diags) {
+  const ShaderGraph& graph = space.graph();
+  const sem::Shader& shader = graph.shader();
+  const sem::Pipeline& pipeline = graph.pipeline();
+  Requests result;
+  std::map<sem::ComponentId, const DecisionLine*> decided;
+
+  for (const DecisionLine& line : decisions.lines) {
+    if (!appliesTo(line.prefix, shader)) continue;
+    const sem::Shader* named = nullptr;
+    for (const sem::Shader* s = &shader; s && !named; s = s->base) {
+      if (s->name == line.prefix) named = s;
+    }
+    const sem::ComponentSet& scope = named ? static_cast<const sem::ComponentSet&>(*named) : shader;
+    const auto componentIt = scope.componentByName.find(line.component);
+    if (componentIt == scope.componentByName.end()) {
+      std::vector<std::string_view> names;
+      for (const sem::Component& c : scope.components) names.push_back(c.name);
+      const auto suggestion = closestSpelling(line.component, names);
+      diags.report(DiagCode::W5001, line.componentRange,
+                   fmt::format("'{}' has no component '{}'; {}", line.prefix, line.component, skipped(suggestion)));
+      continue;
+    }
+    const sem::ComponentId id = shader.componentByName.at(line.component);
+    const ComponentNode& node = graph.node(id);
+    if (!pipeline.findWorld(line.world)) {
+      std::vector<std::string_view> names;
+      for (const sem::World& w : pipeline.worlds) names.push_back(w.name);
+      const auto suggestion = closestSpelling(line.world, names);
+      diags.report(DiagCode::W5001, line.worldRange,
+                   fmt::format("unknown world '{}' in pipeline '{}'; {}", line.world, pipeline.name, skipped(suggestion)));
+      continue;
+    }
+    if (std::find(node.variations.begin(), node.variations.end(), line.variation) == node.variations.end()) {
+      std::string known;
+      for (const std::string& v : node.variations) {
+        known += fmt::format("{}'{}'", known.empty() ? "" : ", ", v.empty() ? "(none)" : v);
+      }
+      diags.report(DiagCode::W5001, line.variation.empty() ? line.worldRange : line.variationRange,
+                   line.variation.empty()
+                       ? fmt::format("'{}.{}' needs a variation name (it has {}); the decision is skipped", line.prefix,
+                                     line.component, known)
+                       : fmt::format("component '{}' has no variation '{}' (it has {}); the decision is skipped",
+                                     line.component, line.variation, known));
+      continue;
+    }
+    const auto alt = graph.findAlternative(node, line.world, line.variation);
+    if (!alt || !space.alive(id, *alt)) {
+      std::string choices;
+      for (AltId a : space.aliveAlternatives(id)) {
+        choices += fmt::format("{}{}", choices.empty() ? "" : ", ", graph.altName(node, a));
+      }
+      diags.report(DiagCode::W5003, SourceRange::cover(line.worldRange, line.variationRange),
+                   fmt::format("'{}' is not a possible placement of '{}.{}' (possible: {}); the decision is skipped",
+                               line.variation.empty() ? line.world : line.world + ":" + line.variation, line.prefix,
+                               line.component, choices.empty() ? "none" : choices));
+      continue;
+    }
+    if (auto previous = decided.find(id); previous != decided.end()) {
+      const DecisionLine& earlier = *previous->second;
+      if (earlier.world == line.world && earlier.variation == line.variation) {
+        diags.report(DiagCode::W5004, line.range, fmt::format("duplicate decision '{}'", spell(line)))
+            .note(earlier.range, "the same decision is made here");
+        continue;
+      }
+    } else {
+      decided[id] = &line;
+    }
+    result.requests.push_back({id, *alt, line.attributes});
+    result.origins.push_back(&line);
+  }
+  return result;
+}
+
+
 }  // namespace
 
 DecisionFile parseDecisionFile(const SourceManager& sources, FileId file, DiagnosticList& diags) {
@@ -234,78 +319,8 @@ void checkDecisionPrefixes(const DecisionFile& decisions, const sem::Model& mode
 }
 
 std::optional<Variant> applyDecisions(const DecisionFile& decisions, const ChoiceSpace& space, DiagnosticList& diags) {
-  const ShaderGraph& graph = space.graph();
-  const sem::Shader& shader = graph.shader();
-  const sem::Pipeline& pipeline = graph.pipeline();
-  std::vector<DecisionRequest> requests;
-  std::vector<const DecisionLine*> origins;
-  std::map<sem::ComponentId, const DecisionLine*> decided;
-
-  for (const DecisionLine& line : decisions.lines) {
-    if (!appliesTo(line.prefix, shader)) continue;
-    const sem::Shader* named = nullptr;
-    for (const sem::Shader* s = &shader; s && !named; s = s->base) {
-      if (s->name == line.prefix) named = s;
-    }
-    const sem::ComponentSet& scope = named ? static_cast<const sem::ComponentSet&>(*named) : shader;
-    const auto componentIt = scope.componentByName.find(line.component);
-    if (componentIt == scope.componentByName.end()) {
-      std::vector<std::string_view> names;
-      for (const sem::Component& c : scope.components) names.push_back(c.name);
-      const auto suggestion = closestSpelling(line.component, names);
-      diags.report(DiagCode::W5001, line.componentRange,
-                   fmt::format("'{}' has no component '{}'; {}", line.prefix, line.component, skipped(suggestion)));
-      continue;
-    }
-    const sem::ComponentId id = shader.componentByName.at(line.component);
-    const ComponentNode& node = graph.node(id);
-    if (!pipeline.findWorld(line.world)) {
-      std::vector<std::string_view> names;
-      for (const sem::World& w : pipeline.worlds) names.push_back(w.name);
-      const auto suggestion = closestSpelling(line.world, names);
-      diags.report(DiagCode::W5001, line.worldRange,
-                   fmt::format("unknown world '{}' in pipeline '{}'; {}", line.world, pipeline.name, skipped(suggestion)));
-      continue;
-    }
-    if (std::find(node.variations.begin(), node.variations.end(), line.variation) == node.variations.end()) {
-      std::string known;
-      for (const std::string& v : node.variations) {
-        known += fmt::format("{}'{}'", known.empty() ? "" : ", ", v.empty() ? "(none)" : v);
-      }
-      diags.report(DiagCode::W5001, line.variation.empty() ? line.worldRange : line.variationRange,
-                   line.variation.empty()
-                       ? fmt::format("'{}.{}' needs a variation name (it has {}); the decision is skipped", line.prefix,
-                                     line.component, known)
-                       : fmt::format("component '{}' has no variation '{}' (it has {}); the decision is skipped",
-                                     line.component, line.variation, known));
-      continue;
-    }
-    const auto alt = graph.findAlternative(node, line.world, line.variation);
-    if (!alt || !space.alive(id, *alt)) {
-      std::string choices;
-      for (AltId a : space.aliveAlternatives(id)) {
-        choices += fmt::format("{}{}", choices.empty() ? "" : ", ", graph.altName(node, a));
-      }
-      diags.report(DiagCode::W5003, SourceRange::cover(line.worldRange, line.variationRange),
-                   fmt::format("'{}' is not a possible placement of '{}.{}' (possible: {}); the decision is skipped",
-                               line.variation.empty() ? line.world : line.world + ":" + line.variation, line.prefix,
-                               line.component, choices.empty() ? "none" : choices));
-      continue;
-    }
-    if (auto previous = decided.find(id); previous != decided.end()) {
-      const DecisionLine& earlier = *previous->second;
-      if (earlier.world == line.world && earlier.variation == line.variation) {
-        diags.report(DiagCode::W5004, line.range, fmt::format("duplicate decision '{}'", spell(line)))
-            .note(earlier.range, "the same decision is made here");
-        continue;
-      }
-    } else {
-      decided[id] = &line;
-    }
-    requests.push_back({id, *alt, line.attributes});
-    origins.push_back(&line);
-  }
-
+  const sem::Shader& shader = space.graph().shader();
+  const auto [requests, origins] = collectRequests(decisions, space, diags);
   VariantResult result = buildVariant(space, requests);
   for (size_t i = 0; i < requests.size(); ++i) {
     const DecisionOutcome& outcome = result.outcomes[i];
@@ -322,6 +337,39 @@ std::optional<Variant> applyDecisions(const DecisionFile& decisions, const Choic
     diags.report(DiagCode::E4017, shader.decl->nameRange, fmt::format("shader '{}' has no valid variant", shader.name));
   }
   return std::move(result.variant);
+}
+
+void checkSomeDecisionApplies(const DecisionFile& decisions, const std::vector<const ChoiceSpace*>& spaces,
+                              DiagnosticList& diags) {
+  if (decisions.lines.empty() || spaces.empty()) return;
+  bool named = false;
+  for (const ChoiceSpace* space : spaces) {
+    // Quietly: applyDecisions has already said why lines are skipped.
+    DiagnosticList quiet(UINT32_MAX);
+    const Requests requests = collectRequests(decisions, *space, quiet);
+    const VariantResult result = buildVariant(*space, requests.requests);
+    const auto applied = [](const DecisionOutcome& o) { return o.status == DecisionStatus::Applied; };
+    if (std::any_of(result.outcomes.begin(), result.outcomes.end(), applied)) return;
+    named = named || std::any_of(decisions.lines.begin(), decisions.lines.end(), [&](const DecisionLine& line) {
+              return appliesTo(line.prefix, space->graph().shader());
+            });
+  }
+  const auto quoted = [](std::vector<std::string_view> names) {
+    std::string text;
+    for (std::string_view name : names) text += fmt::format("{}'{}'", text.empty() ? "" : ", ", name);
+    return text;
+  };
+  std::vector<std::string_view> shaders;
+  for (const ChoiceSpace* space : spaces) shaders.push_back(space->graph().shader().name);
+  std::vector<std::string_view> prefixes;
+  for (const DecisionLine& line : decisions.lines) {
+    if (std::find(prefixes.begin(), prefixes.end(), line.prefix) == prefixes.end()) prefixes.push_back(line.prefix);
+  }
+  diags.report(DiagCode::E5002, decisions.lines.front().prefixRange,
+               fmt::format("no decision in this file applies to {} {}: {}", shaders.size() == 1 ? "shader" : "shaders",
+                           quoted(shaders),
+                           named ? fmt::format("every decision for {} is skipped", shaders.size() == 1 ? "it" : "them")
+                                 : "its decisions are for " + quoted(prefixes)));
 }
 
 }  // namespace spire::graph

@@ -63,4 +63,12 @@ void checkDecisionPrefixes(const DecisionFile& decisions, const sem::Model& mode
 // conflicts (W5002, naming the earlier decision). Every such line is skipped.
 std::optional<Variant> applyDecisions(const DecisionFile& decisions, const ChoiceSpace& space, DiagnosticList& diags);
 
+// E5002 when the file has decisions but none of them takes effect in any of
+// the shaders it is applied to (`spaces`): a decision file written for
+// another shader, or for an older version of this one, would otherwise give
+// the default variant with warnings only. A file without decisions asks for
+// the default variant and passes.
+void checkSomeDecisionApplies(const DecisionFile& decisions, const std::vector<const ChoiceSpace*>& spaces,
+                              DiagnosticList& diags);
+
 }  // namespace spire::graph

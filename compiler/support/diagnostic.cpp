@@ -75,4 +75,14 @@ std::vector<Diagnostic> DiagnosticList::takeSince(size_t mark) {
   return taken;
 }
 
+void DiagnosticList::promoteWarnings(std::string_view why) {
+  for (Diagnostic& d : diagnostics_) {
+    if (d.severity != Severity::Warning) continue;
+    d.severity = Severity::Error;
+    d.notes.push_back({{}, std::string(why)});
+  }
+  errorCount_ += warningCount_;
+  warningCount_ = 0;
+}
+
 }  // namespace spire

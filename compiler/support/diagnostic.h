@@ -76,6 +76,10 @@ class DiagnosticList {
   std::vector<Diagnostic> takeSince(size_t mark);
   size_t size() const { return diagnostics_.size(); }
 
+  // Turns every warning reported so far into an error noted with `why`, for
+  // a run that treats warnings as errors: it fails, and its output says why.
+  void promoteWarnings(std::string_view why);
+
  private:
   std::vector<Diagnostic> diagnostics_;
   Diagnostic scratch_;

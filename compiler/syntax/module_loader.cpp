@@ -64,17 +64,27 @@ struct ModuleLoader::Impl {
   std::optional<std::string> inputRoot;
 
   // A file named by the user (or given in memory) is named relative to the
-  // directory of the first such file.
+  // directory of the first such file. One that declares nothing (empty, or
+  // only whitespace and comments) is an error (E1104): it is a wrong or
+  // truncated file far more often than intended, and would otherwise
+  // compile to nothing without a word. An include may be empty.
   void loadInput(std::string displayPath, std::string key, std::string text, ast::Program& program) {
     if (!inputRoot) inputRoot = fs::path(key).parent_path().generic_string();
-    load(std::move(displayPath), std::move(key), *inputRoot, std::move(text), program);
+    const uint32_t errors = diags.errorCount();
+    const ast::Module* module = load(displayPath, std::move(key), *inputRoot, std::move(text), program);
+    if (module && module->decls.empty() && diags.errorCount() == errors) {
+      diags.report(DiagCode::E1104, {module->file, 0, 0},
+                   fmt::format("'{}' declares nothing: it is empty or holds only comments", displayPath));
+    }
   }
 
   // Parses a file, loads what it includes, then appends it to the program.
-  void load(std::string displayPath, std::string key, std::string root, std::string text, ast::Program& program) {
+  // Returns its module, or null when it is not text.
+  const ast::Module* load(std::string displayPath, std::string key, std::string root, std::string text,
+                          ast::Program& program) {
     loaded.insert(key);
     const FileId file = sources.addFile(displayPath, std::move(text), logicalName(key, root));
-    if (!isText(file)) return;
+    if (!isText(file)) return nullptr;
     auto module = parseModule(sources, file, program, diags, options.parseLimits);
     openFiles.push_back({std::move(key), displayPath, root});
     for (const auto& decl : module->decls) {
@@ -85,6 +95,7 @@ struct ModuleLoader::Impl {
     }
     openFiles.pop_back();
     program.modules.push_back(std::move(module));
+    return program.modules.back().get();
   }
 
   // Binary files would only produce a flood of stray-character errors.
@@ -122,7 +133,10 @@ struct ModuleLoader::Impl {
       if (open != openFiles.end()) return reportCycle(include, open);
       if (loaded.contains(key)) return;
       auto text = readThrough(options.readFile, candidate.path);
-      if (text) return load(candidate.path, std::move(key), std::move(candidate.root), std::move(text).value(), program);
+      if (text) {
+        load(candidate.path, std::move(key), std::move(candidate.root), std::move(text).value(), program);
+        return;
+      }
       if (text.error() != std::errc::no_such_file_or_directory && text.error() != std::errc::not_a_directory) {
         unreadable.push_back(fmt::format("cannot read '{}': {}", candidate.path, text.error().message()));
       }

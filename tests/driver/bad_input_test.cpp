@@ -143,6 +143,17 @@ TEST_F(BadInput, DiagnosticsOnAHugeLineStaySmall) {
   EXPECT_LT(run.err.size(), 20000u);
 }
 
+// A source that declares nothing fails at its first line instead of
+// compiling to nothing.
+TEST_F(BadInput, AnEmptySourceIsAnError) {
+  for (const std::string text : {"", "  \n\t\r\n", "// nothing yet\n/* still\n nothing */\n"}) {
+    SCOPED_TRACE(text);
+    const std::string source = write("empty.spire", text);
+    expectInputError(spirec({source, "--choices"}),
+                     source + ":1:1: error[E1104]: '" + source + "' declares nothing: it is empty or holds only comments");
+  }
+}
+
 std::string terrain() { return (fs::path(SPIRE_SOURCE_DIR) / "examples/terrain.spire").string(); }
 
 // Permissions do not stop root, so tests of unreadable or unwritable files
@@ -182,6 +193,81 @@ TEST_F(BadInput, WritingIntoAReadOnlyFolderSaysWhy) {
   fs::permissions(dir_ / "readonly", fs::perms::owner_read | fs::perms::owner_exec);
   expectInputError(spirec({terrain(), "--choices", path("readonly/terrain.choices")}), "': Permission denied");
   expectInputError(spirec({terrain(), "-o", path("readonly"), "--emit=glsl"}), "Permission denied");
+}
+
+// An empty output folder, decision file or shader name is a usage error,
+// not "no output", "no decisions" or "every shader".
+TEST_F(BadInput, EmptyOptionValuesAreUsageErrors) {
+  for (const std::string option : {"-o", "--output", "--decisions", "--shader"}) {
+    SCOPED_TRACE(option);
+    const SpirecRun run = spirec({terrain(), option, ""});
+    EXPECT_EQ(run.exitCode, kExitUsageError);
+    EXPECT_NE(run.err.find("spirec: error: "), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("must not be empty"), std::string::npos) << run.err;
+    EXPECT_EQ(run.out, "");
+  }
+  EXPECT_EQ(spirec({terrain(), "--output="}).exitCode, kExitUsageError);
+}
+
+// A decision file with one decision that applies and one that names an
+// unknown world (W5001).
+constexpr const char* kOneBadDecision = "Terrain.albedo = PrebakeTex\nTerrain.normal = Vertx\n";
+
+// With --warnings-as-errors (or -Werror) a warning fails the run: it is
+// reported as an error that says why, and nothing is written.
+TEST_F(BadInput, WarningsAsErrors) {
+  const std::string decisions = write("terrain.decisions", kOneBadDecision);
+  const SpirecRun lenient = spirec({terrain(), "--decisions", decisions, "-o", path("out"), "--emit=glsl"});
+  EXPECT_EQ(lenient.exitCode, kExitSuccess) << lenient.err;
+  EXPECT_NE(lenient.err.find("warning[W5001]: unknown world 'Vertx'"), std::string::npos) << lenient.err;
+  fs::remove_all(path("out"));
+  const std::vector<std::vector<std::string>> flags = {{"--warnings-as-errors"}, {"-Werror"}, {"-W", "error"}};
+  for (const std::vector<std::string>& flag : flags) {
+    SCOPED_TRACE(flag.front());
+    std::vector<std::string> args = {terrain(), "--decisions", decisions, "-o", path("out"), "--dump-placement"};
+    args.insert(args.end(), flag.begin(), flag.end());
+    const SpirecRun strict = spirec(args);
+    expectInputError(strict, decisions + ":2:18: error[W5001]: unknown world 'Vertx'");
+    EXPECT_NE(strict.err.find("note: treated as an error (--warnings-as-errors)\n1 error generated.\n"),
+              std::string::npos)
+        << strict.err;
+    EXPECT_EQ(strict.out, "");
+    EXPECT_FALSE(fs::exists(path("out")));
+  }
+  const SpirecRun json = spirec({terrain(), "--decisions", decisions, "-Werror", "--diagnostics-format=json"});
+  EXPECT_EQ(json.exitCode, kExitInputError);
+  EXPECT_NE(json.err.find("\"severity\": \"error\",\n      \"code\": \"W5001\""), std::string::npos) << json.err;
+  EXPECT_NE(json.err.find("\"errorCount\": 1,\n  \"warningCount\": 0"), std::string::npos) << json.err;
+  EXPECT_EQ(spirec({terrain(), "-Wall"}).exitCode, kExitUsageError);
+  // Without warnings the flag changes nothing.
+  EXPECT_EQ(spirec({terrain(), "--choices", "-Werror"}).exitCode, kExitSuccess);
+}
+
+// A decision file none of whose decisions takes effect is an error: written
+// for another shader, or with every decision skipped.
+TEST_F(BadInput, ADecisionFileThatDecidesNothingIsAnError) {
+  const std::string couch = (fs::path(SPIRE_SOURCE_DIR) / "examples/couch.spire").string();
+  const std::string forTerrain = (fs::path(SPIRE_SOURCE_DIR) / "examples/decisions/terrain_baked_albedo.decisions").string();
+  const SpirecRun other = spirec({couch, "--decisions", forTerrain, "-o", path("out"), "--emit=glsl"});
+  expectInputError(other, "error[E5002]: no decision in this file applies to shader 'Couch': its decisions are for 'Terrain'");
+  EXPECT_NE(other.err.find("warning[W5001]: unknown shader 'Terrain'"), std::string::npos) << other.err;
+  EXPECT_FALSE(fs::exists(path("out")));
+  const std::string skipped = write("skipped.decisions", "// stale\nTerrain.albedoo = Vertex\nTerrain.normal = Vertx\n");
+  const SpirecRun stale = spirec({terrain(), "--decisions", skipped});
+  expectInputError(stale, skipped + ":2:1: error[E5002]: no decision in this file applies to shader 'Terrain': "
+                                    "every decision for it is skipped");
+  // No decisions at all ask for the default variant.
+  const std::string none = write("none.decisions", "// defaults everywhere\n\n");
+  EXPECT_EQ(spirec({terrain(), "--decisions", none, "--dump-placement"}).exitCode, kExitSuccess);
+  // A file applied to several shaders needs to apply to one of them only.
+  const std::string lod = (fs::path(SPIRE_SOURCE_DIR) / "examples/lod_library.spire").string();
+  const std::string forLq = write("lq.decisions", "BaseMaterialLQ.nDotL = Vertex\n");
+  const SpirecRun library = spirec({lod, "--decisions", forLq, "--dump-placement"});
+  EXPECT_EQ(library.exitCode, kExitSuccess) << library.err;
+  EXPECT_EQ(library.err, "");
+  expectInputError(spirec({lod, "--decisions", forLq, "--shader", "TerrainLOD<BaseMaterialHQ>"}),
+                   "error[E5002]: no decision in this file applies to shader 'TerrainLOD<BaseMaterialHQ>': "
+                   "its decisions are for 'BaseMaterialLQ'");
 }
 
 }  // namespace

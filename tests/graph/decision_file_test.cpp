@@ -113,5 +113,27 @@ TEST(DecisionFile, AttributesReachTheVariant) {
   EXPECT_EQ(variant->attributes(albedo), (std::vector<std::pair<std::string, std::string>>{{"TextureSize", "512"}}));
 }
 
+// E5002 only when no decision takes effect: a conflict that leaves one
+// decision applied passes, a file of skipped decisions or of none fails or
+// passes as it should.
+TEST(DecisionFile, AFileThatDecidesNothingIsAnError) {
+  auto c = testing_util::compileShader({std::string(SPIRE_SOURCE_DIR) + "/examples/terrain.spire"}, "", "Terrain");
+  ASSERT_TRUE(c.graph) << c.rendered();
+  graph::ChoiceSpace space(*c.graph);
+  const auto codesFor = [&](const std::string& text) {
+    SourceManager sources;
+    DiagnosticList diags;
+    graph::checkSomeDecisionApplies(parse(sources, diags, text), {&space}, diags);
+    std::vector<std::string> codes;
+    for (const Diagnostic& d : diags.all()) codes.emplace_back(diagCodeInfo(d.code).name);
+    return codes;
+  };
+  using Codes = std::vector<std::string>;
+  EXPECT_EQ(codesFor("Terrain.lighting = Vertex:basic\nTerrain.normal = Fragment\n"), Codes{});
+  EXPECT_EQ(codesFor("// nothing decided\n"), Codes{});
+  EXPECT_EQ(codesFor("Terrain.normal = PrebakeTex\nTerrain.albedoo = Vertex\n"), Codes{"E5002"});
+  EXPECT_EQ(codesFor("Couch.albedo = Vertex\n"), Codes{"E5002"});
+}
+
 }  // namespace
 }  // namespace spire

@@ -78,7 +78,7 @@ TEST(ModuleLoader, LogicalNamesAreRelativeToTheInputsFolderOrTheIncludeDirectory
   // input's folder; an include directory's files (and theirs): relative to it.
   Loading l;
   l.files = {{"src/main.spire", "using \"../shared/s.spire\";\nusing \"std.spire\";"},
-             {"src/./../src/other.spire", ""},
+             {"src/./../src/other.spire", "struct O { float x; };"},
              {"shared/s.spire", ""},
              {"inc/std.spire", "using \"sub/util.spire\";"},
              {"inc/sub/util.spire", ""}};
