@@ -76,7 +76,8 @@ const graph::ChoiceSpace* findShader(const ShaderLibrary& library, std::string_v
 
 // The compiled variant, or the failure with every diagnostic reported.
 CompileResult finish(ShaderLibrary& library, const std::optional<graph::Variant>& variant,
-                     const CompileOptions& options, DiagnosticList& diags, std::string_view shader) {
+                     const CompileOptions& options, DiagnosticList& diags, std::string_view shader,
+                     std::vector<std::string> skipped = {}) {
   if (!variant || diags.hasErrors()) return failure(fmt::format("no variant of '{}' for these decisions", shader), diags);
   if (options.strictDecisions && diags.warningCount() > 0) {
     return failure(fmt::format("not every decision for '{}' applies, so this is not the variant asked for", shader),
@@ -87,23 +88,29 @@ CompileResult finish(ShaderLibrary& library, const std::optional<graph::Variant>
   if (diags.size() == 0) return compiled;
   auto withWarnings = std::make_shared<CompiledVariant>(*compiled);
   withWarnings->warnings = diags.takeSince(0);
+  withWarnings->skippedDecisions = std::move(skipped);
   return CompiledVariantPtr(std::move(withWarnings));
 }
 
-// The attributes whose values are UTF-8 text; the others are skipped with a
-// warning, as a decision file refuses them (E5001): they would reach
-// reflection.json, and JSON holds only UTF-8 text.
-ShaderLibrary::Attributes utf8Attributes(const ShaderLibrary::Attributes& attributes, DiagnosticList& diags) {
+// In-memory attributes get the checks a decision file's get when it is
+// read: a value that is not UTF-8 text is skipped with a warning (it would
+// reach reflection.json, and JSON holds only UTF-8 text); the others are
+// checked against the attribute catalogue (E5010, W5011).
+ShaderLibrary::Attributes checkedAttributes(const ShaderLibrary::Attributes& attributes, DiagnosticList& diags) {
   ShaderLibrary::Attributes kept;
   for (const auto& [component, list] : attributes) {
     for (const auto& [name, value] : list) {
-      if (utf8::firstInvalidByte(value) == std::string::npos) {
-        kept[component].emplace_back(name, value);
+      if (utf8::firstInvalidByte(value) != std::string::npos) {
+        diags.report(DiagCode::W5003, {},
+                     fmt::format("the attribute '{}' of '{}' is not applied: its value is not valid UTF-8 text", name,
+                                 component));
         continue;
       }
-      diags.report(DiagCode::W5003, {},
-                   fmt::format("the attribute '{}' of '{}' is not applied: its value is not valid UTF-8 text", name,
-                               component));
+      if (auto problem = sem::checkAttribute(sem::AttributeSite::Decision, name, value)) {
+        diags.report(problem->isError ? DiagCode::E5010 : DiagCode::W5011, {},
+                     fmt::format("'{}': {}", component, problem->message));
+      }
+      kept[component].emplace_back(name, value);
     }
   }
   return kept;
@@ -155,25 +162,16 @@ CompileResult compileVariant(ShaderLibrary& library, std::string_view shader, co
   CompileError error;
   if (!findShader(library, shader, error)) return error;
   DiagnosticList diags;
-  const ShaderLibrary::Attributes attributes = utf8Attributes(decisions.attributes, diags);
+  const ShaderLibrary::Attributes attributes = checkedAttributes(decisions.attributes, diags);
   std::vector<std::string> skipped;
   const std::optional<graph::Variant> variant =
       library.buildVariant(shader, decisions.placement, &skipped, attributes);
-  // In-memory attributes get the check a decision file's get when it is read.
-  for (const auto& [component, list] : attributes) {
-    for (const auto& [name, value] : list) {
-      if (auto problem = sem::checkAttribute(sem::AttributeSite::Decision, name, value)) {
-        diags.report(problem->isError ? DiagCode::E5010 : DiagCode::W5011, {},
-                     fmt::format("'{}': {}", component, problem->message));
-      }
-    }
-  }
   for (const std::string& component : skipped) {
     diags.report(DiagCode::W5003, {},
                  fmt::format("the decision for '{}' is not applied: unknown, or infeasible with the others",
                              component));
   }
-  return finish(library, variant, options, diags, shader);
+  return finish(library, variant, options, diags, shader, std::move(skipped));
 }
 
 }  // namespace spire

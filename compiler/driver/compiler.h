@@ -46,6 +46,10 @@ struct CompiledVariant {
   std::vector<CompiledKernel> kernels;
   std::string placement;           // the variant as decision-file lines
   std::vector<Diagnostic> warnings;
+  // In-memory decisions only: the components whose decision was not applied
+  // (unknown, or infeasible with the others), for callers such as the tuner
+  // that record them rather than refuse them.
+  std::vector<std::string> skippedDecisions;
 };
 
 struct CompileError {

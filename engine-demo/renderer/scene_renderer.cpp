@@ -122,15 +122,15 @@ Expected<VariantProgram> SceneRenderer::compileVariant(size_t index, const std::
   auto library = libraryFor(instance);
   if (!library) return library.error();
   ShaderLibrary& lib = **library;
-  const auto variant = lib.buildVariant(instance.shader, decisions, skipped, attributes);
-  if (!variant) return Error{fmt::format("'{}' has no valid variant for these decisions", instance.shader), instance.shaderRange, {}};
-  DiagnosticList diags;
-  const CompiledVariantPtr compiled = spire::compileVariant(lib, *variant, CompileOptions{}, diags);
+  // The tuner's points may decide what is infeasible: it records the skipped
+  // decisions instead of refusing them.
+  const CompileResult compiled = spire::compileVariant(lib, instance.shader, Decisions{decisions, attributes});
   if (!compiled) {
-    return Error{fmt::format("cannot compile this variant of '{}'", instance.shader), instance.shaderRange,
-                 renderAll(lib.sources(), diags.all())};
+    return Error{fmt::format("'{}': {}", instance.source.string(), compiled.error().message), instance.shaderRange,
+                 renderAll(lib.sources(), compiled.error().diagnostics)};
   }
-  auto program = programFrom(*compiled);
+  if (skipped) *skipped = (*compiled)->skippedDecisions;
+  auto program = programFrom(**compiled);
   if (!program) return Error{program.error().message, instance.shaderRange, program.error().details};
   return program;
 }

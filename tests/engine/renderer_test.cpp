@@ -333,6 +333,27 @@ TEST_F(RendererTest, NonFiniteOutputIsCountedNotAveraged) {
 }
 
 
+// The tuner's in-memory decisions go through the compiler's one compile
+// path: attributes are checked against the catalogue, and decisions that do
+// not apply are reported back as skipped rather than refused.
+TEST_F(RendererTest, InMemoryDecisionsAreCheckedAndSkippedOnesReported) {
+  std::string json = planeScene("normal_bake.spire", "NormalBake", R"({"colorMap": "noise"})");
+  sources_ = std::make_unique<SourceManager>();
+  diags_ = std::make_unique<DiagnosticList>();
+  scene_ = scene::parseSceneFile("test_scene.json", json, kDataDir, *sources_, *diags_);
+  ASSERT_TRUE(scene_);
+  SceneRenderer renderer(ctx(), *scene_, *diags_);
+  const std::map<std::string, std::string> decisions{{"bentNormal", "PrebakeTex"}};
+  auto badFormat = renderer.compileVariant(0, decisions, nullptr, {{"bentNormal", {{"Format", "BC7"}}}});
+  ASSERT_FALSE(badFormat);
+  EXPECT_NE(badFormat.error().details.find("error[E5010]: 'bentNormal': [Format] takes one of"), std::string::npos)
+      << badFormat.error().details;
+  std::vector<std::string> skipped;
+  auto program = renderer.compileVariant(0, {{"bentNormal", "PrebakeTex"}, {"noSuchComponent", "Fragment"}}, &skipped);
+  ASSERT_TRUE(program) << program.error().message << program.error().details;
+  EXPECT_EQ(skipped, std::vector<std::string>{"noSuchComponent"});
+}
+
 // Data-layout selection: a baked unit vector is recognized as one and stored
 // as RGB10_A2 with the signed remap, which costs far less than storing it in
 // 8 bits without the remap (which clamps every negative component to 0).
