@@ -127,10 +127,9 @@ namespace spire::codegen {
 std::optional<std::string> checkEncoding(const KernelValue& value, bool& isSigned) {
   isSigned = false;
   for (const auto& [name, text] : value.attributes) {
-    if (name != "Encoding") continue;
-    if (text != "signed") {
-      return fmt::format("unknown Encoding \"{}\" on '{}'; the only encoding is \"signed\"", text, value.sourceName);
-    }
+    // The attribute catalogue has refused any other value when the source
+    // or the decisions were read.
+    if (name != "Encoding" || text != "signed") continue;
     if (!(value.type->isScalar() || value.type->isVector()) || value.type->scalar != sem::ScalarKind::Float) {
       return fmt::format("Encoding \"signed\" needs a float scalar or vector, not '{}' of type '{}'", value.sourceName,
                          value.type->name());

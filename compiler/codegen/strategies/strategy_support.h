@@ -56,8 +56,8 @@ std::optional<std::string> emitOutVariables(ExportSite& site, std::string_view s
 // values lie in [-1, 1] (unit vectors) and are stored remapped to [0, 1], so
 // that an unsigned normalized texture (RGBA8, RGB10_A2) can hold them; the
 // exporting strategy writes v * 0.5 + 0.5 and textureImport undoes it.
-// Returns an error message for an Encoding other than "signed" or on a
-// value that is not a float scalar or vector.
+// Returns an error message for the encoding on a value that is not a float
+// scalar or vector (its value was checked against the attribute catalogue).
 std::optional<std::string> checkEncoding(const KernelValue& value, bool& isSigned);
 
 }  // namespace spire::codegen
