@@ -37,7 +37,7 @@ std::string saveRejected(const codegen::Kernel& kernel, const std::string& root,
   const std::filesystem::path path = std::filesystem::path(root) / directory / kernel.reflection.glslFile;
   std::error_code ignored;
   std::filesystem::create_directories(path.parent_path(), ignored);
-  if (auto error = writeFileAtomically(path.string(), kernel.glsl)) return *error;
+  if (auto written = writeFileAtomically(path.string(), kernel.glsl); !written) return written.error().message;
   return fmt::format("the kernel is saved as '{}'", path.string());
 }
 

@@ -96,8 +96,8 @@ bool buildVariantOutputs(ShaderLibrary& library, const graph::ChoiceSpace& space
 // kernels beside another variant's reflection.
 void writeDirectories(const std::vector<OutputDirectory>& directories, DiagnosticList& diags) {
   for (const OutputDirectory& dir : directories) {
-    if (auto error = replaceDirectoryAtomically(dir.path.string(), dir.files)) {
-      diags.report(DiagCode::E6003, {}, *error);
+    if (auto written = replaceDirectoryAtomically(dir.path.string(), dir.files); !written) {
+      diags.report(DiagCode::E6003, {}, written.error().message);
       return;
     }
   }
@@ -198,8 +198,8 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
   if (format == DiagnosticFormat::Json || !rendered.empty()) err << rendered;
   if (diags.hasErrors()) return kExitInputError;
   if (options.choices && !options.choicesPath.empty() && options.choicesPath != "-") {
-    if (auto error = writeFileAtomically(options.choicesPath, choicesText)) {
-      err << "spirec: error: " << *error << "\n";
+    if (auto written = writeFileAtomically(options.choicesPath, choicesText); !written) {
+      err << "spirec: error: " << written.error().message << "\n";
       return kExitInputError;
     }
   } else {

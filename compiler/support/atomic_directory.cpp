@@ -25,65 +25,67 @@ fs::path stagingPath(const fs::path& dir, std::string_view purpose) {
   return dir.parent_path() / fmt::format(".{}.{}-{}-{}", dir.filename().string(), purpose, ::getpid(), counter++);
 }
 
-std::optional<std::string> writeStaged(const fs::path& staging, const FileSet& files) {
+Expected<void, Failure> writeStaged(const fs::path& staging, const FileSet& files) {
   std::error_code ec;
   if (!fs::create_directory(staging, ec) || ec) {
-    return fmt::format("cannot create '{}': {}", staging.string(), ec ? ec.message() : "it already exists");
+    return Failure{fmt::format("cannot create '{}': {}", staging.string(), ec ? ec.message() : "it already exists")};
   }
   for (const auto& [name, contents] : files) {
-    if (auto error = writeFileAtomically((staging / name).string(), contents)) return error;
+    if (auto written = writeFileAtomically((staging / name).string(), contents); !written) return written;
   }
-  return std::nullopt;
+  return {};
 }
 
 // Puts `staging` in the place of the existing `dir` and returns where the old
 // contents went. RENAME_EXCHANGE swaps the two in one step; where the file
 // system lacks it, two renames leave `dir` missing for an instant but never
 // mixed, and a failed second rename puts the old contents back.
-std::optional<std::string> swapIn(const fs::path& staging, const fs::path& dir, fs::path& old) {
+Expected<fs::path, Failure> swapIn(const fs::path& staging, const fs::path& dir) {
   if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
-    old = staging;
-    return std::nullopt;
+    return staging;
   }
   if (errno != EINVAL && errno != ENOSYS) {
-    return fmt::format("cannot replace '{}': {}", dir.string(), std::strerror(errno));
+    return Failure{fmt::format("cannot replace '{}': {}", dir.string(), std::strerror(errno))};
   }
   const fs::path aside = stagingPath(dir, "old");
   std::error_code ec;
   fs::rename(dir, aside, ec);
-  if (ec) return fmt::format("cannot replace '{}': {}", dir.string(), ec.message());
+  if (ec) return Failure{fmt::format("cannot replace '{}': {}", dir.string(), ec.message())};
   fs::rename(staging, dir, ec);
   if (ec) {
     std::error_code ignored;
     fs::rename(aside, dir, ignored);
-    return fmt::format("cannot replace '{}': {}", dir.string(), ec.message());
+    return Failure{fmt::format("cannot replace '{}': {}", dir.string(), ec.message())};
   }
-  old = aside;
-  return std::nullopt;
+  return aside;
 }
 
 }  // namespace
 
-std::optional<std::string> replaceDirectoryAtomically(const std::string& path, const FileSet& files) {
+Expected<void, Failure> replaceDirectoryAtomically(const std::string& path, const FileSet& files) {
   const fs::path dir = fs::absolute(path).lexically_normal();
   std::error_code ec;
   fs::create_directories(dir.parent_path(), ec);
-  if (ec) return fmt::format("cannot create directory '{}': {}", dir.parent_path().string(), ec.message());
+  if (ec) return Failure{fmt::format("cannot create directory '{}': {}", dir.parent_path().string(), ec.message())};
   const bool exists = fs::exists(fs::symlink_status(dir, ec));
   if (exists && !fs::is_directory(fs::symlink_status(dir, ec))) {
-    return fmt::format("cannot write '{}': it exists and is not a directory", dir.string());
+    return Failure{fmt::format("cannot write '{}': it exists and is not a directory", dir.string())};
   }
   const fs::path staging = stagingPath(dir, "new");
-  auto error = writeStaged(staging, files);
-  fs::path old;
-  if (!error && exists) {
-    error = swapIn(staging, dir, old);
-  } else if (!error) {
-    fs::rename(staging, dir, ec);
-    if (ec) error = fmt::format("cannot create '{}': {}", dir.string(), ec.message());
+  if (auto staged = writeStaged(staging, files); !staged) {
+    fs::remove_all(staging, ec);
+    return staged;
   }
-  fs::remove_all(error ? staging : old, ec);
-  return error;
+  if (!exists) {
+    fs::rename(staging, dir, ec);
+    if (!ec) return {};
+    fs::remove_all(staging, ec);
+    return Failure{fmt::format("cannot create '{}': {}", dir.string(), ec.message())};
+  }
+  auto old = swapIn(staging, dir);
+  fs::remove_all(old ? *old : staging, ec);
+  if (!old) return old.error();
+  return {};
 }
 
 }  // namespace spire

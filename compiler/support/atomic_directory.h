@@ -2,10 +2,11 @@
 // one, never a mix (a kernel beside the reflection of another variant).
 #pragma once
 
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "support/expected.h"
 
 namespace spire {
 
@@ -15,6 +16,6 @@ using FileSet = std::vector<std::pair<std::string, std::string>>;  // file name 
 // staging directory beside `dir`, which is then exchanged with `dir` in one
 // rename, and the old contents are removed. On failure `dir` is untouched,
 // nothing is left beside it, and the message says why.
-std::optional<std::string> replaceDirectoryAtomically(const std::string& dir, const FileSet& files);
+Expected<void, Failure> replaceDirectoryAtomically(const std::string& dir, const FileSet& files);
 
 }  // namespace spire

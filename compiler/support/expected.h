@@ -1,13 +1,22 @@
 // A value or an error, for code that reports failures as values rather than
 // exceptions or aborts (GCC 12 has no std::expected). Each layer names its own
 // error type: the Vulkan layer a VkError that carries the VkResult, the engine
-// an error with a scene-file range, the scene loaders a message.
+// an error with a scene-file range, the compiler a CompileError with its
+// diagnostics. Layers whose failures are a message for a person and nothing
+// more (file I/O, the scene loaders, the tuner's files) use Failure.
 #pragma once
 
+#include <string>
 #include <utility>
 #include <variant>
 
 namespace spire {
+
+// A failure that is only a message. Wrapping it keeps Expected<std::string,
+// Failure> unambiguous.
+struct Failure {
+  std::string message;
+};
 
 template <class T, class E>
 class [[nodiscard]] Expected {

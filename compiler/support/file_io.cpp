@@ -69,11 +69,11 @@ Expected<std::string, std::error_code> readThrough(const FileReader& reader, con
   return std::make_error_code(std::errc::no_such_file_or_directory);
 }
 
-std::optional<std::string> writeFileAtomically(const std::string& path, std::string_view contents) {
+Expected<void, Failure> writeFileAtomically(const std::string& path, std::string_view contents) {
   namespace fs = std::filesystem;
   const fs::path target(path);
   const auto failure = [&](const std::error_code& error) {
-    return fmt::format("cannot write '{}': {}", path, error.message());
+    return Failure{fmt::format("cannot write '{}': {}", path, error.message())};
   };
   // The temporary lives in the target's directory so the rename stays on one
   // file system and is atomic.
@@ -84,7 +84,7 @@ std::optional<std::string> writeFileAtomically(const std::string& path, std::str
   if (std::fwrite(contents.data(), 1, contents.size(), file) != contents.size()) error = lastError();
   if (std::fclose(file) != 0 && !error) error = lastError();
   if (!error) fs::rename(temp, target, error);
-  if (!error) return std::nullopt;
+  if (!error) return {};
   std::error_code ignored;
   fs::remove(temp, ignored);
   return failure(error);

@@ -29,7 +29,7 @@ using FileReader = std::function<std::optional<std::string>(const std::string& p
 Expected<std::string, std::error_code> readThrough(const FileReader& reader, const std::string& path);
 
 // Writes `contents` to a temporary file next to `path` and renames it over
-// `path`. Returns an error message on failure; the target is then untouched.
-std::optional<std::string> writeFileAtomically(const std::string& path, std::string_view contents);
+// `path`. On failure the target is untouched and the message says why.
+Expected<void, Failure> writeFileAtomically(const std::string& path, std::string_view contents);
 
 }  // namespace spire

@@ -269,8 +269,8 @@ std::optional<int> writeOutputs(const Options& options, engine::ToolRun& run, co
   if (ec) return run.fail(fmt::format("cannot create '{}': {}", options.outputDir, ec.message()));
   if (const auto status = writeImages(run, options.outputDir, results, rows)) return status;
   const std::string report = reportText(options, run, plan, results, rows);
-  if (auto error = writeFileAtomically((fs::path(options.outputDir) / "report.md").string(), report)) {
-    return run.fail(*error);
+  if (auto written = writeFileAtomically((fs::path(options.outputDir) / "report.md").string(), report); !written) {
+    return run.fail(written.error().message);
   }
   std::string names;
   for (const VariantResult& result : results) names += (names.empty() ? "" : ",") + result.name;

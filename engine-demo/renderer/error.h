@@ -14,6 +14,8 @@ namespace spire::engine {
 struct Error {
   Error(std::string text = {}, SourceRange where = {}, std::string extra = {})  // NOLINT(google-explicit-constructor)
       : message(std::move(text)), range(where), details(std::move(extra)) {}
+  // The scene loaders' and the file writers' failures are messages only.
+  Error(const Failure& failure) : message(failure.message) {}  // NOLINT(google-explicit-constructor)
 
   std::string message;
   SourceRange range;  // invalid when the error is not about a scene-file value

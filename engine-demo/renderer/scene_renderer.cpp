@@ -154,7 +154,7 @@ const GpuMesh* SceneRenderer::meshFor(const std::string& name, SourceRange range
   }
   auto mesh = scene::buildMesh(*desc);
   if (!mesh) {
-    diags_.report(DiagCode::E7101, desc->range, fmt::format("mesh '{}': {}", name, mesh.error()));
+    diags_.report(DiagCode::E7101, desc->range, fmt::format("mesh '{}': {}", name, mesh.error().message));
     return nullptr;
   }
   auto uploaded = uploadMesh(ctx_, std::move(mesh).value());
@@ -174,7 +174,7 @@ const GpuTexture* SceneRenderer::textureFor(const std::string& name, SourceRange
   }
   auto image = scene::buildTexture(*desc, scene_);
   if (!image) {
-    diags_.report(DiagCode::E7101, desc->range, fmt::format("texture '{}': {}", name, image.error()));
+    diags_.report(DiagCode::E7101, desc->range, fmt::format("texture '{}': {}", name, image.error().message));
     return nullptr;
   }
   auto uploaded = uploadTexture(ctx_, *image, desc->clamp);

@@ -236,37 +236,62 @@ struct Walker {
   const tinygltf::Model& model;
   std::vector<Mesh> meshes;
 
-  std::optional<std::string> visit(int nodeIndex, const glm::mat4& parent, size_t depth) {
+  Expected<void> visit(int nodeIndex, const glm::mat4& parent, size_t depth) {
     if (nodeIndex < 0 || static_cast<size_t>(nodeIndex) >= model.nodes.size()) {
-      return "node " + std::to_string(nodeIndex) + " is out of range";
+      return Error{"node " + std::to_string(nodeIndex) + " is out of range"};
     }
     // A valid hierarchy is a forest, so a path longer than the node count
     // means a cycle; stopping here prevents unbounded recursion.
-    if (depth > model.nodes.size()) return std::string("node hierarchy contains a cycle");
+    if (depth > model.nodes.size()) return Error{"node hierarchy contains a cycle"};
     const tinygltf::Node& node = model.nodes[static_cast<size_t>(nodeIndex)];
     glm::mat4 world = parent * localTransform(node);
     if (node.mesh >= 0) {
-      if (static_cast<size_t>(node.mesh) >= model.meshes.size()) return "node mesh index is out of range";
-      if (auto error = addMesh(node.mesh, world)) return error;
+      if (static_cast<size_t>(node.mesh) >= model.meshes.size()) return Error{"node mesh index is out of range"};
+      if (auto added = addMesh(node.mesh, world); !added) return added;
     }
     for (int child : node.children) {
-      if (auto error = visit(child, world, depth + 1)) return error;
+      if (auto visited = visit(child, world, depth + 1); !visited) return visited;
     }
-    return std::nullopt;
+    return {};
   }
 
-  std::optional<std::string> addMesh(int meshIndex, const glm::mat4& transform) {
+  Expected<void> addMesh(int meshIndex, const glm::mat4& transform) {
     const tinygltf::Mesh& source = model.meshes[static_cast<size_t>(meshIndex)];
     std::string baseName = source.name.empty() ? "mesh" + std::to_string(meshIndex) : source.name;
     for (size_t p = 0; p < source.primitives.size(); ++p) {
       std::string name = source.primitives.size() == 1 ? baseName : baseName + "/" + std::to_string(p);
       auto mesh = convertPrimitive(model, source.primitives[p], transform, name);
-      if (!mesh) return "mesh '" + name + "': " + mesh.error();
+      if (!mesh) return Error{"mesh '" + name + "': " + mesh.error().message};
       meshes.push_back(std::move(mesh).value());
     }
-    return std::nullopt;
+    return {};
   }
 };
+
+// The meshes of the default scene (or of every scene when none is the
+// default); a file without scenes contributes all its meshes untransformed.
+Expected<void> walkScenes(Walker& walker) {
+  const tinygltf::Model& model = walker.model;
+  const glm::mat4 identity(1.0f);
+  if (model.scenes.empty()) {
+    for (size_t m = 0; m < model.meshes.size(); ++m) {
+      if (auto added = walker.addMesh(static_cast<int>(m), identity); !added) return added;
+    }
+    return {};
+  }
+  size_t first = 0;
+  size_t last = model.scenes.size();
+  if (model.defaultScene >= 0 && static_cast<size_t>(model.defaultScene) < model.scenes.size()) {
+    first = static_cast<size_t>(model.defaultScene);
+    last = first + 1;
+  }
+  for (size_t s = first; s < last; ++s) {
+    for (int root : model.scenes[s].nodes) {
+      if (auto visited = walker.visit(root, identity, 0); !visited) return visited;
+    }
+  }
+  return {};
+}
 
 // tinygltf's image callback. Decoding is deferred to loadGltfImage so that
 // loading meshes decodes no images at all, and because tinygltf hands over a
@@ -338,27 +363,7 @@ Expected<std::vector<Mesh>> loadGltf(const std::filesystem::path& path) {
   const tinygltf::Model& model = *parsed;
 
   Walker walker{model, {}};
-  glm::mat4 identity(1.0f);
-  std::optional<std::string> walkError;
-  if (model.scenes.empty()) {
-    for (size_t m = 0; m < model.meshes.size() && !walkError; ++m) {
-      walkError = walker.addMesh(static_cast<int>(m), identity);
-    }
-  } else {
-    size_t first = 0;
-    size_t last = model.scenes.size();
-    if (model.defaultScene >= 0 && static_cast<size_t>(model.defaultScene) < model.scenes.size()) {
-      first = static_cast<size_t>(model.defaultScene);
-      last = first + 1;
-    }
-    for (size_t s = first; s < last && !walkError; ++s) {
-      for (int root : model.scenes[s].nodes) {
-        walkError = walker.visit(root, identity, 0);
-        if (walkError) break;
-      }
-    }
-  }
-  if (walkError) return Error{prefix + *walkError};
+  if (auto walked = walkScenes(walker); !walked) return Error{prefix + walked.error().message};
   return std::move(walker.meshes);
 }
 
@@ -375,7 +380,7 @@ Expected<Image> loadGltfImage(const std::filesystem::path& path, uint32_t index)
   size_t size = source.image.size();
   if (source.bufferView >= 0) {
     auto view = bufferViewBytes(model, source.bufferView);
-    if (!view) return Error{prefix + view.error()};
+    if (!view) return Error{prefix + view.error().message};
     std::tie(bytes, size) = *view;
   } else if (source.image.empty()) {
     // tinygltf keeps only the URI of an external image it could not read.

@@ -1,6 +1,7 @@
 #include "scene/texture.h"
 
 #include "scene/noise.h"
+#include "support/file_io.h"
 
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
@@ -12,8 +13,6 @@
 #include <cmath>
 #include <memory>
 #include <system_error>
-
-#include <unistd.h>
 
 namespace spire::scene {
 namespace {
@@ -144,25 +143,16 @@ Expected<void> writePng(const std::filesystem::path& path, const Image& image) {
     return Error{"cannot write PNG '" + path.string() + "': image is empty or its pixel data does not match " +
                  std::to_string(image.width) + "x" + std::to_string(image.height) + " RGBA8"};
   }
-  // Same directory as the target so the rename stays within one filesystem
-  // (and is atomic); the pid keeps concurrent writers from sharing a temp file.
-  std::filesystem::path temp = path;
-  temp += ".tmp" + std::to_string(::getpid());
-  int stride = static_cast<int>(image.width) * 4;
-  if (stbi_write_png(temp.c_str(), static_cast<int>(image.width), static_cast<int>(image.height), 4,
-                     image.rgba8.data(), stride) == 0) {
-    std::error_code ignored;
-    std::filesystem::remove(temp, ignored);
-    return Error{"cannot write PNG '" + path.string() + "': failed to write temporary file '" + temp.string() +
-                 "'"};
+  std::string encoded;
+  const auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<size_t>(size));
+  };
+  const int stride = static_cast<int>(image.width) * 4;
+  if (stbi_write_png_to_func(append, &encoded, static_cast<int>(image.width), static_cast<int>(image.height), 4,
+                             image.rgba8.data(), stride) == 0) {
+    return Error{"cannot write PNG '" + path.string() + "': the encoder failed"};
   }
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(temp, ignored);
-    return Error{"cannot write PNG '" + path.string() + "': " + ec.message()};
-  }
+  if (auto written = writeFileAtomically(path.string(), encoded); !written) return written;
   return {};
 }
 

@@ -36,7 +36,7 @@ Expected<std::vector<Capture>> renderViews(engine::SceneRenderer& renderer, size
 
 Expected<double> viewsRmse(const std::vector<Capture>& reference, const std::vector<Capture>& test) {
   auto error = engine::viewsError(reference, test);
-  if (!error) return Error{error.error(), {}, {}};
+  if (!error) return engine::Error(error.error());
   return error->rmse;
 }
 

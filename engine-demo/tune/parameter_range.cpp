@@ -34,14 +34,12 @@ std::vector<ParameterSample> parameterSamples(const std::vector<ParameterRange>&
 
 // Parses NAME=MIN:MAX against the instance's material, which gives the
 // value's arity (every component of a vector gets the same range).
-std::optional<ParameterRange> parseParameter(const std::string& text, const scene::InstanceDesc& instance,
-                                             std::string& error) {
+Expected<ParameterRange, Failure> parseParameter(const std::string& text, const scene::InstanceDesc& instance) {
   const size_t equals = text.find('=');
   const size_t colon = text.find(':', equals == std::string::npos ? 0 : equals);
   ParameterRange range;
   if (equals == std::string::npos || colon == std::string::npos) {
-    error = fmt::format("--param '{}': expected NAME=MIN:MAX", text);
-    return std::nullopt;
+    return Failure{fmt::format("--param '{}': expected NAME=MIN:MAX", text)};
   }
   range.component = text.substr(0, equals);
   const std::string low = text.substr(equals + 1, colon - equals - 1);
@@ -50,8 +48,7 @@ std::optional<ParameterRange> parseParameter(const std::string& text, const scen
   const auto [highEnd, highError] = std::from_chars(high.data(), high.data() + high.size(), range.maximum);
   if (lowError != std::errc{} || highError != std::errc{} || lowEnd != low.data() + low.size() ||
       highEnd != high.data() + high.size() || !(range.minimum <= range.maximum)) {
-    error = fmt::format("--param '{}': MIN and MAX must be numbers with MIN <= MAX", text);
-    return std::nullopt;
+    return Failure{fmt::format("--param '{}': MIN and MAX must be numbers with MIN <= MAX", text)};
   }
   for (const scene::MaterialBinding& binding : instance.material) {
     if (binding.component == range.component && !binding.texture) {
@@ -59,8 +56,7 @@ std::optional<ParameterRange> parseParameter(const std::string& text, const scen
       return range;
     }
   }
-  error = fmt::format("--param '{}': the instance's material binds no numbers to '{}'", text, range.component);
-  return std::nullopt;
+  return Failure{fmt::format("--param '{}': the instance's material binds no numbers to '{}'", text, range.component)};
 }
 
 }  // namespace spire::tune

@@ -11,6 +11,7 @@
 
 #include "scene/scene_file.h"
 #include "tune/tuner.h"
+#include "support/expected.h"
 
 namespace spire::tune {
 
@@ -29,7 +30,6 @@ std::vector<ParameterSample> parameterSamples(const std::vector<ParameterRange>&
 
 // Parses NAME=MIN:MAX against the instance's material, which gives the
 // value's arity (every component of a vector gets the same range).
-std::optional<ParameterRange> parseParameter(const std::string& text, const scene::InstanceDesc& instance,
-                                             std::string& error);
+Expected<ParameterRange, Failure> parseParameter(const std::string& text, const scene::InstanceDesc& instance);
 
 }  // namespace spire::tune

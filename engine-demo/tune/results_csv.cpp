@@ -88,17 +88,16 @@ std::string csvRow(const VariantResult& r) {
   return row;
 }
 
-std::optional<std::vector<VariantResult>> readResults(const std::filesystem::path& path,
-                                                      const std::vector<std::string>& components, std::string& error) {
+Expected<std::vector<VariantResult>, Failure> readResults(const std::filesystem::path& path,
+                                                          const std::vector<std::string>& components) {
   std::ifstream in(path);
   std::vector<VariantResult> results;
   if (!in) return results;
   std::string line;
   if (!std::getline(in, line)) return results;
   if (line + "\n" != csvHeader(components)) {
-    error = fmt::format("{}: written by a run over other components; remove it or choose another output directory",
-                        path.string());
-    return std::nullopt;
+    return Failure{fmt::format(
+        "{}: written by a run over other components; remove it or choose another output directory", path.string())};
   }
   const size_t expected = 1 + components.size() + std::size(kTrailing);
   for (size_t lineNumber = 2; std::getline(in, line); ++lineNumber) {
@@ -118,8 +117,7 @@ std::optional<std::vector<VariantResult>> readResults(const std::filesystem::pat
     const auto nan = parseCount(f[i + 7]);
     const auto inf = parseCount(f[i + 8]);
     if (!index || !frame || !first || !prebake || !rmse || !psnr || !maxError || !nan || !inf) {
-      error = fmt::format("{}:{}: malformed row", path.string(), lineNumber);
-      return std::nullopt;
+      return Failure{fmt::format("{}:{}: malformed row", path.string(), lineNumber)};
     }
     r.index = *index;
     r.placements.assign(f.begin() + 1, f.begin() + 1 + static_cast<std::ptrdiff_t>(components.size()));

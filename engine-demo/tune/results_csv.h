@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "support/expected.h"
+
 namespace spire::tune {
 
 struct VariantResult {
@@ -41,7 +43,7 @@ std::string csvRow(const VariantResult& result);
 
 // Reads rows written with the same components; rows of another run (a
 // different header) are an error, as is a malformed row.
-std::optional<std::vector<VariantResult>> readResults(const std::filesystem::path& path,
-                                                      const std::vector<std::string>& components, std::string& error);
+Expected<std::vector<VariantResult>, Failure> readResults(const std::filesystem::path& path,
+                                                          const std::vector<std::string>& components);
 
 }  // namespace spire::tune

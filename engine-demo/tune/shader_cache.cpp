@@ -19,20 +19,20 @@ ShaderCacheSetting::~ShaderCacheSetting() {
   if (!directory_.empty()) fs::remove_all(directory_, ec);
 }
 
-std::optional<std::string> ShaderCacheSetting::apply(const std::string& mode) {
-  if (mode == "inherit") return std::nullopt;
+Expected<void, Failure> ShaderCacheSetting::apply(const std::string& mode) {
+  if (mode == "inherit") return {};
   if (mode == "off") {
     set("MESA_SHADER_CACHE_DISABLE", "true");
-    return std::nullopt;
+    return {};
   }
   std::string pattern = (fs::temp_directory_path() / "spire-tune-shader-cache.XXXXXX").string();
   if (::mkdtemp(pattern.data()) == nullptr) {
-    return fmt::format("cannot create a shader cache directory like '{}': {}", pattern, std::strerror(errno));
+    return Failure{fmt::format("cannot create a shader cache directory like '{}': {}", pattern, std::strerror(errno))};
   }
   directory_ = pattern;
   set("MESA_SHADER_CACHE_DISABLE", "false");
   set("MESA_SHADER_CACHE_DIR", pattern);
-  return std::nullopt;
+  return {};
 }
 
 void ShaderCacheSetting::set(const std::string& name, const std::string& value) {

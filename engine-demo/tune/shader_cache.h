@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "support/expected.h"
+
 namespace spire::tune {
 
 // lavapipe's (Mesa's) on-disk shader cache for one run. In mode "run", a
@@ -24,9 +26,9 @@ class ShaderCacheSetting {
   ShaderCacheSetting& operator=(const ShaderCacheSetting&) = delete;
   ~ShaderCacheSetting();
 
-  // Applies `mode` ("run", "off" or "inherit"); the error when the
+  // Applies `mode` ("run", "off" or "inherit"); an error when the
   // directory cannot be made.
-  std::optional<std::string> apply(const std::string& mode);
+  Expected<void, Failure> apply(const std::string& mode);
 
  private:
   void set(const std::string& name, const std::string& value);

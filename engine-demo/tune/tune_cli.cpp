@@ -59,12 +59,13 @@ std::optional<int> measurePoints(const TuneOptions& options, engine::ToolRun& ru
   const size_t chunk = chunkSize(session.space);
   const size_t chunks = (count + chunk - 1) / chunk;
   WorkQueue queue(queuePath(options));
-  std::string queueError;
-  while (const auto next = queue.next(chunks, queueError)) {
-    measureRange(options, session, worker, *next * chunk, (*next + 1) * chunk, progress, finished);
+  while (true) {
+    const auto next = queue.next(chunks);
+    if (!next) return run.fail(next.error().message);
+    if (!next->has_value()) return std::nullopt;
+    const uint64_t taken = **next;
+    measureRange(options, session, worker, taken * chunk, (taken + 1) * chunk, progress, finished);
   }
-  if (!queueError.empty()) return run.fail(queueError);
-  return std::nullopt;
 }
 
 // Measures a shard (see measurePoints) and records where its time went.
@@ -73,8 +74,8 @@ int measureShard(const TuneOptions& options, engine::ToolRun& run, TuneSession& 
   if (const auto status = measurePoints(options, run, session, worker, progress)) return *status;
   const TimeSplit& s = session.tuner->timeSplit();
   const std::string text = fmt::format("{} {} {} {}\n", s.compileMs, s.firstUseMs, s.renderMs, s.errorMs);
-  if (auto failed = writeFileAtomically(splitPath(options, std::max(worker, 0)).string(), text)) {
-    return run.fail(*failed);
+  if (auto written = writeFileAtomically(splitPath(options, std::max(worker, 0)).string(), text); !written) {
+    return run.fail(written.error().message);
   }
   // Exploring variants leaves some material values unused by design, so
   // only errors are worth printing here.
@@ -102,7 +103,7 @@ std::optional<int> measureAll(const TuneOptions& options, engine::ToolRun& run, 
     const int status = measureShard(options, run, session, -1, &progress);
     return status == kExitSuccess ? std::nullopt : std::optional<int>(status);
   }
-  if (const auto failed = WorkQueue::create(queuePath(options))) return run.fail(*failed);
+  if (const auto created = WorkQueue::create(queuePath(options)); !created) return run.fail(created.error().message);
   WorkerPlan plan{workerProgram, args, {}};
   for (uint32_t k = 0; k < options.jobs; ++k) plan.shards.push_back(shardPath(options, static_cast<int>(k)));
   if (!runWorkers(plan, already, total, err)) {
@@ -115,16 +116,15 @@ std::optional<int> measureAll(const TuneOptions& options, engine::ToolRun& run, 
 // One row per point of this run, in index order, as variants.csv.
 std::optional<int> mergeResults(const TuneOptions& options, engine::ToolRun& run, const TuneSession& session,
                                 std::vector<VariantResult>& results) {
-  std::string error;
-  const auto done = loadDone(options, session.components, error);
-  if (!done) return run.fail(error);
+  const auto done = loadDone(options, session.components);
+  if (!done) return run.fail(done.error().message);
   for (const TunePoint& point : session.space.points) {
     if (const auto it = done->find(point.index); it != done->end()) results.push_back(it->second);
   }
   std::string table = csvHeader(session.components);
   for (const VariantResult& r : results) table += csvRow(r);
-  if (auto failed = writeFileAtomically((fs::path(options.outputDir) / "variants.csv").string(), table)) {
-    return run.fail(*failed);
+  if (auto written = writeFileAtomically((fs::path(options.outputDir) / "variants.csv").string(), table); !written) {
+    return run.fail(written.error().message);
   }
   return std::nullopt;
 }
@@ -164,8 +164,8 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   // the cache outlives the device that uses it.
   ShaderCacheSetting shaderCache;
   if (options.worker < 0) {
-    if (const auto failed = shaderCache.apply(options.shaderCache)) {
-      err << fmt::format("spire-tune: error: {}\n", *failed);
+    if (const auto applied = shaderCache.apply(options.shaderCache); !applied) {
+      err << fmt::format("spire-tune: error: {}\n", applied.error().message);
       return kExitInputError;
     }
   }

@@ -58,8 +58,8 @@ std::optional<int> writeFront(const TuneOptions& options, engine::ToolRun& run, 
                               const std::vector<VariantResult>& results, const FrontSummary& summary) {
   std::string frontCsv = csvHeader(session.components);
   for (size_t i : summary.front) frontCsv += csvRow(results[i]);
-  if (auto failed = writeFileAtomically((fs::path(options.outputDir) / "pareto.csv").string(), frontCsv)) {
-    return run.fail(*failed);
+  if (auto written = writeFileAtomically((fs::path(options.outputDir) / "pareto.csv").string(), frontCsv); !written) {
+    return run.fail(written.error().message);
   }
   const scene::Image plot = plotErrorAgainstTime(summary.measured, summary.front);
   if (auto written = scene::writePng(fs::path(options.outputDir) / "plot.png", plot); !written) {
@@ -130,7 +130,7 @@ std::optional<int> writeBest(const TuneOptions& options, engine::ToolRun& run, T
       options.shader, *program,
       fmt::format("{} (variant {}: {:.3f} ms, RMSE {:.4g})", why, best.index, best.frameMs, best.rmse),
       layouts->attributes);
-  if (auto failed = writeFileAtomically((fs::path(options.outputDir) / file).string(), text)) return run.fail(*failed);
+  if (auto written = writeFileAtomically((fs::path(options.outputDir) / file).string(), text); !written) return run.fail(written.error().message);
   out << fmt::format("{}: variant {} ({}) -> {}/{}\n", why, best.index, placementsText(session.components, best),
                      options.outputDir, file);
   return std::nullopt;
@@ -220,8 +220,8 @@ std::optional<int> writeReport(const TuneOptions& options, engine::ToolRun& run,
     report += "\n## Data-layout selection\n\nEach baked output of the chosen variants, analysed in a 32-bit float "
               "bake; the error is what the selected format adds to the image against that bake.\n" + layoutReport;
   }
-  if (auto failed = writeFileAtomically((fs::path(options.outputDir) / "report.md").string(), report)) {
-    return run.fail(*failed);
+  if (auto written = writeFileAtomically((fs::path(options.outputDir) / "report.md").string(), report); !written) {
+    return run.fail(written.error().message);
   }
   return std::nullopt;
 }

@@ -34,9 +34,8 @@ std::optional<int> buildSpace(const TuneOptions& options, engine::ToolRun& run, 
   request.only = options.only;
   request.maxVariants = options.maxVariants;
   request.seed = options.seed;
-  std::string error;
-  auto space = buildTuneSpace((*library)->choices(options.shader), request, error);
-  if (!space) return run.fail({error, session.instance->shaderRange, {}});
+  auto space = buildTuneSpace((*library)->choices(options.shader), request);
+  if (!space) return run.fail({space.error().message, session.instance->shaderRange, {}});
   session.space = std::move(*space);
   for (const Axis& axis : session.space.axes) session.components.push_back(axis.component);
   return std::nullopt;
@@ -49,10 +48,9 @@ std::optional<int> startTuner(const TuneOptions& options, engine::ToolRun& run, 
   else if (!run.scene().variants.empty()) session.reference = run.scene().variants.front().decisions;
   std::vector<ParameterRange> ranges;
   for (const std::string& text : options.params) {
-    std::string error;
-    auto range = parseParameter(text, *session.instance, error);
+    auto range = parseParameter(text, *session.instance);
     if (!range) {
-      err << fmt::format("spire-tune: error: {}\n", error);
+      err << fmt::format("spire-tune: error: {}\n", range.error().message);
       return kExitUsageError;
     }
     ranges.push_back(*range);
@@ -70,9 +68,8 @@ std::optional<int> openOutput(const TuneOptions& options, engine::ToolRun& run, 
   std::error_code ec;
   fs::create_directories(options.outputDir, ec);
   if (ec) return run.fail(fmt::format("cannot create '{}': {}", options.outputDir, ec.message()));
-  std::string error;
-  auto done = loadDone(options, session.components, error);
-  if (!done) return run.fail(error);
+  auto done = loadDone(options, session.components);
+  if (!done) return run.fail(done.error().message);
   session.done = std::move(*done);
   return std::nullopt;
 }
@@ -100,9 +97,8 @@ fs::path splitPath(const TuneOptions& options, int worker) {
 
 fs::path queuePath(const TuneOptions& options) { return fs::path(options.outputDir) / "work-queue"; }
 
-std::optional<std::map<uint64_t, VariantResult>> loadDone(const TuneOptions& options,
-                                                         const std::vector<std::string>& components,
-                                                         std::string& error) {
+Expected<std::map<uint64_t, VariantResult>, Failure> loadDone(const TuneOptions& options,
+                                                              const std::vector<std::string>& components) {
   std::map<uint64_t, VariantResult> done;
   std::vector<fs::path> files{fs::path(options.outputDir) / "variants.csv"};
   if (fs::exists(options.outputDir)) {
@@ -112,8 +108,8 @@ std::optional<std::map<uint64_t, VariantResult>> loadDone(const TuneOptions& opt
     }
   }
   for (const fs::path& file : files) {
-    auto rows = readResults(file, components, error);
-    if (!rows) return std::nullopt;
+    auto rows = readResults(file, components);
+    if (!rows) return rows.error();
     for (VariantResult& row : *rows) done[row.index] = std::move(row);
   }
   return done;

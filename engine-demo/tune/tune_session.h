@@ -43,11 +43,10 @@ std::filesystem::path splitPath(const TuneOptions& options, int worker);  // wor
 std::filesystem::path queuePath(const TuneOptions& options);
 
 // Rows already measured: the merged table of an earlier run plus any shard a
-// worker appended to before an interruption. nullopt (and `error`) when one
-// is of another run or malformed.
-std::optional<std::map<uint64_t, VariantResult>> loadDone(const TuneOptions& options,
-                                                         const std::vector<std::string>& components,
-                                                         std::string& error);
+// worker appended to before an interruption. An error when one is of another
+// run or malformed.
+Expected<std::map<uint64_t, VariantResult>, Failure> loadDone(const TuneOptions& options,
+                                                              const std::vector<std::string>& components);
 
 // Appends `result` to the CSV at `path`, with the header when it is new.
 void appendRow(const std::filesystem::path& path, const std::vector<std::string>& components,

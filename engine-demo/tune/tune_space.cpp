@@ -38,8 +38,7 @@ TunePoint pointAt(const std::vector<Axis>& axes, uint64_t index) {
   return point;
 }
 
-std::optional<TuneSpace> buildTuneSpace(const std::vector<graph::Choice>& choices, const SpaceRequest& request,
-                                        std::string& error) {
+Expected<TuneSpace, Failure> buildTuneSpace(const std::vector<graph::Choice>& choices, const SpaceRequest& request) {
   TuneSpace space;
   std::map<std::string, std::string> selected;  // component -> the one world it is restricted to, or ""
   for (const std::string& entry : request.components) {
@@ -58,14 +57,12 @@ std::optional<TuneSpace> buildTuneSpace(const std::vector<graph::Choice>& choice
       if (inWorld && kept(name, request.only)) axis.placements.push_back(name);
     }
     if (axis.placements.empty()) {
-      error = fmt::format("component '{}' has no placement among the requested worlds and variations", component);
-      return std::nullopt;
+      return Failure{fmt::format("component '{}' has no placement among the requested worlds and variations", component)};
     }
     space.axes.push_back(std::move(axis));
   }
   if (!missing.empty()) {
-    error = fmt::format("'{}' is not a choice of this shader (see spirec --choices)", *missing.begin());
-    return std::nullopt;
+    return Failure{fmt::format("'{}' is not a choice of this shader (see spirec --choices)", *missing.begin())};
   }
   constexpr uint64_t kLimit = uint64_t{1} << 62;
   for (const Axis& axis : space.axes) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "graph/choice_space.h"
+#include "support/expected.h"
 
 namespace spire::tune {
 
@@ -48,8 +49,7 @@ struct SpaceRequest {
 
 // Builds the space from the shader's choices (graph::enumerateChoices).
 // Errors name the component that has no choice or no placement left.
-std::optional<TuneSpace> buildTuneSpace(const std::vector<graph::Choice>& choices, const SpaceRequest& request,
-                                        std::string& error);
+Expected<TuneSpace, Failure> buildTuneSpace(const std::vector<graph::Choice>& choices, const SpaceRequest& request);
 
 // The point at `index` of the full product.
 TunePoint pointAt(const std::vector<Axis>& axes, uint64_t index);

@@ -86,16 +86,16 @@ VariantResult Tuner::measure(const TunePoint& point) {
     return same;
   }
 
-  if (auto failed = measureImages(*programs, result)) {
-    result.status = "failed: " + *failed;
+  if (auto measured = measureImages(*programs, result); !measured) {
+    result.status = "failed: " + measured.error().message;
     return result;
   }
   byKernels_[result.kernels] = result;
   return result;
 }
 
-std::optional<std::string> Tuner::measureImages(const std::vector<engine::VariantProgram>& programs,
-                                                VariantResult& result) {
+engine::Expected<void> Tuner::measureImages(const std::vector<engine::VariantProgram>& programs,
+                                            VariantResult& result) {
   const vk::HostTimer timer;
   measure::ErrorAccumulator accumulated;
   double errorMs = 0.0;
@@ -104,17 +104,19 @@ std::optional<std::string> Tuner::measureImages(const std::vector<engine::Varian
     renderer_.setParameterOverrides(parameterSamples[s]);
     auto prepared = renderer_.prepare(programs);
     renderer_.setParameterOverrides({});
-    if (!prepared) return prepared.error().message;
+    if (!prepared) return prepared.error();
     if (s == 0) {
       for (const engine::BakeRecord& bake : prepared->bakes) result.prebakeMs += bake.reused ? 0.0 : bake.milliseconds;
     }
-    if (auto failed = compareViews(*prepared, s, parameterSamples[s], result, accumulated, errorMs)) return failed;
+    if (auto compared = compareViews(*prepared, s, parameterSamples[s], result, accumulated, errorMs); !compared) {
+      return compared;
+    }
     if (s == 0) {
       // The captures above were the warm-up: only what the option asks for
       // beyond them is rendered before the measured frames.
       const auto views = static_cast<uint32_t>(renderer_.scene().camera.views.size());
       auto stats = renderer_.measure(*prepared, unmeasuredFrames() - views, options_.frames);
-      if (!stats) return stats.error().message;
+      if (!stats) return stats.error();
       result.frameMs = stats->medianGpuMs;
     }
   }
@@ -126,16 +128,16 @@ std::optional<std::string> Tuner::measureImages(const std::vector<engine::Varian
   result.maxError = total.maxError;
   result.nanPixels = total.nanPixels;
   result.infPixels = total.infPixels;
-  return std::nullopt;
+  return {};
 }
 
-std::optional<std::string> Tuner::compareViews(const engine::PreparedScene& prepared, size_t s,
-                                               const ParameterSample& sample, VariantResult& result,
-                                               measure::ErrorAccumulator& accumulated, double& errorMs) {
+engine::Expected<void> Tuner::compareViews(const engine::PreparedScene& prepared, size_t s,
+                                           const ParameterSample& sample, VariantResult& result,
+                                           measure::ErrorAccumulator& accumulated, double& errorMs) {
   const auto& views = renderer_.scene().camera.views;
   for (size_t v = 0; v < views.size(); ++v) {
     auto capture = renderer_.capture(prepared, views[v]);
-    if (!capture) return capture.error().message;
+    if (!capture) return capture.error();
     // The first frame of a variant is its first use: lavapipe compiles the
     // kernels at the first draw.
     if (s == 0 && v == 0) {
@@ -145,7 +147,7 @@ std::optional<std::string> Tuner::compareViews(const engine::PreparedScene& prep
     const vk::HostTimer errorTimer;
     auto error = engine::viewError(reference_[s][v], *capture);
     errorMs += errorTimer.elapsedMs();
-    if (!error) return error.error();
+    if (!error) return engine::Error(error.error());
     accumulated.add(*error);
     if (result.hazardInputs.empty() && error->nanPixels + error->infPixels > 0) {
       result.hazardInputs = fmt::format("camera view {}", v);
@@ -154,7 +156,7 @@ std::optional<std::string> Tuner::compareViews(const engine::PreparedScene& prep
       }
     }
   }
-  return std::nullopt;
+  return {};
 }
 
 uint32_t Tuner::unmeasuredFrames() const {

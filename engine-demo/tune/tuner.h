@@ -63,13 +63,12 @@ class Tuner {
  private:
   // The images and times of a variant that is not measured yet: its bakes,
   // every camera view under every parameter sample against the reference,
-  // and its frame time under the first. The error message on failure.
-  std::optional<std::string> measureImages(const std::vector<engine::VariantProgram>& programs, VariantResult& result);
+  // and its frame time under the first.
+  engine::Expected<void> measureImages(const std::vector<engine::VariantProgram>& programs, VariantResult& result);
   // The views of `prepared` (under sample `s`) against the reference's,
   // added to `accumulated`; the first capture of sample 0 is the first use.
-  std::optional<std::string> compareViews(const engine::PreparedScene& prepared, size_t s,
-                                          const ParameterSample& sample, VariantResult& result,
-                                          measure::ErrorAccumulator& accumulated, double& errorMs);
+  engine::Expected<void> compareViews(const engine::PreparedScene& prepared, size_t s, const ParameterSample& sample,
+                                      VariantResult& result, measure::ErrorAccumulator& accumulated, double& errorMs);
   engine::Expected<std::vector<engine::VariantProgram>> programsFor(const TunePoint& point, std::vector<std::string>* skipped);
 
   engine::SceneRenderer& renderer_;

@@ -33,30 +33,27 @@ class FileDescriptor {
 
 }  // namespace
 
-std::optional<std::string> WorkQueue::create(const std::filesystem::path& path) {
+Expected<void, Failure> WorkQueue::create(const std::filesystem::path& path) {
   return writeFileAtomically(path.string(), "0\n");
 }
 
-std::optional<uint64_t> WorkQueue::next(uint64_t chunks, std::string& error) {
+Expected<std::optional<uint64_t>, Failure> WorkQueue::next(uint64_t chunks) {
   const FileDescriptor file(::open(path_.c_str(), O_RDWR | O_CLOEXEC));
   if (file.get() < 0 || ::flock(file.get(), LOCK_EX) != 0) {
-    error = fmt::format("cannot use the work queue '{}': {}", path_.string(), std::strerror(errno));
-    return std::nullopt;
+    return Failure{fmt::format("cannot use the work queue '{}': {}", path_.string(), std::strerror(errno))};
   }
   char text[32] = {};
   const ssize_t length = ::pread(file.get(), text, sizeof text - 1, 0);
   uint64_t chunk = 0;
   if (length <= 0 || std::from_chars(text, text + length, chunk).ec != std::errc{}) {
-    error = fmt::format("the work queue '{}' is corrupt", path_.string());
-    return std::nullopt;
+    return Failure{fmt::format("the work queue '{}' is corrupt", path_.string())};
   }
-  if (chunk >= chunks) return std::nullopt;
+  if (chunk >= chunks) return std::optional<uint64_t>();
   const std::string advanced = fmt::format("{}\n", chunk + 1);
   if (::pwrite(file.get(), advanced.data(), advanced.size(), 0) != static_cast<ssize_t>(advanced.size())) {
-    error = fmt::format("cannot write the work queue '{}': {}", path_.string(), std::strerror(errno));
-    return std::nullopt;
+    return Failure{fmt::format("cannot write the work queue '{}': {}", path_.string(), std::strerror(errno))};
   }
-  return chunk;
+  return std::optional<uint64_t>(chunk);
 }
 
 }  // namespace spire::tune

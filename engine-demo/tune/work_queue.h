@@ -15,18 +15,20 @@
 #include <optional>
 #include <string>
 
+#include "support/expected.h"
+
 namespace spire::tune {
 
 class WorkQueue {
  public:
   // Starts a queue at chunk 0 (the coordinator, before the workers start).
-  static std::optional<std::string> create(const std::filesystem::path& path);
+  static Expected<void, Failure> create(const std::filesystem::path& path);
 
   explicit WorkQueue(std::filesystem::path path) : path_(std::move(path)) {}
 
-  // The next chunk below `chunks`, or nullopt when all are taken. `error`
-  // is set when the file cannot be read or locked.
-  std::optional<uint64_t> next(uint64_t chunks, std::string& error);
+  // The next chunk below `chunks`, or nullopt when all are taken; an error
+  // when the file cannot be read, locked or written.
+  Expected<std::optional<uint64_t>, Failure> next(uint64_t chunks);
 
  private:
   std::filesystem::path path_;

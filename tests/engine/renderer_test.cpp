@@ -88,7 +88,7 @@ class RendererTest : public vk::testing::DeviceTest {
   // The error of `test` against `reference` over pixels either covers.
   static measure::ImageError compare(const Capture& reference, const Capture& test) {
     auto error = engine::viewError(reference, test);
-    EXPECT_TRUE(error) << error.error();
+    EXPECT_TRUE(error) << error.error().message;
     return error ? *error : measure::ImageError{};
   }
 
@@ -121,7 +121,7 @@ class RendererTest : public vk::testing::DeviceTest {
       return;
     }
     auto expected = scene::loadImage(golden);
-    ASSERT_TRUE(expected) << expected.error() << "; run with SPIRE_UPDATE_GOLDENS=1";
+    ASSERT_TRUE(expected) << expected.error().message << "; run with SPIRE_UPDATE_GOLDENS=1";
     ASSERT_EQ(expected->width, image.width);
     ASSERT_EQ(expected->height, image.height);
     size_t differing = 0;

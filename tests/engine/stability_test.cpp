@@ -589,7 +589,7 @@ size_t coveredPixels(const Capture& capture) {
 // pixels with measure::compareImages.
 measure::ImageError hazardsOf(const Capture& capture) {
   auto error = measure::compareImages(capture.color, capture.color, &capture.coverage);
-  EXPECT_TRUE(error) << error.error();
+  EXPECT_TRUE(error) << error.error().message;
   return error ? *error : measure::ImageError{};
 }
 

@@ -18,7 +18,7 @@ Capture capture(float value, std::vector<uint8_t> coverage) {
 
 TEST(ViewError, CountsPixelsEitherImageCovers) {
   const auto error = viewError(capture(0.0F, {1, 0}), capture(0.5F, {0, 1}));
-  ASSERT_TRUE(error) << error.error();
+  ASSERT_TRUE(error) << error.error().message;
   EXPECT_EQ(error->coveredPixels, 2U);
   EXPECT_DOUBLE_EQ(error->rmse, 0.5);
   const auto none = viewError(capture(0.0F, {0, 0}), capture(0.5F, {0, 0}));
@@ -30,7 +30,7 @@ TEST(ViewError, CombinesViewsOverAllTheirPixels) {
   const std::vector<Capture> reference{capture(0.0F, {1, 1}), capture(0.0F, {1, 0})};
   const std::vector<Capture> test{capture(0.0F, {1, 1}), capture(0.3F, {1, 0})};
   const auto error = viewsError(reference, test);
-  ASSERT_TRUE(error) << error.error();
+  ASSERT_TRUE(error) << error.error().message;
   EXPECT_EQ(error->coveredPixels, 3U);
   // One pixel of three is off by 0.3 in every channel.
   EXPECT_NEAR(error->rmse, std::sqrt(0.09 / 3.0), 1e-6);

@@ -22,7 +22,7 @@ Image solid(uint32_t width, uint32_t height, Rgba8 color) {
 
 Image compose(const std::vector<Panel>& panels, ComparisonLayout layout = {.gap = 4, .textScale = 1}) {
   auto image = makeComparisonImage(panels, layout);
-  EXPECT_TRUE(image) << image.error();
+  EXPECT_TRUE(image) << image.error().message;
   return image ? *image : Image{};
 }
 
@@ -145,7 +145,7 @@ TEST(ComparisonImageTest, BadInputsAreErrors) {
   Image broken{4, 4, std::vector<uint8_t>(5)};
   auto inconsistent = makeComparisonImage({{broken, "BROKEN"}});
   ASSERT_FALSE(inconsistent);
-  EXPECT_NE(inconsistent.error().find("BROKEN"), std::string::npos) << inconsistent.error();
+  EXPECT_NE(inconsistent.error().message.find("BROKEN"), std::string::npos) << inconsistent.error().message;
   Image tall{1, 70000, std::vector<uint8_t>(70000 * 4)};
   EXPECT_FALSE(makeComparisonImage({{tall, "TALL"}}));
 }

@@ -29,7 +29,7 @@ void setPixel(FloatImage& image, uint32_t x, uint32_t y, float r, float g, float
 ImageError compare(const FloatImage& reference, const FloatImage& test,
                    const std::vector<uint8_t>* coverage = nullptr) {
   auto error = compareImages(reference, test, coverage);
-  EXPECT_TRUE(error) << error.error();
+  EXPECT_TRUE(error) << error.error().message;
   return error ? *error : ImageError{};
 }
 
@@ -159,8 +159,8 @@ TEST(ImageMetricsTest, MismatchedInputsAreErrors) {
   FloatImage wide = uniform(3, 2, 0.0F, 0.0F, 0.0F);
   auto sizes = compareImages(small, wide, nullptr);
   ASSERT_FALSE(sizes);
-  EXPECT_NE(sizes.error().find("3x2"), std::string::npos) << sizes.error();
-  EXPECT_NE(sizes.error().find("2x2"), std::string::npos) << sizes.error();
+  EXPECT_NE(sizes.error().message.find("3x2"), std::string::npos) << sizes.error().message;
+  EXPECT_NE(sizes.error().message.find("2x2"), std::string::npos) << sizes.error().message;
 
   std::vector<uint8_t> shortMask(3, 1);
   EXPECT_FALSE(compareImages(small, small, &shortMask));

@@ -44,7 +44,7 @@ TEST(GltfTest, BinaryWithTangentsKeepsFileTangents) {
   TempDir dir;
   auto path = writeModel(makeQuadModel({.tangents = true}, ""), dir.path() / "quad.glb", true);
   auto meshes = loadGltf(path);
-  ASSERT_TRUE(meshes) << meshes.error();
+  ASSERT_TRUE(meshes) << meshes.error().message;
   ASSERT_EQ(meshes->size(), 1u);
   const Mesh& mesh = meshes->front();
   EXPECT_EQ(mesh.name, "quad");
@@ -57,7 +57,7 @@ TEST(GltfTest, TextWithSeparateBinComputesTangents) {
   auto path = writeModel(makeQuadModel({}, "quad.bin"), dir.path() / "quad.gltf", false);
   ASSERT_TRUE(std::filesystem::exists(dir.path() / "quad.bin"));
   auto meshes = loadGltf(path);
-  ASSERT_TRUE(meshes) << meshes.error();
+  ASSERT_TRUE(meshes) << meshes.error().message;
   ASSERT_EQ(meshes->size(), 1u);
   expectQuad(meshes->front());
   for (const Vertex& v : meshes->front().vertices) {
@@ -70,7 +70,7 @@ TEST(GltfTest, BinaryWithoutTangentsComputesTangents) {
   TempDir dir;
   auto path = writeModel(makeQuadModel({}, ""), dir.path() / "quad.glb", true);
   auto meshes = loadGltf(path);
-  ASSERT_TRUE(meshes) << meshes.error();
+  ASSERT_TRUE(meshes) << meshes.error().message;
   expectQuad(meshes->front());
   EXPECT_NEAR(meshes->front().vertices[2].tangent.x, 1.0f, kEps);
 }
@@ -80,7 +80,7 @@ TEST(GltfTest, ByteAndIntIndices) {
   for (int type : {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}) {
     auto path = writeModel(makeQuadModel({.indexType = type}, ""), dir.path() / "quad.glb", true);
     auto meshes = loadGltf(path);
-    ASSERT_TRUE(meshes) << meshes.error();
+    ASSERT_TRUE(meshes) << meshes.error().message;
     expectQuad(meshes->front());
   }
 }
@@ -93,7 +93,7 @@ TEST(GltfTest, NonIndexedGetsSequentialIndices) {
   model.accessors[0].maxValues = {1, 1, 0};
   auto path = writeModel(model, dir.path() / "triangle.glb", true);
   auto meshes = loadGltf(path);
-  ASSERT_TRUE(meshes) << meshes.error();
+  ASSERT_TRUE(meshes) << meshes.error().message;
   EXPECT_EQ(meshes->front().vertices.size(), 3u);
   EXPECT_EQ(meshes->front().indices, (std::vector<uint32_t>{0, 1, 2}));
 }
@@ -102,7 +102,7 @@ TEST(GltfTest, MissingNormalsComeFromFaces) {
   TempDir dir;
   auto path = writeModel(makeQuadModel({.normals = false}, ""), dir.path() / "quad.glb", true);
   auto meshes = loadGltf(path);
-  ASSERT_TRUE(meshes) << meshes.error();
+  ASSERT_TRUE(meshes) << meshes.error().message;
   expectQuad(meshes->front());
 }
 
@@ -113,7 +113,7 @@ TEST(GltfTest, NodeTransformIsApplied) {
   QuadOptions options{.tangents = true, .translation = {1, 2, 3}, .rotation = {0, half, 0, half}};
   auto path = writeModel(makeQuadModel(options, ""), dir.path() / "quad.glb", true);
   auto meshes = loadGltf(path);
-  ASSERT_TRUE(meshes) << meshes.error();
+  ASSERT_TRUE(meshes) << meshes.error().message;
   const Mesh& mesh = meshes->front();
   EXPECT_NEAR(glm::distance(mesh.vertices[1].position, glm::vec3(1, 2, 2)), 0.0f, kEps);
   EXPECT_NEAR(glm::distance(mesh.vertices[2].position, glm::vec3(1, 3, 2)), 0.0f, kEps);
@@ -128,7 +128,7 @@ TEST(GltfTest, MirroringTransformKeepsFrontFacesAndHandedness) {
   QuadOptions options{.tangents = true, .scale = {-1, 1, 1}};
   auto path = writeModel(makeQuadModel(options, ""), dir.path() / "quad.glb", true);
   auto meshes = loadGltf(path);
-  ASSERT_TRUE(meshes) << meshes.error();
+  ASSERT_TRUE(meshes) << meshes.error().message;
   const Mesh& mesh = meshes->front();
   EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 2, 1, 0, 3, 2}));
   const glm::vec3& a = mesh.vertices[mesh.indices[0]].position;
@@ -146,7 +146,7 @@ TEST(GltfTest, DoubleSidedComesFromThePrimitivesMaterial) {
   TempDir dir;
   tinygltf::Model model = makeQuadModel({}, "");
   auto meshes = loadGltf(writeModel(model, dir.path() / "default.glb", true));
-  ASSERT_TRUE(meshes) << meshes.error();
+  ASSERT_TRUE(meshes) << meshes.error().message;
   EXPECT_FALSE(meshes->front().doubleSided);
 
   tinygltf::Material material;
@@ -154,12 +154,12 @@ TEST(GltfTest, DoubleSidedComesFromThePrimitivesMaterial) {
   model.materials.push_back(material);
   model.meshes[0].primitives[0].material = 0;
   meshes = loadGltf(writeModel(model, dir.path() / "double_sided.glb", true));
-  ASSERT_TRUE(meshes) << meshes.error();
+  ASSERT_TRUE(meshes) << meshes.error().message;
   EXPECT_TRUE(meshes->front().doubleSided);
 
   model.materials[0].doubleSided = false;
   meshes = loadGltf(writeModel(model, dir.path() / "single_sided.glb", true));
-  ASSERT_TRUE(meshes) << meshes.error();
+  ASSERT_TRUE(meshes) << meshes.error().message;
   EXPECT_FALSE(meshes->front().doubleSided);
 }
 
@@ -168,7 +168,7 @@ TEST(GltfTest, MissingFileErrorNamesPath) {
   auto path = dir.path() / "missing.gltf";
   auto meshes = loadGltf(path);
   ASSERT_FALSE(meshes);
-  EXPECT_NE(meshes.error().find(path.string()), std::string::npos) << meshes.error();
+  EXPECT_NE(meshes.error().message.find(path.string()), std::string::npos) << meshes.error().message;
 }
 
 TEST(GltfTest, CorruptFilesErrorNamesPath) {
@@ -180,7 +180,7 @@ TEST(GltfTest, CorruptFilesErrorNamesPath) {
   for (const auto& path : {text, binary}) {
     auto meshes = loadGltf(path);
     ASSERT_FALSE(meshes) << path;
-    EXPECT_NE(meshes.error().find(path.string()), std::string::npos) << meshes.error();
+    EXPECT_NE(meshes.error().message.find(path.string()), std::string::npos) << meshes.error().message;
   }
 }
 
@@ -194,7 +194,7 @@ TEST(GltfTest, OutOfRangeIndexIsAnError) {
   auto path = writeModel(model, dir.path() / "bad.glb", true);
   auto meshes = loadGltf(path);
   ASSERT_FALSE(meshes);
-  EXPECT_NE(meshes.error().find("out of range"), std::string::npos) << meshes.error();
+  EXPECT_NE(meshes.error().message.find("out of range"), std::string::npos) << meshes.error().message;
 }
 
 void expectContains(const std::string& text, const std::string& part) {
@@ -214,16 +214,16 @@ TEST(GltfImageTest, BufferViewImagesInGlbByIndex) {
   addBufferViewImage(model, encodePng(second));
   auto path = writeModel(model, dir.path() / "textured.glb", true);
   auto first = loadGltfImage(path, 0);
-  ASSERT_TRUE(first) << first.error();
+  ASSERT_TRUE(first) << first.error().message;
   EXPECT_EQ(first->width, 3u);
   EXPECT_EQ(first->height, 2u);
   EXPECT_EQ(first->rgba8, makeTestPixels().rgba8);
   auto other = loadGltfImage(path, 1);
-  ASSERT_TRUE(other) << other.error();
+  ASSERT_TRUE(other) << other.error().message;
   EXPECT_EQ(other->rgba8, second.rgba8);
   // Images do not get in the way of the meshes.
   auto meshes = loadGltf(path);
-  ASSERT_TRUE(meshes) << meshes.error();
+  ASSERT_TRUE(meshes) << meshes.error().message;
   expectQuad(meshes->front());
 }
 
@@ -235,7 +235,7 @@ TEST(GltfImageTest, DataUriImage) {
   ASSERT_FALSE(std::filesystem::exists(dir.path() / "pixels.png"));
   expectContains(readText(path), "data:image/png;base64,");
   auto image = loadGltfImage(path, 0);
-  ASSERT_TRUE(image) << image.error();
+  ASSERT_TRUE(image) << image.error().message;
   EXPECT_EQ(image->width, 3u);
   EXPECT_EQ(image->rgba8, makeTestPixels().rgba8);
 }
@@ -247,7 +247,7 @@ TEST(GltfImageTest, ExternalImage) {
   auto path = writeModel(model, dir.path() / "quad.gltf", false, false);
   ASSERT_TRUE(std::filesystem::exists(dir.path() / "pixels.png"));
   auto image = loadGltfImage(path, 0);
-  ASSERT_TRUE(image) << image.error();
+  ASSERT_TRUE(image) << image.error().message;
   EXPECT_EQ(image->rgba8, makeTestPixels().rgba8);
 }
 
@@ -259,8 +259,8 @@ TEST(GltfImageTest, MissingExternalImageNamesItsPath) {
   std::filesystem::remove(dir.path() / "pixels.png");
   auto image = loadGltfImage(path, 0);
   ASSERT_FALSE(image);
-  expectContains(image.error(), (dir.path() / "pixels.png").string());
-  expectContains(image.error(), "No such file or directory");
+  expectContains(image.error().message, (dir.path() / "pixels.png").string());
+  expectContains(image.error().message, "No such file or directory");
   // The meshes of the same file still load.
   EXPECT_TRUE(loadGltf(path));
 }
@@ -270,8 +270,8 @@ TEST(GltfImageTest, MissingFileNamesPathAndReason) {
   auto path = dir.path() / "missing.glb";
   auto image = loadGltfImage(path, 0);
   ASSERT_FALSE(image);
-  expectContains(image.error(), path.string());
-  expectContains(image.error(), "No such file or directory");
+  expectContains(image.error().message, path.string());
+  expectContains(image.error().message, "No such file or directory");
 }
 
 TEST(GltfImageTest, IndexPastTheImagesIsAnError) {
@@ -281,8 +281,8 @@ TEST(GltfImageTest, IndexPastTheImagesIsAnError) {
   auto path = writeModel(model, dir.path() / "textured.glb", true);
   auto image = loadGltfImage(path, 1);
   ASSERT_FALSE(image);
-  expectContains(image.error(), path.string());
-  expectContains(image.error(), "has 1 image");
+  expectContains(image.error().message, path.string());
+  expectContains(image.error().message, "has 1 image");
 }
 
 TEST(GltfImageTest, CorruptImageDataIsAnErrorButMeshesLoad) {
@@ -292,8 +292,8 @@ TEST(GltfImageTest, CorruptImageDataIsAnErrorButMeshesLoad) {
   auto path = writeModel(model, dir.path() / "textured.glb", true);
   auto image = loadGltfImage(path, 0);
   ASSERT_FALSE(image);
-  expectContains(image.error(), path.string());
-  expectContains(image.error(), "cannot decode");
+  expectContains(image.error().message, path.string());
+  expectContains(image.error().message, "cannot decode");
   EXPECT_TRUE(loadGltf(path));
 }
 
@@ -306,7 +306,7 @@ TEST(GltfImageTest, BufferViewPastItsBufferIsAnError) {
     "images": [{"bufferView": 0, "mimeType": "image/png"}]})";
   auto image = loadGltfImage(path, 0);
   ASSERT_FALSE(image);
-  expectContains(image.error(), "reads past the end");
+  expectContains(image.error().message, "reads past the end");
 }
 
 TEST(GltfImageTest, CorruptFileNamesPath) {
@@ -315,7 +315,7 @@ TEST(GltfImageTest, CorruptFileNamesPath) {
   std::ofstream(path) << "{ \"images\": [";
   auto image = loadGltfImage(path, 0);
   ASSERT_FALSE(image);
-  expectContains(image.error(), path.string());
+  expectContains(image.error().message, path.string());
 }
 
 }  // namespace

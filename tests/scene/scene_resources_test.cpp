@@ -65,7 +65,7 @@ TextureDesc textureDesc(TextureKind kind) {
 
 Image build(const TextureDesc& desc) {
   auto image = buildTexture(desc, SceneFile{});
-  EXPECT_TRUE(image) << image.error();
+  EXPECT_TRUE(image) << image.error().message;
   return image ? std::move(image).value() : Image{};
 }
 
@@ -82,7 +82,7 @@ TEST(SceneResourcesTest, PackCopiesTheNamedChannels) {
   pack.kind = TextureKind::Pack;
   pack.channels = {{"checker", 2, {}}, {"noise", 0, {}}};
   auto packed = buildTexture(pack, scene);
-  ASSERT_TRUE(packed) << packed.error();
+  ASSERT_TRUE(packed) << packed.error().message;
   const Image noise = build(scene.textures[0]);
   const Image checker = build(scene.textures[1]);
   ASSERT_EQ(packed->width, noise.width);
@@ -97,22 +97,22 @@ TEST(SceneResourcesTest, PackCopiesTheNamedChannels) {
   scene.textures[1].size = 8;
   auto mismatched = buildTexture(pack, scene);
   ASSERT_FALSE(mismatched);
-  EXPECT_EQ(mismatched.error(),
+  EXPECT_EQ(mismatched.error().message,
             "texture 'masks': its channels come from textures of different sizes ('checker' is 8x8, 'noise' 16x16)");
 }
 
 TEST(SceneResourcesTest, ProceduralMeshesComeFromTheGenerators) {
   auto terrain = buildMesh(meshDesc(MeshKind::Terrain));
-  ASSERT_TRUE(terrain) << terrain.error();
+  ASSERT_TRUE(terrain) << terrain.error().message;
   EXPECT_EQ(terrain->name, "ground");
   expectSameMesh(*terrain, makeTerrain(4.0F, 8, 0.5F, 7));
 
   auto plane = buildMesh(meshDesc(MeshKind::Plane));
-  ASSERT_TRUE(plane) << plane.error();
+  ASSERT_TRUE(plane) << plane.error().message;
   expectSameMesh(*plane, makePlane(4.0F, 8));
 
   auto sphere = buildMesh(meshDesc(MeshKind::Sphere));
-  ASSERT_TRUE(sphere) << sphere.error();
+  ASSERT_TRUE(sphere) << sphere.error().message;
   expectSameMesh(*sphere, makeSphere(2.0F, 6, 9));
 }
 
@@ -141,7 +141,7 @@ TEST(SceneResourcesTest, GltfPrimitivesAreMergedIntoOneMesh) {
   desc.file = writeModel(model, dir.path() / "quads.glb", true);
 
   auto mesh = buildMesh(desc);
-  ASSERT_TRUE(mesh) << mesh.error();
+  ASSERT_TRUE(mesh) << mesh.error().message;
   EXPECT_EQ(mesh->name, "ground");
   ASSERT_EQ(mesh->vertices.size(), 8u);
   EXPECT_EQ(mesh->indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7}));
@@ -158,27 +158,27 @@ TEST(SceneResourcesTest, MeshErrors) {
   gltf.file = dir.path() / "missing.glb";
   auto missing = buildMesh(gltf);
   ASSERT_FALSE(missing);
-  expectContains(missing.error(), gltf.file.string());
-  expectContains(missing.error(), "No such file or directory");
+  expectContains(missing.error().message, gltf.file.string());
+  expectContains(missing.error().message, "No such file or directory");
 
   tinygltf::Model empty;
   empty.asset.version = "2.0";
   gltf.file = writeModel(empty, dir.path() / "empty.gltf", false);
   auto noMeshes = buildMesh(gltf);
   ASSERT_FALSE(noMeshes);
-  expectContains(noMeshes.error(), "no triangle meshes");
+  expectContains(noMeshes.error().message, "no triangle meshes");
 
   MeshDesc huge = meshDesc(MeshKind::Terrain);
   huge.resolution = 100000;
   auto tooBig = buildMesh(huge);
   ASSERT_FALSE(tooBig);
-  expectContains(tooBig.error(), "mesh 'ground': resolution 100000");
+  expectContains(tooBig.error().message, "mesh 'ground': resolution 100000");
 
   MeshDesc sphere = meshDesc(MeshKind::Sphere);
   sphere.radius = -1.0F;
   auto negative = buildMesh(sphere);
   ASSERT_FALSE(negative);
-  expectContains(negative.error(), "radius");
+  expectContains(negative.error().message, "radius");
 
   MeshDesc plane = meshDesc(MeshKind::Plane);
   plane.size = std::nanf("");
@@ -257,24 +257,24 @@ TEST(SceneResourcesTest, TextureErrors) {
   file.file = dir.path() / "missing.png";
   auto missing = buildTexture(file, SceneFile{});
   ASSERT_FALSE(missing);
-  expectContains(missing.error(), file.file.string());
+  expectContains(missing.error().message, file.file.string());
 
   TextureDesc gltf = textureDesc(TextureKind::Gltf);
   gltf.file = dir.path() / "missing.gltf";
   auto noFile = buildTexture(gltf, SceneFile{});
   ASSERT_FALSE(noFile);
-  expectContains(noFile.error(), gltf.file.string());
+  expectContains(noFile.error().message, gltf.file.string());
 
   gltf.file = writeModel(makeQuadModel({}, ""), dir.path() / "untextured.glb", true);
   auto noImage = buildTexture(gltf, SceneFile{});
   ASSERT_FALSE(noImage);
-  expectContains(noImage.error(), "has 0 image");
+  expectContains(noImage.error().message, "has 0 image");
 
   TextureDesc empty = textureDesc(TextureKind::Checker);
   empty.size = 0;
   auto zero = buildTexture(empty, SceneFile{});
   ASSERT_FALSE(zero);
-  expectContains(zero.error(), "texture 'albedo': size 0");
+  expectContains(zero.error().message, "texture 'albedo': size 0");
 
   TextureDesc octaves = textureDesc(TextureKind::Noise);
   octaves.octaves = 1000;

@@ -137,9 +137,9 @@ TEST(ImageFileTest, PngRoundTripIsBitExact) {
   original.rgba8[3] = 7;                 // non-opaque alpha must survive too
   auto path = dir.path() / "noise.png";
   auto written = writePng(path, original);
-  ASSERT_TRUE(written) << written.error();
+  ASSERT_TRUE(written) << written.error().message;
   auto loaded = loadImage(path);
-  ASSERT_TRUE(loaded) << loaded.error();
+  ASSERT_TRUE(loaded) << loaded.error().message;
   EXPECT_EQ(loaded->width, 33u);
   EXPECT_EQ(loaded->height, 33u);
   EXPECT_EQ(loaded->rgba8, original.rgba8);
@@ -156,7 +156,7 @@ TEST(ImageFileTest, LoadsJpeg) {
   auto path = dir.path() / "solid.jpg";
   ASSERT_NE(stbi_write_jpg(path.c_str(), 16, 16, 4, solid.rgba8.data(), 100), 0);
   auto loaded = loadImage(path);
-  ASSERT_TRUE(loaded) << loaded.error();
+  ASSERT_TRUE(loaded) << loaded.error().message;
   ASSERT_EQ(loaded->width, 16u);
   Rgba8 p = loaded->pixel(7, 9);
   EXPECT_NEAR(p.r, 200, 3);
@@ -171,7 +171,7 @@ TEST(ImageFileTest, WritePngReplacesExistingFile) {
   ASSERT_TRUE(writePng(path, makeSolid(4, kRed)));
   ASSERT_TRUE(writePng(path, makeSolid(4, kBlue)));
   auto loaded = loadImage(path);
-  ASSERT_TRUE(loaded) << loaded.error();
+  ASSERT_TRUE(loaded) << loaded.error().message;
   EXPECT_EQ(loaded->pixel(0, 0), kBlue);
 }
 
@@ -181,7 +181,7 @@ TEST(ImageFileTest, WritePngRejectsInconsistentImage) {
   auto path = dir.path() / "broken.png";
   auto written = writePng(path, broken);
   ASSERT_FALSE(written);
-  EXPECT_NE(written.error().find(path.string()), std::string::npos) << written.error();
+  EXPECT_NE(written.error().message.find(path.string()), std::string::npos) << written.error().message;
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 
@@ -190,7 +190,7 @@ TEST(ImageFileTest, WritePngIntoMissingDirectoryFails) {
   auto path = dir.path() / "no" / "such" / "dir.png";
   auto written = writePng(path, makeSolid(2, kRed));
   ASSERT_FALSE(written);
-  EXPECT_NE(written.error().find(path.string()), std::string::npos) << written.error();
+  EXPECT_NE(written.error().message.find(path.string()), std::string::npos) << written.error().message;
 }
 
 TEST(ImageFileTest, MissingFileErrorNamesPath) {
@@ -198,8 +198,8 @@ TEST(ImageFileTest, MissingFileErrorNamesPath) {
   auto path = dir.path() / "missing.png";
   auto loaded = loadImage(path);
   ASSERT_FALSE(loaded);
-  EXPECT_NE(loaded.error().find(path.string()), std::string::npos) << loaded.error();
-  EXPECT_NE(loaded.error().find("does not exist"), std::string::npos) << loaded.error();
+  EXPECT_NE(loaded.error().message.find(path.string()), std::string::npos) << loaded.error().message;
+  EXPECT_NE(loaded.error().message.find("does not exist"), std::string::npos) << loaded.error().message;
 }
 
 TEST(ImageFileTest, CorruptFileErrorNamesPath) {
@@ -211,7 +211,7 @@ TEST(ImageFileTest, CorruptFileErrorNamesPath) {
   }
   auto loaded = loadImage(path);
   ASSERT_FALSE(loaded);
-  EXPECT_NE(loaded.error().find(path.string()), std::string::npos) << loaded.error();
+  EXPECT_NE(loaded.error().message.find(path.string()), std::string::npos) << loaded.error().message;
 }
 
 }  // namespace

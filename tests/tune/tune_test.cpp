@@ -40,9 +40,8 @@ std::vector<graph::Choice> terrainChoices() {
 }
 
 TEST(TuneSpace, EnumeratesTheWholeProductInOrder) {
-  std::string error;
-  const auto space = buildTuneSpace(terrainChoices(), {}, error);
-  ASSERT_TRUE(space) << error;
+  const auto space = buildTuneSpace(terrainChoices(), {});
+  ASSERT_TRUE(space) << space.error().message;
   EXPECT_EQ(space->productSize, 24U);
   ASSERT_EQ(space->points.size(), 24U);
   EXPECT_FALSE(space->sampled);
@@ -57,34 +56,33 @@ TEST(TuneSpace, SelectsComponentsWorldsAndVariations) {
   SpaceRequest request;
   request.components = {"lighting"};
   request.only = {"ggx"};
-  std::string error;
-  const auto algorithms = buildTuneSpace(terrainChoices(), request, error);
-  ASSERT_TRUE(algorithms) << error;
+  const auto algorithms = buildTuneSpace(terrainChoices(), request);
+  ASSERT_TRUE(algorithms) << algorithms.error().message;
   ASSERT_EQ(algorithms->axes.size(), 1U);
   EXPECT_EQ(algorithms->axes[0].placements, (std::vector<std::string>{"Vertex:ggx", "Fragment:ggx"}));
   request.components = {"albedo", "normal"};
   request.only = {"Fragment"};
-  const auto placement = buildTuneSpace(terrainChoices(), request, error);
-  ASSERT_TRUE(placement) << error;
+  const auto placement = buildTuneSpace(terrainChoices(), request);
+  ASSERT_TRUE(placement) << placement.error().message;
   EXPECT_EQ(placement->productSize, 1U);
   request.components = {"albedo", "lighting@Fragment"};
   request.only = {};
-  const auto perWorld = buildTuneSpace(terrainChoices(), request, error);
-  ASSERT_TRUE(perWorld) << error;
+  const auto perWorld = buildTuneSpace(terrainChoices(), request);
+  ASSERT_TRUE(perWorld) << perWorld.error().message;
   EXPECT_EQ(perWorld->axes[1].placements, (std::vector<std::string>{"Fragment:basic", "Fragment:ggx"}));
   EXPECT_EQ(perWorld->productSize, 6U);
   request.components = {"albdo"};
   request.only = {};
-  EXPECT_FALSE(buildTuneSpace(terrainChoices(), request, error));
-  EXPECT_NE(error.find("'albdo' is not a choice"), std::string::npos) << error;
+  const auto misspelt = buildTuneSpace(terrainChoices(), request);
+  ASSERT_FALSE(misspelt);
+  EXPECT_NE(misspelt.error().message.find("'albdo' is not a choice"), std::string::npos) << misspelt.error().message;
 }
 
 TEST(TuneSpace, SamplesLargeProductsDeterministically) {
   SpaceRequest request;
   request.maxVariants = 5;
-  std::string error;
-  const auto a = buildTuneSpace(terrainChoices(), request, error);
-  const auto b = buildTuneSpace(terrainChoices(), request, error);
+  const auto a = buildTuneSpace(terrainChoices(), request);
+  const auto b = buildTuneSpace(terrainChoices(), request);
   ASSERT_TRUE(a && b);
   EXPECT_TRUE(a->sampled);
   ASSERT_EQ(a->points.size(), 5U);
@@ -135,45 +133,45 @@ TEST(ResultsCsv, RoundTripsAndRejectsOtherRuns) {
     std::ofstream out(path);
     out << csvHeader({"albedo", "lighting"}) << csvRow(r) << "8,Vertex";  // a row cut off by an interruption
   }
-  std::string error;
-  const auto rows = readResults(path, {"albedo", "lighting"}, error);
-  ASSERT_TRUE(rows) << error;
+  const auto rows = readResults(path, {"albedo", "lighting"});
+  ASSERT_TRUE(rows) << rows.error().message;
   ASSERT_EQ(rows->size(), 1U);
   EXPECT_EQ((*rows)[0].status, r.status);
   EXPECT_EQ((*rows)[0].placements, r.placements);
   EXPECT_TRUE(std::isinf((*rows)[0].rmse));
   EXPECT_EQ((*rows)[0].sameAs, 2U);
   EXPECT_EQ((*rows)[0].kernels, r.kernels);
-  EXPECT_FALSE(readResults(path, {"normal"}, error));
+  EXPECT_FALSE(readResults(path, {"normal"}));
   fs::remove(path);
 }
 
 // Two workers' queues over one file take every chunk exactly once, in order.
 TEST(WorkQueue, HandsOutEveryChunkOnceThenStops) {
   const fs::path path = fs::temp_directory_path() / ("spire_work_queue_" + std::to_string(::getpid()));
-  ASSERT_FALSE(WorkQueue::create(path));
+  ASSERT_TRUE(WorkQueue::create(path));
   WorkQueue first(path);
   WorkQueue second(path);
-  std::string error;
   std::vector<uint64_t> taken;
   for (size_t k = 0; k < 12; ++k) {
-    const auto chunk = (k % 2 == 0 ? first : second).next(11, error);
-    if (!chunk) break;
-    taken.push_back(*chunk);
+    const auto chunk = (k % 2 == 0 ? first : second).next(11);
+    ASSERT_TRUE(chunk) << chunk.error().message;
+    if (!chunk->has_value()) break;
+    taken.push_back(**chunk);
   }
-  EXPECT_TRUE(error.empty()) << error;
   ASSERT_EQ(taken.size(), 11U);
   for (uint64_t k = 0; k < taken.size(); ++k) EXPECT_EQ(taken[k], k);
-  EXPECT_FALSE(second.next(11, error));
-  EXPECT_TRUE(error.empty()) << error;
+  const auto drained = second.next(11);
+  ASSERT_TRUE(drained) << drained.error().message;
+  EXPECT_FALSE(drained->has_value());
 
   std::ofstream(path) << "garbage\n";
-  EXPECT_FALSE(first.next(11, error));
-  EXPECT_NE(error.find("corrupt"), std::string::npos) << error;
+  const auto corrupt = first.next(11);
+  ASSERT_FALSE(corrupt);
+  EXPECT_NE(corrupt.error().message.find("corrupt"), std::string::npos) << corrupt.error().message;
   fs::remove(path);
-  error.clear();
-  EXPECT_FALSE(first.next(11, error));
-  EXPECT_NE(error.find("cannot use the work queue"), std::string::npos) << error;
+  const auto missing = first.next(11);
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.error().message.find("cannot use the work queue"), std::string::npos) << missing.error().message;
 }
 
 // The conventions every Spire tool shares (driver/tool_arguments.h); all
@@ -257,9 +255,8 @@ TEST_F(TuneRun, WritesEveryOutputAndResumes) {
   for (const char* file : {"variants.csv", "pareto.csv", "plot.png", "report.md", "best_error_budget.decisions"}) {
     EXPECT_TRUE(fs::exists(dir / file)) << file;
   }
-  std::string error;
-  const auto rows = readResults(dir / "variants.csv", {"albedo", "lighting"}, error);
-  ASSERT_TRUE(rows) << error;
+  const auto rows = readResults(dir / "variants.csv", {"albedo", "lighting"});
+  ASSERT_TRUE(rows) << rows.error().message;
   ASSERT_EQ(rows->size(), 12U);
   // The reference (albedo in Fragment, Fragment:ggx) is a point of the space
   // and has no error.
@@ -297,8 +294,8 @@ TEST_F(TuneRun, WritesEveryOutputAndResumes) {
   }
   command += " --jobs 2 > /dev/null 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
-  const auto parallel = readResults(parallelDir / "variants.csv", {"albedo", "lighting"}, error);
-  ASSERT_TRUE(parallel) << error;
+  const auto parallel = readResults(parallelDir / "variants.csv", {"albedo", "lighting"});
+  ASSERT_TRUE(parallel) << parallel.error().message;
   ASSERT_EQ(parallel->size(), rows->size());
   for (const char* file : {"work-queue", "shard-0.csv", "shard-1.csv", "shard-0.time"}) {
     EXPECT_FALSE(fs::exists(parallelDir / file)) << file << " outlived the run";
@@ -325,17 +322,16 @@ TEST_F(TuneRun, NamesTheInputsOfAHazardAndKeepsItOffTheFront) {
                     out, err),
             0)
       << err.str();
-  std::string error;
-  const auto rows = readResults(dir / "variants.csv", {"scaled"}, error);
-  ASSERT_TRUE(rows) << error;
+  const auto rows = readResults(dir / "variants.csv", {"scaled"});
+  ASSERT_TRUE(rows) << rows.error().message;
   ASSERT_FALSE(rows->empty());
   for (const VariantResult& r : *rows) {
     EXPECT_GT(r.nanPixels + r.infPixels, 0U) << r.placements[0];
     EXPECT_TRUE(std::isinf(r.rmse));
     EXPECT_EQ(r.hazardInputs, "camera view 0 divisor=0");
   }
-  const auto front = readResults(dir / "pareto.csv", {"scaled"}, error);
-  ASSERT_TRUE(front) << error;
+  const auto front = readResults(dir / "pareto.csv", {"scaled"});
+  ASSERT_TRUE(front) << front.error().message;
   EXPECT_TRUE(front->empty());
   EXPECT_NE(err.str().find("first under camera view 0 divisor=0"), std::string::npos) << err.str();
   fs::remove_all(dir);
