@@ -209,8 +209,8 @@ bool KernelGenerator::emitImports(sem::WorldId w, KernelBuilder& kernel,
       }
     }
     for (const ast::ExprPtr& arg : import.strategy.ref->args) site.args.push_back(writer.expr(*arg));
-    if (auto problem = strategy->emitImport(site)) {
-      fail(*problem);
+    if (auto emitted = strategy->emitImport(site); !emitted) {
+      fail(emitted.error().message);
       return false;
     }
   }
@@ -233,8 +233,8 @@ bool KernelGenerator::emitExports(sem::WorldId w, const Strategy* exportStrategy
     site.locations.push_back(o.location);
   }
   for (const ast::ExprPtr& arg : world.exportStrategy->ref->args) site.args.push_back(writer.expr(*arg));
-  if (auto problem = exportStrategy->emitExport(site)) {
-    fail(*problem);
+  if (auto emitted = exportStrategy->emitExport(site); !emitted) {
+    fail(emitted.error().message);
     return false;
   }
   return true;

@@ -16,6 +16,7 @@
 
 #include "codegen/kernel_builder.h"
 #include "sema/strategy_catalog.h"
+#include "support/expected.h"
 
 namespace spire::codegen {
 
@@ -54,10 +55,10 @@ class Strategy {
   // For export strategies: the pipeline stage a world exporting this way
   // runs in (vertexExport: vertex, bufferExport: compute, ...).
   virtual std::optional<ShaderStage> stage() const { return std::nullopt; }
-  // Returns an error message when the strategy cannot carry the values
-  // (e.g. an integer through a texture); code generation then stops.
-  virtual std::optional<std::string> emitImport(ImportSite&) const { return std::nullopt; }
-  virtual std::optional<std::string> emitExport(ExportSite&) const { return std::nullopt; }
+  // An error when the strategy cannot carry the values (e.g. an integer
+  // through a texture); code generation then stops.
+  virtual Expected<void, Failure> emitImport(ImportSite&) const { return {}; }
+  virtual Expected<void, Failure> emitExport(ExportSite&) const { return {}; }
 };
 
 }  // namespace spire::codegen

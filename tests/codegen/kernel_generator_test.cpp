@@ -155,11 +155,11 @@ TEST(KernelGenerator, OutputIsDeterministicAndHashesFollowContent) {
 class PushConstantImport final : public Strategy {
  public:
   const sem::StrategySignature& signature() const override { return signature_; }
-  std::optional<std::string> emitImport(ImportSite& site) const override {
+  Expected<void, Failure> emitImport(ImportSite& site) const override {
     std::string members;
     uint32_t offset = 0;
     for (const KernelValue& v : site.values) {
-      if (v.type->containsOpaque()) return "push constants cannot hold samplers";
+      if (v.type->containsOpaque()) return Failure{"push constants cannot hold samplers"};
       members += "    " + site.consumer.declaration(v.type, v.glslName) + ";\n";
       const MemberLayout layout = layoutOf(v.type, BlockLayout::Std430);
       reflection::KernelInput entry =
@@ -170,7 +170,7 @@ class PushConstantImport final : public Strategy {
     }
     site.consumer.declare("layout(push_constant, std430) uniform " + site.consumer.names().generate("push") + " {\n" +
                           members + "};");
-    return std::nullopt;
+    return {};
   }
 
  private:

@@ -12,13 +12,13 @@ class BufferExport final : public Strategy {
   const sem::StrategySignature& signature() const override { return signature_; }
   std::optional<ShaderStage> stage() const override { return ShaderStage::Compute; }
 
-  std::optional<std::string> emitExport(ExportSite& site) const override {
+  Expected<void, Failure> emitExport(ExportSite& site) const override {
     KernelBuilder& kernel = site.producer;
     if (kernel.stage() != ShaderStage::Compute) {
-      return fmt::format("bufferExport writes per invocation and needs world '{}' to be a compute kernel",
-                         kernel.world());
+      return Failure{fmt::format("bufferExport writes per invocation and needs world '{}' to be a compute kernel",
+                         kernel.world())};
     }
-    if (site.values.empty()) return std::nullopt;
+    if (site.values.empty()) return {};
     std::vector<KernelValue> members = site.values;
     for (KernelValue& m : members) m.glslName = kernel.names().generate("rec_" + m.glslName);
     const BlockDeclaration block =
@@ -35,7 +35,7 @@ class BufferExport final : public Strategy {
       entry.offset = block.offsets[i];
       kernel.reflectOutput(std::move(entry));
     }
-    return std::nullopt;
+    return {};
   }
 
  private:

@@ -11,16 +11,16 @@ class BufferImport final : public Strategy {
  public:
   const sem::StrategySignature& signature() const override { return signature_; }
 
-  std::optional<std::string> emitImport(ImportSite& site) const override {
+  Expected<void, Failure> emitImport(ImportSite& site) const override {
     KernelBuilder& kernel = site.consumer;
     std::string index;
     switch (kernel.stage()) {
       case ShaderStage::Vertex: index = "gl_VertexIndex"; break;
       case ShaderStage::Compute: index = "gl_GlobalInvocationID.x"; break;
       case ShaderStage::Fragment:
-        return fmt::format("bufferImport reads one record per vertex or invocation and cannot feed the fragment "
+        return Failure{fmt::format("bufferImport reads one record per vertex or invocation and cannot feed the fragment "
                            "world '{}'",
-                           kernel.world());
+                           kernel.world())};
     }
     const std::string& from = site.pipeline.worlds[site.import.from].name;
     // The record is the producer's whole record, so its layout matches what
@@ -43,7 +43,7 @@ class BufferImport final : public Strategy {
       entry.index = index;
       kernel.reflectInput(std::move(entry));
     }
-    return std::nullopt;
+    return {};
   }
 
  private:

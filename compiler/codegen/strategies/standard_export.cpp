@@ -8,7 +8,7 @@ class StandardExport final : public Strategy {
  public:
   const sem::StrategySignature& signature() const override { return signature_; }
   std::optional<ShaderStage> stage() const override { return ShaderStage::Fragment; }
-  std::optional<std::string> emitExport(ExportSite& site) const override {
+  Expected<void, Failure> emitExport(ExportSite& site) const override {
     return emitOutVariables(site, "standardExport");
   }
 

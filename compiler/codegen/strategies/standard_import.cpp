@@ -11,15 +11,15 @@ class StandardImport final : public Strategy {
  public:
   const sem::StrategySignature& signature() const override { return signature_; }
 
-  std::optional<std::string> emitImport(ImportSite& site) const override {
+  Expected<void, Failure> emitImport(ImportSite& site) const override {
     KernelBuilder& kernel = site.consumer;
     if (kernel.stage() == ShaderStage::Compute) {
-      return fmt::format("standardImport cannot feed world '{}': a compute kernel has no 'in' variables; use "
+      return Failure{fmt::format("standardImport cannot feed world '{}': a compute kernel has no 'in' variables; use "
                          "bufferImport",
-                         kernel.world());
+                         kernel.world())};
     }
     for (const KernelValue& v : site.values) {
-      if (auto problem = checkVarying(v, "standardImport")) return problem;
+      if (auto checked = checkVarying(v, "standardImport"); !checked) return checked;
       const uint32_t location = site.producerLocation(v.component);
       const bool flat = kernel.stage() == ShaderStage::Fragment && needsFlat(v.type);
       kernel.declare(fmt::format("layout(location = {}) {}in {};", location, flat ? "flat " : "",
@@ -28,7 +28,7 @@ class StandardImport final : public Strategy {
       entry.location = location;
       kernel.reflectInput(std::move(entry));
     }
-    return std::nullopt;
+    return {};
   }
 
  private:

@@ -111,58 +111,58 @@ bool needsFlat(const sem::Type* type) {
   return type->isIntegerShape();
 }
 
-std::optional<std::string> checkVarying(const KernelValue& value, std::string_view strategy) {
+Expected<void, Failure> checkVarying(const KernelValue& value, std::string_view strategy) {
   const sem::Type* base = value.type;
   while (base->isArray()) base = base->element;
-  if (base->isNumericShape() && base->scalar != sem::ScalarKind::Bool) return std::nullopt;
-  return fmt::format("{} cannot carry '{}' of type '{}' between stages (only numeric scalars, vectors, matrices "
+  if (base->isNumericShape() && base->scalar != sem::ScalarKind::Bool) return {};
+  return Failure{fmt::format("{} cannot carry '{}' of type '{}' between stages (only numeric scalars, vectors, matrices "
                      "and arrays of them)",
-                     strategy, value.sourceName, value.type->name());
+                     strategy, value.sourceName, value.type->name())};
 }
 
 }  // namespace spire::codegen
 
 namespace spire::codegen {
 
-std::optional<std::string> checkEncoding(const KernelValue& value, bool& isSigned) {
-  isSigned = false;
+Expected<bool, Failure> checkEncoding(const KernelValue& value) {
+  bool isSigned = false;
   for (const auto& [name, text] : value.attributes) {
     // The attribute catalogue has refused any other value when the source
     // or the decisions were read.
     if (name != "Encoding" || text != "signed") continue;
     if (!(value.type->isScalar() || value.type->isVector()) || value.type->scalar != sem::ScalarKind::Float) {
-      return fmt::format("Encoding \"signed\" needs a float scalar or vector, not '{}' of type '{}'", value.sourceName,
-                         value.type->name());
+      return Failure{fmt::format("Encoding \"signed\" needs a float scalar or vector, not '{}' of type '{}'", value.sourceName,
+                         value.type->name())};
     }
     isSigned = true;
   }
-  return std::nullopt;
+  return isSigned;
 }
 
-std::optional<std::string> emitOutVariables(ExportSite& site, std::string_view strategy) {
+Expected<void, Failure> emitOutVariables(ExportSite& site, std::string_view strategy) {
   KernelBuilder& kernel = site.producer;
   for (size_t i = 0; i < site.values.size(); ++i) {
     const KernelValue& v = site.values[i];
-    if (auto problem = checkVarying(v, strategy)) return problem;
+    if (auto checked = checkVarying(v, strategy); !checked) return checked;
     if (kernel.stage() == ShaderStage::Fragment && (v.type->isMatrix() || v.type->isArray())) {
-      return fmt::format("{} cannot write '{}' of type '{}' from fragment world '{}': fragment outputs are scalars "
+      return Failure{fmt::format("{} cannot write '{}' of type '{}' from fragment world '{}': fragment outputs are scalars "
                          "and vectors",
-                         strategy, v.sourceName, v.type->name(), kernel.world());
+                         strategy, v.sourceName, v.type->name(), kernel.world())};
     }
     const std::string out = kernel.names().generate("out_" + v.glslName);
     const bool flat = kernel.stage() == ShaderStage::Vertex && needsFlat(v.type);
     kernel.declare(fmt::format("layout(location = {}) {}out {};", site.locations[i], flat ? "flat " : "",
                                kernel.declaration(v.type, out)));
-    bool encodeSigned = false;
-    if (auto problem = checkEncoding(v, encodeSigned)) return problem;
-    kernel.addStore(encodeSigned ? fmt::format("{} = {} * 0.5 + 0.5;", out, v.glslName)
+    const auto encodeSigned = checkEncoding(v);
+    if (!encodeSigned) return encodeSigned.error();
+    kernel.addStore(*encodeSigned ? fmt::format("{} = {} * 0.5 + 0.5;", out, v.glslName)
                                  : fmt::format("{} = {};", out, v.glslName));
     reflection::KernelOutput entry = exportEntry(v, reflection::OutputKind::Varying, strategy);
     entry.glslName = out;
     entry.location = site.locations[i];
     kernel.reflectOutput(std::move(entry));
   }
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace spire::codegen

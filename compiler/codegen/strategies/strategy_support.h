@@ -42,7 +42,7 @@ BlockDeclaration declareBlock(KernelBuilder& kernel, const std::string& hint, co
 // `flat` where GLSL requires it for integer varyings.
 bool needsFlat(const sem::Type* type);
 // Types that may cross stages as `in`/`out` variables.
-std::optional<std::string> checkVarying(const KernelValue& value, std::string_view strategy);
+Expected<void, Failure> checkVarying(const KernelValue& value, std::string_view strategy);
 
 }  // namespace spire::codegen
 
@@ -50,14 +50,15 @@ namespace spire::codegen {
 
 // `layout(location = L) out T spire_out_x;` for every exported value, stored
 // at the end of main(); shared by standardExport and vertexExport.
-std::optional<std::string> emitOutVariables(ExportSite& site, std::string_view strategy);
+Expected<void, Failure> emitOutVariables(ExportSite& site, std::string_view strategy);
 
 // `[Encoding: "signed"]` on a component's declaration or decision line: its
 // values lie in [-1, 1] (unit vectors) and are stored remapped to [0, 1], so
 // that an unsigned normalized texture (RGBA8, RGB10_A2) can hold them; the
 // exporting strategy writes v * 0.5 + 0.5 and textureImport undoes it.
-// Returns an error message for the encoding on a value that is not a float
-// scalar or vector (its value was checked against the attribute catalogue).
-std::optional<std::string> checkEncoding(const KernelValue& value, bool& isSigned);
+// Whether `value` is so encoded; an error for the encoding on a value that is
+// not a float scalar or vector (its value was checked against the attribute
+// catalogue).
+Expected<bool, Failure> checkEncoding(const KernelValue& value);
 
 }  // namespace spire::codegen

@@ -11,14 +11,14 @@ class TextureImport final : public Strategy {
  public:
   const sem::StrategySignature& signature() const override { return signature_; }
 
-  std::optional<std::string> emitImport(ImportSite& site) const override {
+  Expected<void, Failure> emitImport(ImportSite& site) const override {
     KernelBuilder& kernel = site.consumer;
     const std::string& uv = site.args.at(0);
     for (const KernelValue& v : site.values) {
       const sem::Type* t = v.type;
       if (!(t->isScalar() || t->isVector()) || t->scalar != sem::ScalarKind::Float) {
-        return fmt::format("textureImport can only carry float scalars and vectors, not '{}' of type '{}'",
-                           v.sourceName, t->name());
+        return Failure{fmt::format("textureImport can only carry float scalars and vectors, not '{}' of type '{}'",
+                           v.sourceName, t->name())};
       }
       static constexpr std::string_view kSwizzles[] = {"", ".x", ".xy", ".xyz", ""};
       const std::string sampler = kernel.names().generate("tex_" + v.glslName);
@@ -26,10 +26,10 @@ class TextureImport final : public Strategy {
       kernel.declare(fmt::format("layout(set = {}, binding = {}) uniform sampler2D {};", kernel.descriptorSet(),
                                  binding, sampler));
       kernel.declareGlobal(t, v.glslName);
-      bool encodedSigned = false;
-      if (auto problem = checkEncoding(v, encodedSigned)) return problem;
+      const auto encodedSigned = checkEncoding(v);
+      if (!encodedSigned) return encodedSigned.error();
       const std::string fetch = fmt::format("texture({}, {}){}", sampler, uv, kSwizzles[t->rows]);
-      kernel.addFetch(encodedSigned ? fmt::format("{} = {} * 2.0 - 1.0;", v.glslName, fetch)
+      kernel.addFetch(*encodedSigned ? fmt::format("{} = {} * 2.0 - 1.0;", v.glslName, fetch)
                                     : fmt::format("{} = {};", v.glslName, fetch));
       reflection::KernelInput entry = importEntry(site, v, reflection::InputKind::Texture, "textureImport");
       entry.slot = slotAt(kernel, binding);
@@ -38,7 +38,7 @@ class TextureImport final : public Strategy {
       entry.channels = t->rows;
       kernel.reflectInput(std::move(entry));
     }
-    return std::nullopt;
+    return {};
   }
 
  private:

@@ -11,7 +11,7 @@ class UniformImport final : public Strategy {
  public:
   const sem::StrategySignature& signature() const override { return signature_; }
 
-  std::optional<std::string> emitImport(ImportSite& site) const override {
+  Expected<void, Failure> emitImport(ImportSite& site) const override {
     KernelBuilder& kernel = site.consumer;
     const std::string& from = site.pipeline.worlds[site.import.from].name;
     std::vector<KernelValue> plain;
@@ -27,7 +27,7 @@ class UniformImport final : public Strategy {
       entry.slot = slotAt(kernel, binding);
       kernel.reflectInput(std::move(entry));
     }
-    if (plain.empty()) return std::nullopt;
+    if (plain.empty()) return {};
     const BlockDeclaration block = declareBlock(kernel, from, plain, BlockLayout::Std140, "uniform", "uniformImport");
     for (size_t i = 0; i < plain.size(); ++i) {
       reflection::KernelInput entry = importEntry(site, plain[i], reflection::InputKind::UniformMember, "uniformImport");
@@ -36,7 +36,7 @@ class UniformImport final : public Strategy {
       entry.offset = block.offsets[i];
       kernel.reflectInput(std::move(entry));
     }
-    return std::nullopt;
+    return {};
   }
 
  private:

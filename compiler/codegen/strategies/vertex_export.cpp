@@ -10,8 +10,8 @@ class VertexExport final : public Strategy {
  public:
   const sem::StrategySignature& signature() const override { return signature_; }
   std::optional<ShaderStage> stage() const override { return ShaderStage::Vertex; }
-  std::optional<std::string> emitExport(ExportSite& site) const override {
-    if (auto problem = emitOutVariables(site, "vertexExport")) return problem;
+  Expected<void, Failure> emitExport(ExportSite& site) const override {
+    if (auto checked = emitOutVariables(site, "vertexExport"); !checked) return checked;
     site.producer.addStore(fmt::format("gl_Position = {};", site.args.at(0)));
     reflection::KernelOutput entry;
     entry.kind = reflection::OutputKind::BuiltIn;
@@ -19,7 +19,7 @@ class VertexExport final : public Strategy {
     entry.expression = site.args.at(0);
     entry.strategy = "vertexExport";
     site.producer.reflectOutput(std::move(entry));
-    return std::nullopt;
+    return {};
   }
 
  private:
