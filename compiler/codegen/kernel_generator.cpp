@@ -24,6 +24,16 @@ std::optional<ShaderStage> stageFromAttribute(const ast::WorldDecl& decl) {
   return std::nullopt;
 }
 
+// One kernel's components, the names it gave them and the functions they
+// call, from which its text is written.
+struct KernelText {
+  std::vector<sem::ComponentId> computed;  // producers first
+  std::set<sem::ComponentId> touched;  // computed, imported or exported
+  std::map<sem::ComponentId, std::string> names;
+  std::vector<const sem::Function*> functions;
+  std::map<sem::ComponentId, std::string> helpers;  // the function of each block body
+};
+
 class KernelGenerator {
  public:
   KernelGenerator(const sem::Model& model, const SourceManager& sources, const graph::Variant& variant,
@@ -52,6 +62,17 @@ class KernelGenerator {
                                          const std::vector<const sem::Function*>& functions) const;
   std::string structDeclarations(const std::set<const sem::Type*>& used,
                                  const std::map<std::string, std::string, std::less<>>& names) const;
+  void claimNames(const graph::WorldPlan& plan, const std::vector<Located>& outputs, KernelBuilder& kernel,
+                  KernelText& text, GlslNameMaps& maps) const;
+  void declareComputed(KernelBuilder& kernel, KernelText& text) const;
+  // The declaration of the definition the variant chose for `id`.
+  const ast::ComponentDecl& chosenDecl(sem::ComponentId id) const;
+  void writeHeader(GlslOutput& out, const sem::World& world, ShaderStage stage, const std::string& structs) const;
+  // Interface declarations, globals, functions and block bodies' functions.
+  void writeDefinitions(GlslOutput& out, const KernelBuilder& kernel, const KernelText& text, const GlslNameMaps& maps,
+                        GlslWriter& writer) const;
+  void writeMain(GlslOutput& out, const KernelBuilder& kernel, const KernelText& text, GlslWriter& writer) const;
+  Kernel packageKernel(const sem::World& world, ShaderStage stage, std::string glsl, const KernelBuilder& kernel) const;
 
   const sem::Model& model_;
   const SourceManager& sources_;
@@ -255,109 +276,133 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
     return std::nullopt;
   }
   KernelBuilder kernel(world.name, *stage);
+  KernelText text;
+  GlslNameMaps maps;
+  claimNames(plan, outputs, kernel, text, maps);
+  GlslWriter writer(model_, sources_, maps, kernel.names());
 
+  if (!emitImports(w, kernel, text.names, writer)) return std::nullopt;
+  declareComputed(kernel, text);
+  if (!emitExports(w, exportStrategy, kernel, text.names, writer)) return std::nullopt;
+
+  GlslOutput out(world.name + ".glsl");
+  writeHeader(out, world, *stage,
+              structDeclarations(usedStructs(text.touched, text.computed, text.functions), kernel.structNames()));
+  writeDefinitions(out, kernel, text, maps, writer);
+  writeMain(out, kernel, text, writer);
+  return packageKernel(world, *stage, out.text(), kernel);
+}
+
+void KernelGenerator::claimNames(const graph::WorldPlan& plan, const std::vector<Located>& outputs,
+                                 KernelBuilder& kernel, KernelText& text, GlslNameMaps& maps) const {
   // Names first, in a fixed order, so renaming is deterministic: structs,
   // then every component this kernel touches, then functions.
   for (const sem::Type* s : model_.structOrder) kernel.structNames()[s->structName] = kernel.names().claim(s->structName);
-  const std::vector<sem::ComponentId> computed = canonicalOrder(plan.computed);
-  std::set<sem::ComponentId> touched(computed.begin(), computed.end());
-  for (const graph::Transfer& t : plan.inputs) touched.insert(t.component);
-  for (const Located& o : outputs) touched.insert(o.component);
-  std::map<sem::ComponentId, std::string> names;
-  for (sem::ComponentId id : byName(touched)) names[id] = kernel.names().claim(graph_.node(id).component->name);
-  const std::vector<const sem::Function*> functions = calledFunctions(computed);
-  GlslNameMaps maps;
-  for (const sem::Function* f : functions) maps.functions[f] = kernel.names().claim(f->name);
+  text.computed = canonicalOrder(plan.computed);
+  text.touched.insert(text.computed.begin(), text.computed.end());
+  for (const graph::Transfer& t : plan.inputs) text.touched.insert(t.component);
+  for (const Located& o : outputs) text.touched.insert(o.component);
+  for (sem::ComponentId id : byName(text.touched)) {
+    text.names[id] = kernel.names().claim(graph_.node(id).component->name);
+  }
+  text.functions = calledFunctions(text.computed);
+  for (const sem::Function* f : text.functions) maps.functions[f] = kernel.names().claim(f->name);
   maps.structs = &kernel.structNames();
-  maps.component = [&](std::string_view name) {
+  maps.component = [this, &names = text.names](std::string_view name) {
     const auto it = graph_.shader().componentByName.find(name);
     if (it != graph_.shader().componentByName.end()) {
       if (auto n = names.find(it->second); n != names.end()) return n->second;
     }
     return std::string(name);
   };
-  GlslWriter writer(model_, sources_, maps, kernel.names());
+}
 
-  if (!emitImports(w, kernel, names, writer)) return std::nullopt;
-
+void KernelGenerator::declareComputed(KernelBuilder& kernel, KernelText& text) const {
   // The world's computations, producers first. A block body becomes a
   // function, so its locals and returns stay as written.
-  std::map<sem::ComponentId, std::string> helpers;
-  for (sem::ComponentId id : computed) {
-    kernel.declareGlobal(graph_.node(id).component->type, names.at(id));
-    if (!graph_.node(id).alternatives[*variant_.choice(id)].definition->decl->init) {
-      helpers[id] = kernel.names().generate(names.at(id));
-    }
+  for (sem::ComponentId id : text.computed) {
+    kernel.declareGlobal(graph_.node(id).component->type, text.names.at(id));
+    if (!chosenDecl(id).init) text.helpers[id] = kernel.names().generate(text.names.at(id));
   }
+}
 
-  if (!emitExports(w, exportStrategy, kernel, names, writer)) return std::nullopt;
+const ast::ComponentDecl& KernelGenerator::chosenDecl(sem::ComponentId id) const {
+  return *graph_.node(id).alternatives[*variant_.choice(id)].definition->decl;
+}
 
-  auto writeCode = [&](GlslOutput& out) {
-    for (const std::string& d : kernel.declarations()) {
-      size_t start = 0;
-      for (size_t end = d.find('\n'); end != std::string::npos; start = end + 1, end = d.find('\n', start)) {
-        out.line(std::string_view(d).substr(start, end - start));
-      }
-      out.line(std::string_view(d).substr(start));
-      out.line("");
-    }
-    for (const std::string& g : kernel.globals()) out.line(g);
-    if (!kernel.globals().empty()) out.line("");
-    for (const sem::Function* f : functions) {
-      writer.function(out, *f, maps.functions.at(f));
-      out.line("");
-    }
-    for (sem::ComponentId id : computed) {
-      if (!helpers.count(id)) continue;
-      const std::string& helper = helpers.at(id);
-      const ast::ComponentDecl& decl = *graph_.node(id).alternatives[*variant_.choice(id)].definition->decl;
-      out.mapTo(sources_.file(decl.range.file).logicalName, sources_.begin(decl.range).line);
-      out.line(fmt::format("{} {}() {{", writer.typeName(graph_.node(id).component->type), helper));
-      writer.block(out, *decl.body, 1);
-      out.line("}");
-      out.mapToKernel();
-      out.line("");
-    }
-    out.line("void main() {");
-    for (const std::string& statement : kernel.entry()) out.line("    " + statement);
-    for (const std::string& statement : kernel.fetches()) out.line("    " + statement);
-    for (sem::ComponentId id : computed) {
-      const ast::ComponentDecl& decl = *graph_.node(id).alternatives[*variant_.choice(id)].definition->decl;
-      const SourceRange where = decl.init ? decl.init->range : decl.range;
-      out.mapTo(sources_.file(where.file).logicalName, sources_.begin(where).line);
-      out.line(fmt::format("    {} = {};", names.at(id), decl.init ? writer.expr(*decl.init) : helpers.at(id) + "()"));
-    }
-    out.mapToKernel();
-    for (const std::string& statement : kernel.stores()) out.line("    " + statement);
-    out.line("}");
-  };
-
-  const std::string structs =
-      structDeclarations(usedStructs(touched, computed, functions), kernel.structNames());
-  GlslOutput out(world.name + ".glsl");
+void KernelGenerator::writeHeader(GlslOutput& out, const sem::World& world, ShaderStage stage,
+                                  const std::string& structs) const {
   out.line("#version 450");
   out.line("#extension GL_GOOGLE_cpp_style_line_directive : require");
   // The header names no shader: shaders that share a locked world share
   // this text byte for byte.
   out.line(fmt::format("// Generated by spirec: pipeline '{}', world '{}' ({} stage). Do not edit.", pipeline_.name,
-                       world.name, stageName(*stage)));
+                       world.name, stageName(stage)));
   out.line("");
-  if (*stage == ShaderStage::Compute) {
+  if (stage == ShaderStage::Compute) {
     out.line("layout(local_size_x = 64) in;");
     out.line("");
   }
   for (size_t start = 0, end = structs.find('\n'); end != std::string::npos; start = end + 1, end = structs.find('\n', start)) {
     out.line(std::string_view(structs).substr(start, end - start));
   }
-  writeCode(out);
+}
 
+void KernelGenerator::writeDefinitions(GlslOutput& out, const KernelBuilder& kernel, const KernelText& text,
+                                       const GlslNameMaps& maps, GlslWriter& writer) const {
+  for (const std::string& d : kernel.declarations()) {
+    size_t start = 0;
+    for (size_t end = d.find('\n'); end != std::string::npos; start = end + 1, end = d.find('\n', start)) {
+      out.line(std::string_view(d).substr(start, end - start));
+    }
+    out.line(std::string_view(d).substr(start));
+    out.line("");
+  }
+  for (const std::string& g : kernel.globals()) out.line(g);
+  if (!kernel.globals().empty()) out.line("");
+  for (const sem::Function* f : text.functions) {
+    writer.function(out, *f, maps.functions.at(f));
+    out.line("");
+  }
+  for (sem::ComponentId id : text.computed) {
+    if (!text.helpers.count(id)) continue;
+    const std::string& helper = text.helpers.at(id);
+    const ast::ComponentDecl& decl = chosenDecl(id);
+    out.mapTo(sources_.file(decl.range.file).logicalName, sources_.begin(decl.range).line);
+    out.line(fmt::format("{} {}() {{", writer.typeName(graph_.node(id).component->type), helper));
+    writer.block(out, *decl.body, 1);
+    out.line("}");
+    out.mapToKernel();
+    out.line("");
+  }
+}
+
+void KernelGenerator::writeMain(GlslOutput& out, const KernelBuilder& kernel, const KernelText& text,
+                                GlslWriter& writer) const {
+  out.line("void main() {");
+  for (const std::string& statement : kernel.entry()) out.line("    " + statement);
+  for (const std::string& statement : kernel.fetches()) out.line("    " + statement);
+  for (sem::ComponentId id : text.computed) {
+    const ast::ComponentDecl& decl = chosenDecl(id);
+    const SourceRange where = decl.init ? decl.init->range : decl.range;
+    out.mapTo(sources_.file(where.file).logicalName, sources_.begin(where).line);
+    out.line(fmt::format("    {} = {};", text.names.at(id),
+                         decl.init ? writer.expr(*decl.init) : text.helpers.at(id) + "()"));
+  }
+  out.mapToKernel();
+  for (const std::string& statement : kernel.stores()) out.line("    " + statement);
+  out.line("}");
+}
+
+Kernel KernelGenerator::packageKernel(const sem::World& world, ShaderStage stage, std::string glsl,
+                                      const KernelBuilder& kernel) const {
   Kernel result;
   result.world = world.name;
-  result.stage = *stage;
-  result.glsl = out.text();
+  result.stage = stage;
+  result.glsl = std::move(glsl);
   reflection::Kernel& r = result.reflection;
   r.world = world.name;
-  r.stage = *stage;
+  r.stage = stage;
   r.glslFile = world.name + ".glsl";
   r.spirvFile = world.name + ".spv";
   r.hash = reflection::contentHash(result.glsl);

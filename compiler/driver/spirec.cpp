@@ -103,11 +103,9 @@ void writeDirectories(const std::vector<OutputDirectory>& directories, Diagnosti
   }
 }
 
-}  // namespace
-
-int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  CLI::App app{"spirec: the Spire shader compiler", "spirec"};
-  Options options;
+// Declares spirec's options; returns --choices, whose PATH is optional, so
+// that the caller can tell whether it was given.
+CLI::Option* addOptions(CLI::App& app, Options& options) {
   addVersionFlag(app);
   app.add_option("files", options.files, "Spire source files")->required()->type_name("FILE...");
   app.add_option("-I", options.includeDirs, "Search DIR for 'using' includes after the including file's folder")
@@ -139,11 +137,81 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
       ->check(CLI::IsMember({"error"}))
       ->type_name("error")
       ->allow_extra_args(false);
+  return choices;
+}
 
+// The choice spaces of the shaders --shader selects (every shader without
+// it); an instance is selected by its own name or its template's.
+std::vector<const graph::ChoiceSpace*> selectShaders(ShaderLibrary& library, const Options& options) {
+  std::vector<const graph::ChoiceSpace*> spaces;
+  for (const std::string& name : library.shaderNames()) {
+    const graph::ChoiceSpace* space = library.choiceSpace(name);
+    const sem::Shader& shader = space->graph().shader();
+    const bool selected = options.shader.empty() || name == options.shader ||
+                          (shader.derivedFrom && shader.decl->name == options.shader);
+    if (selected) spaces.push_back(space);
+  }
+  return spaces;
+}
+
+// What spirec writes once the diagnostics allow it.
+struct SpirecOutput {
+  std::string choices;  // the choice file, with --choices
+  std::string placements;  // with --dump-placement
+  std::vector<OutputDirectory> directories;  // with -o
+};
+
+// Applies --decisions to the selected shaders and builds their placement
+// dumps and output directories; a shader without a variant leaves `spaces`.
+void buildOutputs(ShaderLibrary& library, const Options& options, DiagnosticList& diags,
+                  std::vector<const graph::ChoiceSpace*>& spaces, SpirecOutput& result) {
+  graph::DecisionFile decisions;
+  if (!options.decisionsPath.empty()) {
+    if (const auto id = library.frontEnd().loadAuxiliaryFile(options.decisionsPath)) {
+      decisions = graph::parseDecisionFile(library.sources(), *id, diags);
+      checkDecisionPrefixes(decisions, library.model(), diags);
+    }
+  }
+  if (diags.hasErrors()) return;
+  const std::vector<const graph::ChoiceSpace*> selected = spaces;
+  std::erase_if(spaces, [&](const graph::ChoiceSpace* space) {
+    return !buildVariantOutputs(library, *space, decisions, options, diags, result.placements, result.directories);
+  });
+  if (!diags.hasErrors()) graph::checkSomeDecisionApplies(decisions, selected, diags);
+}
+
+// Prints the diagnostics and, when there are no errors, writes the outputs;
+// returns the exit status.
+int finish(ShaderLibrary& library, const Options& options, const SpirecOutput& result, std::ostream& out,
+           std::ostream& err) {
+  DiagnosticList& diags = library.diagnostics();
+  const DiagnosticFormat format = options.diagnosticsFormat == "json" ? DiagnosticFormat::Json : DiagnosticFormat::Text;
+  if (options.warningsAsErrors) diags.promoteWarnings("treated as an error (--warnings-as-errors)");
+  if (!diags.hasErrors()) writeDirectories(result.directories, diags);
+  const std::string rendered = renderDiagnostics(library.sources(), diags, format);
+  if (format == DiagnosticFormat::Json || !rendered.empty()) err << rendered;
+  if (diags.hasErrors()) return kExitInputError;
+  if (options.choices && !options.choicesPath.empty() && options.choicesPath != "-") {
+    if (auto written = writeFileAtomically(options.choicesPath, result.choices); !written) {
+      err << "spirec: error: " << written.error().message << "\n";
+      return kExitInputError;
+    }
+  } else {
+    out << result.choices;
+  }
+  out << result.placements;
+  return kExitSuccess;
+}
+
+}  // namespace
+
+int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  CLI::App app{"spirec: the Spire shader compiler", "spirec"};
+  Options options;
+  CLI::Option* choices = addOptions(app, options);
   if (const auto status = parseToolArguments(app, args, out, err)) return *status;
   options.choices = choices->count() > 0;
   options.warningsAsErrors |= !options.warningFlags.empty();
-  const DiagnosticFormat format = options.diagnosticsFormat == "json" ? DiagnosticFormat::Json : DiagnosticFormat::Text;
 
   FrontEndOptions feOptions;
   feOptions.includeDirs = options.includeDirs;
@@ -155,58 +223,20 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
 
   std::vector<const graph::ChoiceSpace*> spaces;
   if (!diags.hasErrors()) {
-    for (const std::string& name : library.shaderNames()) {
-      const graph::ChoiceSpace* space = library.choiceSpace(name);
-      const sem::Shader& shader = space->graph().shader();
-      const bool selected = options.shader.empty() || name == options.shader ||
-                            (shader.derivedFrom && shader.decl->name == options.shader);
-      if (selected) spaces.push_back(space);
-    }
+    spaces = selectShaders(library, options);
     if (!options.shader.empty() && spaces.empty()) {
       err << fmt::format("spirec: error: no concrete shader named '{}'\n", options.shader);
       return kExitUsageError;
     }
   }
 
-  std::string choicesText;
-  std::string output;
-  std::vector<OutputDirectory> directories;
+  SpirecOutput result;
   const bool generate = !options.outputDir.empty();
   if (!diags.hasErrors() && (!options.decisionsPath.empty() || options.dumpPlacement || generate)) {
-    graph::DecisionFile decisions;
-    if (!options.decisionsPath.empty()) {
-      if (const auto id = library.frontEnd().loadAuxiliaryFile(options.decisionsPath)) {
-        decisions = graph::parseDecisionFile(library.sources(), *id, diags);
-        checkDecisionPrefixes(decisions, library.model(), diags);
-      }
-    }
-    if (!diags.hasErrors()) {
-      const std::vector<const graph::ChoiceSpace*> selected = spaces;
-      std::erase_if(spaces, [&](const graph::ChoiceSpace* space) {
-        return !buildVariantOutputs(library, *space, decisions, options, diags, output, directories);
-      });
-      if (!diags.hasErrors()) graph::checkSomeDecisionApplies(decisions, selected, diags);
-    }
+    buildOutputs(library, options, diags, spaces, result);
   }
-  if (!diags.hasErrors() && options.choices) {
-    choicesText = graph::writeChoiceFile(spaces);
-  }
-
-  if (options.warningsAsErrors) diags.promoteWarnings("treated as an error (--warnings-as-errors)");
-  if (!diags.hasErrors()) writeDirectories(directories, diags);
-  const std::string rendered = renderDiagnostics(library.sources(), diags, format);
-  if (format == DiagnosticFormat::Json || !rendered.empty()) err << rendered;
-  if (diags.hasErrors()) return kExitInputError;
-  if (options.choices && !options.choicesPath.empty() && options.choicesPath != "-") {
-    if (auto written = writeFileAtomically(options.choicesPath, choicesText); !written) {
-      err << "spirec: error: " << written.error().message << "\n";
-      return kExitInputError;
-    }
-  } else {
-    out << choicesText;
-  }
-  out << output;
-  return kExitSuccess;
+  if (!diags.hasErrors() && options.choices) result.choices = graph::writeChoiceFile(spaces);
+  return finish(library, options, result, out, err);
 }
 
 }  // namespace spire

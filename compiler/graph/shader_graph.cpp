@@ -50,6 +50,12 @@ WorldMask pinnedWorldsFor(const sem::Shader& shader, const std::string& origin) 
   return pinned;  // a pipeline component sits above every shader
 }
 
+// The position of `variation` in the node's variations.
+uint32_t variationIndex(const ComponentNode& node, const std::string& variation) {
+  return static_cast<uint32_t>(std::find(node.variations.begin(), node.variations.end(), variation) -
+                               node.variations.begin());
+}
+
 // The import from `from` to `to` that carries opaque values, if any.
 std::optional<uint32_t> opaqueImport(const sem::Pipeline& pipeline, sem::WorldId from, sem::WorldId to) {
   for (uint32_t k = 0; k < pipeline.imports.size(); ++k) {
@@ -144,24 +150,21 @@ std::unique_ptr<ShaderGraph> ShaderGraph::build(const sem::Shader& shader, Diagn
   return graph;
 }
 
-bool ShaderGraph::expand(DiagnosticList& diags) {
+void ShaderGraph::orderComponents() {
   const sem::Shader& shader = *shader_;
-  const sem::Pipeline& pipeline = *shader.pipeline;
   const size_t n = shader.components.size();
-  bool ok = true;
-
   // Producers before consumers (sema has rejected cycles).
   std::vector<uint8_t> state(n, 0);
+  auto depsOf = [&](sem::ComponentId id) {
+    std::vector<sem::ComponentId> deps;
+    for (const sem::Definition& d : shader.components[id].definitions) {
+      deps.insert(deps.end(), d.dependencies.begin(), d.dependencies.end());
+    }
+    return deps;
+  };
   for (sem::ComponentId root = 0; root < n; ++root) {
     if (state[root]) continue;
     std::vector<std::pair<sem::ComponentId, std::vector<sem::ComponentId>>> stack;
-    auto depsOf = [&](sem::ComponentId id) {
-      std::vector<sem::ComponentId> deps;
-      for (const sem::Definition& d : shader.components[id].definitions) {
-        deps.insert(deps.end(), d.dependencies.begin(), d.dependencies.end());
-      }
-      return deps;
-    };
     stack.emplace_back(root, depsOf(root));
     state[root] = 1;
     while (!stack.empty()) {
@@ -180,9 +183,14 @@ bool ShaderGraph::expand(DiagnosticList& diags) {
       }
     }
   }
-
   rank_.assign(n, 0);
   for (uint32_t i = 0; i < order_.size(); ++i) rank_[order_[i]] = i;
+}
+
+bool ShaderGraph::expand(DiagnosticList& diags) {
+  const sem::Pipeline& pipeline = *shader_->pipeline;
+  const size_t n = shader_->components.size();
+  orderComponents();
   nodes_.resize(n);
   std::vector<WorldMask> available(n, 0);
   std::vector<bool> failed(n, false);
@@ -190,114 +198,148 @@ bool ShaderGraph::expand(DiagnosticList& diags) {
   for (sem::WorldId w = 0; w < pipeline.worlds.size(); ++w) {
     if (!pipeline.worlds[w].isAbstract) concrete |= WorldMask{1} << w;
   }
-
+  bool ok = true;
   for (sem::ComponentId id : order_) {
-    const sem::Component& component = shader.components[id];
-    ComponentNode& node = nodes_[id];
-    node.id = id;
-    node.component = &component;
-    node.isInput = !component.definitions.empty() && component.definitions.front().isInput();
-    const bool ownsDefinition = std::any_of(component.definitions.begin(), component.definitions.end(),
-                                            [&](const sem::Definition& d) { return d.origin == shader.name; });
-    node.choicePrefix = ownsDefinition || !shader.base ? shader.name : shader.base->name;
-
-    if (component.isAbstract && component.definitions.empty()) {
-      diags.report(DiagCode::E4013, shader.decl->nameRange,
-                   fmt::format("shader '{}' does not define '{}', which '{}' requires", shader.name, component.name,
-                               component.origin))
-          .note(component.firstDecl->nameRange, fmt::format("'{}' is declared abstract here", component.name));
-      ok = false;
-      failed[id] = true;
-      continue;
-    }
-    for (const sem::Definition& d : component.definitions) {
-      if (std::find(node.variations.begin(), node.variations.end(), d.variation) == node.variations.end()) {
-        node.variations.push_back(d.variation);
-      }
-    }
-    auto variationIndex = [&](const std::string& v) {
-      return static_cast<uint32_t>(std::find(node.variations.begin(), node.variations.end(), v) - node.variations.begin());
-    };
-    const bool depFailed = std::any_of(component.definitions.begin(), component.definitions.end(), [&](const auto& d) {
-      return std::any_of(d.dependencies.begin(), d.dependencies.end(), [&](sem::ComponentId dep) { return failed[dep]; });
-    });
-    if (depFailed) {
-      failed[id] = true;
-      ok = false;
-      continue;
-    }
-
-    for (const sem::Definition& d : component.definitions) {
-      // What this definition may read: a definition written below a shader
-      // that finalizes worlds reads nothing from or through them (section
-      // 6.2), or the locked kernels would depend on the derived shader.
-      const WorldMask locked = lockedWorldsFor(shader, d.origin);
-      auto readable = [&](sem::ComponentId dep) { return locked ? availableAvoiding(dep, locked) : available[dep]; };
-      if (d.world) {
-        for (size_t i = 0; i < d.dependencies.size(); ++i) {
-          const sem::ComponentId dep = d.dependencies[i];
-          if ((readable(dep) >> *d.world) & 1) continue;
-          const bool throughLocked = (available[dep] >> *d.world) & 1;
-          diags.reportOnce(DiagCode::E4015, d.dependencyUses[i],
-                           fmt::format("'{}' is not available in world '{}', where '{}' is defined ({})",
-                                       shader.components[dep].name, pipeline.worlds[*d.world].name, component.name,
-                                       throughLocked ? fmt::format("it would come from or through a finalized world, "
-                                                                   "and a derived shader reads nothing there")
-                                                     : fmt::format("it is available in {}",
-                                                                   worldList(pipeline, available[dep]))));
-          ok = false;
-          failed[id] = true;
-        }
-        node.alternatives.push_back({*d.world, variationIndex(d.variation), &d});
-        continue;
-      }
-      // Implicit overloading (section 5.2): every concrete world where all
-      // dependencies are available, except worlds an explicit definition of
-      // the same variation already uses and worlds locked above the author.
-      WorldMask candidates = concrete & ~lockedWorldsFor(shader, d.origin);
-      for (const sem::Definition& other : component.definitions) {
-        if (other.world && other.variation == d.variation) candidates &= ~(WorldMask{1} << *other.world);
-      }
-      WorldMask allowed = candidates;
-      for (sem::ComponentId dep : d.dependencies) allowed &= readable(dep);
-      if (allowed == 0 && component.definitions.size() == 1) {
-        // Name the dependency that empties the set of possible worlds.
-        WorldMask running = candidates;
-        std::string explanation = "no world can compute it";
-        std::vector<std::string> seen;
-        for (sem::ComponentId dep : d.dependencies) {
-          const WorldMask next = running & readable(dep);
-          seen.push_back(fmt::format("'{}' ({})", shader.components[dep].name, worldList(pipeline, readable(dep))));
-          if (next == 0) {
-            explanation = seen.size() == 1
-                              ? fmt::format("it uses {}, which is available in no world where it could be computed",
-                                            seen.front())
-                              : fmt::format("no world has all of its dependencies; '{}' is blocked by {}",
-                                            component.name, fmt::join(seen, " and "));
-            break;
-          }
-          running = next;
-        }
-        diags.reportOnce(DiagCode::E4014, d.decl->nameRange,
-                         fmt::format("component '{}' can be defined nowhere: {}", component.name, explanation));
-        ok = false;
-        failed[id] = true;
-      }
-      for (sem::WorldId w = 0; w < pipeline.worlds.size(); ++w) {
-        if ((allowed >> w) & 1) node.alternatives.push_back({w, variationIndex(d.variation), &d});
-      }
-    }
-    keepInLockedWorlds(node);
-    std::stable_sort(node.alternatives.begin(), node.alternatives.end(), [&](const Alternative& a, const Alternative& b) {
-      if (a.variation != b.variation) return a.variation < b.variation;
-      return worldRank_[a.world] < worldRank_[b.world];
-    });
-    for (const Alternative& alt : node.alternatives) available[id] |= readableFrom(id, alt.world);
+    if (expandComponent(id, concrete, available, failed, diags)) continue;
+    ok = false;
+    failed[id] = true;
   }
+  collectSinks();
+  return ok;
+}
 
+void ShaderGraph::describeNode(sem::ComponentId id) {
+  const sem::Shader& shader = *shader_;
+  const sem::Component& component = shader.components[id];
+  ComponentNode& node = nodes_[id];
+  node.id = id;
+  node.component = &component;
+  node.isInput = !component.definitions.empty() && component.definitions.front().isInput();
+  const bool ownsDefinition = std::any_of(component.definitions.begin(), component.definitions.end(),
+                                          [&](const sem::Definition& d) { return d.origin == shader.name; });
+  node.choicePrefix = ownsDefinition || !shader.base ? shader.name : shader.base->name;
+  for (const sem::Definition& d : component.definitions) {
+    if (std::find(node.variations.begin(), node.variations.end(), d.variation) == node.variations.end()) {
+      node.variations.push_back(d.variation);
+    }
+  }
+}
+
+bool ShaderGraph::expandComponent(sem::ComponentId id, WorldMask concrete, std::vector<WorldMask>& available,
+                                  const std::vector<bool>& failed, DiagnosticList& diags) {
+  const sem::Shader& shader = *shader_;
+  const sem::Component& component = shader.components[id];
+  describeNode(id);
+  ComponentNode& node = nodes_[id];
+  if (component.isAbstract && component.definitions.empty()) {
+    diags.report(DiagCode::E4013, shader.decl->nameRange,
+                 fmt::format("shader '{}' does not define '{}', which '{}' requires", shader.name, component.name,
+                             component.origin))
+        .note(component.firstDecl->nameRange, fmt::format("'{}' is declared abstract here", component.name));
+    return false;
+  }
+  const bool depFailed = std::any_of(component.definitions.begin(), component.definitions.end(), [&](const auto& d) {
+    return std::any_of(d.dependencies.begin(), d.dependencies.end(), [&](sem::ComponentId dep) { return failed[dep]; });
+  });
+  if (depFailed) return false;
+
+  bool ok = true;
+  for (const sem::Definition& d : component.definitions) {
+    const bool placed = d.world ? addExplicitAlternative(node, d, available, diags)
+                                : addImplicitAlternatives(node, d, concrete, available, diags);
+    ok = ok && placed;
+  }
+  keepInLockedWorlds(node);
+  std::stable_sort(node.alternatives.begin(), node.alternatives.end(), [&](const Alternative& a, const Alternative& b) {
+    if (a.variation != b.variation) return a.variation < b.variation;
+    return worldRank_[a.world] < worldRank_[b.world];
+  });
+  for (const Alternative& alt : node.alternatives) available[id] |= readableFrom(id, alt.world);
+  return ok;
+}
+
+WorldMask ShaderGraph::readableBy(const sem::Definition& d, sem::ComponentId dep,
+                                  const std::vector<WorldMask>& available) const {
+  // A definition written below a shader that finalizes worlds reads nothing
+  // from or through them (section 6.2), or the locked kernels would depend on
+  // the derived shader.
+  const WorldMask locked = lockedWorldsFor(*shader_, d.origin);
+  return locked ? availableAvoiding(dep, locked) : available[dep];
+}
+
+bool ShaderGraph::addExplicitAlternative(ComponentNode& node, const sem::Definition& d,
+                                         const std::vector<WorldMask>& available, DiagnosticList& diags) {
+  const sem::Shader& shader = *shader_;
+  const sem::Pipeline& pipeline = *shader.pipeline;
+  bool ok = true;
+  for (size_t i = 0; i < d.dependencies.size(); ++i) {
+    const sem::ComponentId dep = d.dependencies[i];
+    if ((readableBy(d, dep, available) >> *d.world) & 1) continue;
+    const bool throughLocked = (available[dep] >> *d.world) & 1;
+    diags.reportOnce(DiagCode::E4015, d.dependencyUses[i],
+                     fmt::format("'{}' is not available in world '{}', where '{}' is defined ({})",
+                                 shader.components[dep].name, pipeline.worlds[*d.world].name, node.component->name,
+                                 throughLocked ? fmt::format("it would come from or through a finalized world, "
+                                                             "and a derived shader reads nothing there")
+                                               : fmt::format("it is available in {}",
+                                                             worldList(pipeline, available[dep]))));
+    ok = false;
+  }
+  node.alternatives.push_back({*d.world, variationIndex(node, d.variation), &d});
+  return ok;
+}
+
+bool ShaderGraph::addImplicitAlternatives(ComponentNode& node, const sem::Definition& d, WorldMask concrete,
+                                          const std::vector<WorldMask>& available, DiagnosticList& diags) {
+  // Implicit overloading (section 5.2): every concrete world where all
+  // dependencies are available, except worlds an explicit definition of
+  // the same variation already uses and worlds locked above the author.
+  const sem::Component& component = *node.component;
+  WorldMask candidates = concrete & ~lockedWorldsFor(*shader_, d.origin);
+  for (const sem::Definition& other : component.definitions) {
+    if (other.world && other.variation == d.variation) candidates &= ~(WorldMask{1} << *other.world);
+  }
+  WorldMask allowed = candidates;
+  for (sem::ComponentId dep : d.dependencies) allowed &= readableBy(d, dep, available);
+  bool ok = true;
+  if (allowed == 0 && component.definitions.size() == 1) {
+    diags.reportOnce(DiagCode::E4014, d.decl->nameRange,
+                     fmt::format("component '{}' can be defined nowhere: {}", component.name,
+                                 explainNowhere(component, d, candidates, available)));
+    ok = false;
+  }
+  for (sem::WorldId w = 0; w < pipeline().worlds.size(); ++w) {
+    if ((allowed >> w) & 1) node.alternatives.push_back({w, variationIndex(node, d.variation), &d});
+  }
+  return ok;
+}
+
+std::string ShaderGraph::explainNowhere(const sem::Component& component, const sem::Definition& d, WorldMask candidates,
+                                        const std::vector<WorldMask>& available) const {
+  // Name the dependency that empties the set of possible worlds.
+  WorldMask running = candidates;
+  std::vector<std::string> seen;
+  for (sem::ComponentId dep : d.dependencies) {
+    const WorldMask readable = readableBy(d, dep, available);
+    const WorldMask next = running & readable;
+    seen.push_back(fmt::format("'{}' ({})", shader_->components[dep].name, worldList(pipeline(), readable)));
+    if (next == 0) {
+      return seen.size() == 1
+                 ? fmt::format("it uses {}, which is available in no world where it could be computed", seen.front())
+                 : fmt::format("no world has all of its dependencies; '{}' is blocked by {}", component.name,
+                               fmt::join(seen, " and "));
+    }
+    running = next;
+  }
+  return "no world can compute it";
+}
+
+void ShaderGraph::collectSinks() {
   // Pipeline requirements: exports in their world, strategy arguments in the
   // world whose export strategy reads them.
-  for (sem::ComponentId id = 0; id < n; ++id) {
+  const sem::Shader& shader = *shader_;
+  const sem::Pipeline& pipeline = *shader.pipeline;
+  for (sem::ComponentId id = 0; id < shader.components.size(); ++id) {
     const sem::Component& c = shader.components[id];
     if (c.isExport && c.requiredWorld) sinks_.push_back({id, *c.requiredWorld});
   }
@@ -310,7 +352,6 @@ bool ShaderGraph::expand(DiagnosticList& diags) {
       }
     }
   }
-  return ok;
 }
 
 std::string ShaderGraph::altName(const ComponentNode& node, AltId alt) const {

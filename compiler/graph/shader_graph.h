@@ -84,6 +84,24 @@ class ShaderGraph {
  private:
   ShaderGraph() = default;
   bool expand(DiagnosticList& diags);
+  // Fills order_ and rank_.
+  void orderComponents();
+  // Each expand step below returns false after reporting an error; `available`
+  // holds, for each component placed so far, the worlds where it can be read.
+  bool expandComponent(sem::ComponentId id, WorldMask concrete, std::vector<WorldMask>& available,
+                       const std::vector<bool>& failed, DiagnosticList& diags);
+  // The node's identity, choice prefix and variations.
+  void describeNode(sem::ComponentId id);
+  bool addExplicitAlternative(ComponentNode& node, const sem::Definition& d, const std::vector<WorldMask>& available,
+                              DiagnosticList& diags);
+  bool addImplicitAlternatives(ComponentNode& node, const sem::Definition& d, WorldMask concrete,
+                               const std::vector<WorldMask>& available, DiagnosticList& diags);
+  // Why an implicit definition with these candidate worlds fits in none.
+  std::string explainNowhere(const sem::Component& component, const sem::Definition& d, WorldMask candidates,
+                             const std::vector<WorldMask>& available) const;
+  // Worlds where definition `d` may read `dep`.
+  WorldMask readableBy(const sem::Definition& d, sem::ComponentId dep, const std::vector<WorldMask>& available) const;
+  void collectSinks();
   // A component written by a shader that finalizes worlds, or above it, and
   // computable in one of them, is computed only in locked worlds, in every
   // shader derived from it: so no derived shader can pull it out of a

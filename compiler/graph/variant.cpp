@@ -19,6 +19,28 @@ class VariantBuilder {
   std::optional<Variant> place(const ChoiceSpace& domains);
 
  private:
+  // One component's step in the search: its candidates in preference order,
+  // the next to try, and what its choice changed.
+  struct Frame {
+    std::vector<AltId> candidates;
+    size_t next = 0;
+    std::vector<std::pair<sem::ComponentId, WorldMask>> saved;  // mustReach before this choice
+    bool skipped = false;
+  };
+  using Choice = std::vector<std::optional<AltId>>;
+
+  // The backtracking search; nullopt when no placement exists or the search
+  // gives up.
+  std::optional<Choice> search(const ChoiceSpace& domains) const;
+  std::vector<AltId> preferred(const ChoiceSpace& domains, sem::ComponentId c) const;
+  // Whether alternative `a` of `c` reaches every world `c` must reach.
+  bool fits(sem::ComponentId c, AltId a, const std::vector<WorldMask>& mustReach) const;
+  // The frame's next candidate that fits and leaves each of its dependencies
+  // an alternative that fits, with `mustReach` widened for it.
+  std::optional<AltId> chooseNext(Frame& frame, sem::ComponentId c, const ChoiceSpace& domains,
+                                  std::vector<WorldMask>& mustReach) const;
+  // The variant of a complete choice: its live components, kernels and routes.
+  std::optional<Variant> assemble(Choice choice);
   void route(Variant& v, sem::ComponentId component, sem::WorldId from, sem::WorldId to,
              std::set<std::pair<sem::ComponentId, uint32_t>>& seen);
   bool routeStrategyArguments(Variant& v, std::set<std::pair<sem::ComponentId, uint32_t>>& seen);
@@ -27,6 +49,12 @@ class VariantBuilder {
 };
 
 std::optional<Variant> VariantBuilder::place(const ChoiceSpace& domains) {
+  std::optional<Choice> choice = search(domains);
+  if (!choice) return std::nullopt;
+  return assemble(std::move(*choice));
+}
+
+std::optional<VariantBuilder::Choice> VariantBuilder::search(const ChoiceSpace& domains) const {
   const size_t n = graph_.nodes().size();
   const auto& dependencyOrder = graph_.dependencyOrder();
   const std::vector<sem::ComponentId> order(dependencyOrder.rbegin(), dependencyOrder.rend());
@@ -34,30 +62,8 @@ std::optional<Variant> VariantBuilder::place(const ChoiceSpace& domains) {
   std::vector<WorldMask> mustReach(n, 0);
   for (const Sink& sink : graph_.sinks()) mustReach[sink.component] |= WorldMask{1} << sink.world;
 
-  // Default preference per component: latest world, then first variation.
-  auto preferred = [&](sem::ComponentId c) {
-    std::vector<AltId> alts = domains.aliveAlternatives(c);
-    const auto& all = graph_.node(c).alternatives;
-    std::stable_sort(alts.begin(), alts.end(), [&](AltId a, AltId b) {
-      const uint32_t ra = graph_.worldRank(all[a].world), rb = graph_.worldRank(all[b].world);
-      if (ra != rb) return ra > rb;
-      return all[a].variation < all[b].variation;
-    });
-    return alts;
-  };
-  auto fits = [&](sem::ComponentId c, AltId a) {
-    const WorldMask reach = graph_.readableFrom(c, graph_.node(c).alternatives[a].world);
-    return (reach & mustReach[c]) == mustReach[c];
-  };
-
-  struct Frame {
-    std::vector<AltId> candidates;
-    size_t next = 0;
-    std::vector<std::pair<sem::ComponentId, WorldMask>> saved;  // mustReach before this choice
-    bool skipped = false;
-  };
   std::vector<Frame> frames(order.size());
-  std::vector<std::optional<AltId>> choice(n);
+  Choice choice(n);
   size_t i = 0;
   size_t steps = 0;
   constexpr size_t kMaxSteps = 1'000'000;
@@ -73,35 +79,15 @@ std::optional<Variant> VariantBuilder::place(const ChoiceSpace& domains) {
         ++i;
         continue;
       }
-      frame.candidates = preferred(c);
+      frame.candidates = preferred(domains, c);
     } else {
       // Backtracking into this frame: undo its choice.
       for (const auto& [dep, mask] : frame.saved) mustReach[dep] = mask;
       frame.saved.clear();
       choice[c].reset();
     }
-    bool chosen = false;
-    while (frame.next < frame.candidates.size()) {
-      const AltId a = frame.candidates[frame.next++];
-      if (!fits(c, a)) continue;
-      const Alternative& alt = graph_.node(c).alternatives[a];
-      bool supported = true;
-      for (sem::ComponentId dep : alt.definition->dependencies) {
-        frame.saved.emplace_back(dep, mustReach[dep]);
-        mustReach[dep] |= WorldMask{1} << alt.world;
-        bool any = false;
-        for (AltId d : domains.aliveAlternatives(dep)) any = any || fits(dep, d);
-        supported = supported && any;
-      }
-      if (supported) {
-        choice[c] = a;
-        chosen = true;
-        break;
-      }
-      for (const auto& [dep, mask] : frame.saved) mustReach[dep] = mask;
-      frame.saved.clear();
-    }
-    if (chosen) {
+    if (const std::optional<AltId> a = chooseNext(frame, c, domains, mustReach)) {
+      choice[c] = *a;
       ++i;
       entering = true;
       continue;
@@ -113,12 +99,53 @@ std::optional<Variant> VariantBuilder::place(const ChoiceSpace& domains) {
     } while (frames[i].skipped);
     entering = false;
   }
+  return choice;
+}
 
+// Default preference per component: latest world, then first variation.
+std::vector<AltId> VariantBuilder::preferred(const ChoiceSpace& domains, sem::ComponentId c) const {
+  std::vector<AltId> alts = domains.aliveAlternatives(c);
+  const auto& all = graph_.node(c).alternatives;
+  std::stable_sort(alts.begin(), alts.end(), [&](AltId a, AltId b) {
+    const uint32_t ra = graph_.worldRank(all[a].world), rb = graph_.worldRank(all[b].world);
+    if (ra != rb) return ra > rb;
+    return all[a].variation < all[b].variation;
+  });
+  return alts;
+}
+
+bool VariantBuilder::fits(sem::ComponentId c, AltId a, const std::vector<WorldMask>& mustReach) const {
+  const WorldMask reach = graph_.readableFrom(c, graph_.node(c).alternatives[a].world);
+  return (reach & mustReach[c]) == mustReach[c];
+}
+
+std::optional<AltId> VariantBuilder::chooseNext(Frame& frame, sem::ComponentId c, const ChoiceSpace& domains,
+                                                std::vector<WorldMask>& mustReach) const {
+  while (frame.next < frame.candidates.size()) {
+    const AltId a = frame.candidates[frame.next++];
+    if (!fits(c, a, mustReach)) continue;
+    const Alternative& alt = graph_.node(c).alternatives[a];
+    bool supported = true;
+    for (sem::ComponentId dep : alt.definition->dependencies) {
+      frame.saved.emplace_back(dep, mustReach[dep]);
+      mustReach[dep] |= WorldMask{1} << alt.world;
+      bool any = false;
+      for (AltId d : domains.aliveAlternatives(dep)) any = any || fits(dep, d, mustReach);
+      supported = supported && any;
+    }
+    if (supported) return a;
+    for (const auto& [dep, mask] : frame.saved) mustReach[dep] = mask;
+    frame.saved.clear();
+  }
+  return std::nullopt;
+}
+
+std::optional<Variant> VariantBuilder::assemble(Choice choice) {
   Variant v;
   v.graph_ = &graph_;
   v.choice_ = std::move(choice);
   v.worlds_.resize(graph_.pipeline().worlds.size());
-  for (sem::ComponentId c : dependencyOrder) {
+  for (sem::ComponentId c : graph_.dependencyOrder()) {
     if (!v.choice_[c]) continue;
     v.live_.push_back(c);
     if (!graph_.node(c).isInput) v.worlds_[v.worldOf(c)].computed.push_back(c);

@@ -80,6 +80,9 @@ class BodyChecker {
   const Type* checkCall(const ast::CallExpr& e, ExprInfo& info);
   const Type* checkConstructorCall(const ast::CallExpr& e, const Type* target, const std::vector<const Type*>& args);
   const Type* checkFunctionCall(const ast::CallExpr& e, ExprInfo& info, const std::vector<const Type*>& args);
+  // A call of a name no function or built-in has: not a function, or a
+  // misspelling. Returns the error type.
+  const Type* reportUnknownFunction(const ast::CallExpr& e);
   const Type* checkMember(const ast::MemberExpr& e, ExprInfo& info);
   const Type* checkIndex(const ast::IndexExpr& e, ExprInfo& info);
   bool requireLValue(const ast::Expr& target, SourceRange opRange, std::string_view action);
@@ -88,6 +91,12 @@ class BodyChecker {
 
   // Statements (body_checker_stmt.cpp)
   void checkStmt(const ast::Stmt& stmt);
+  void checkBlock(const ast::BlockStmt& block);
+  void checkIf(const ast::IfStmt& s);
+  void checkFor(const ast::ForStmt& s);
+  void checkWhile(const ast::WhileStmt& s);
+  void checkDoWhile(const ast::DoWhileStmt& s);
+  void checkReturn(const ast::ReturnStmt& s);
   void checkVarDecl(const ast::VarDeclStmt& decl);
   void checkCondition(const ast::Expr& condition, std::string_view construct);
   bool alwaysReturns(const ast::Stmt& stmt) const;

@@ -43,6 +43,94 @@ struct Candidate {
   }
 };
 
+// The user functions and built-in overloads named `name`.
+std::vector<Candidate> collectCandidates(const FunctionTable& functions, const BuiltinTable& builtins,
+                                         std::string_view name) {
+  std::vector<Candidate> candidates;
+  if (auto it = functions.find(name); it != functions.end()) {
+    for (const Function* f : it->second) candidates.push_back({f, nullptr, f->returnType, f->params});
+  }
+  if (const auto* overloads = builtins.lookup(name)) {
+    for (const BuiltinOverload& o : *overloads) {
+      Candidate c{nullptr, &o, o.result, {}};
+      for (const BuiltinParam& p : o.params) c.params.push_back({p.type, p.direction});
+      candidates.push_back(std::move(c));
+    }
+  }
+  return candidates;
+}
+
+// A candidate the arguments can call, with which arguments match exactly.
+struct Viable {
+  const Candidate* candidate;
+  std::vector<bool> exact;
+};
+
+std::vector<Viable> viableCandidates(const std::vector<Candidate>& candidates, const std::vector<const Type*>& args) {
+  std::vector<Viable> viable;
+  for (const Candidate& c : candidates) {
+    if (c.params.size() != args.size()) continue;
+    Viable v{&c, {}};
+    bool ok = true;
+    for (size_t i = 0; i < args.size() && ok; ++i) {
+      const Param& p = c.params[i];
+      const bool exact = args[i] == p.type;
+      if (p.direction == ast::ParamDirection::In) ok = isImplicitlyConvertible(args[i], p.type);
+      else if (p.direction == ast::ParamDirection::Out) ok = exact || isImplicitlyConvertible(p.type, args[i]);
+      else ok = exact;
+      v.exact.push_back(exact);
+    }
+    if (ok) viable.push_back(std::move(v));
+  }
+  return viable;
+}
+
+// GLSL 4.50 section 6.1: an exact match wins; otherwise a unique candidate
+// whose conversions are nowhere worse and somewhere better than every other.
+const Viable* bestViable(const std::vector<Viable>& viable) {
+  auto better = [](const Viable& a, const Viable& b) {
+    bool someBetter = false;
+    for (size_t i = 0; i < a.exact.size(); ++i) {
+      if (b.exact[i] && !a.exact[i]) return false;
+      if (a.exact[i] && !b.exact[i]) someBetter = true;
+    }
+    return someBetter;
+  };
+  const Viable* best = nullptr;
+  for (const Viable& v : viable) {
+    if (std::all_of(viable.begin(), viable.end(), [&](const Viable& o) { return &o == &v || better(v, o); })) best = &v;
+  }
+  return best;
+}
+
+// An ambiguous call lists the tied candidates, an unmatched one every
+// candidate, at most kMaxNotes of them.
+void reportNoBestCandidate(DiagnosticList& diags, const ast::CallExpr& e, const std::vector<const Type*>& args,
+                           const std::vector<Candidate>& candidates, const std::vector<Viable>& viable) {
+  const bool ambiguous = !viable.empty();
+  Diagnostic& d = diags.report(ambiguous ? DiagCode::E3016 : DiagCode::E3007, e.range,
+                               fmt::format("{} call to '{}'", ambiguous ? "ambiguous" : "no matching function for",
+                                           signatureText(e.callee.name, args)));
+  constexpr size_t kMaxNotes = 8;
+  size_t shown = 0;
+  if (ambiguous) {
+    for (const Viable& v : viable) {
+      if (shown++ == kMaxNotes) break;
+      d.note(v.candidate->function ? v.candidate->function->decl->nameRange : SourceRange{},
+             fmt::format("candidate: {}", v.candidate->describe(e.callee.name)));
+    }
+  } else {
+    for (const Candidate& c : candidates) {
+      if (shown++ == kMaxNotes) break;
+      d.note(c.function ? c.function->decl->nameRange : SourceRange{},
+             fmt::format("candidate: {}", c.describe(e.callee.name)));
+    }
+  }
+  if (candidates.size() > kMaxNotes && !ambiguous) {
+    d.note({}, fmt::format("and {} more candidates", candidates.size() - kMaxNotes));
+  }
+}
+
 bool isSwizzleSet(std::string_view member, std::string_view set) {
   return std::all_of(member.begin(), member.end(), [&](char c) { return set.find(c) != std::string_view::npos; });
 }
@@ -271,94 +359,12 @@ const Type* BodyChecker::checkConstructorCall(const ast::CallExpr& e, const Type
 }
 
 const Type* BodyChecker::checkFunctionCall(const ast::CallExpr& e, ExprInfo& info, const std::vector<const Type*>& args) {
-  std::vector<Candidate> candidates;
-  if (auto it = functions_.find(e.callee.name); it != functions_.end()) {
-    for (const Function* f : it->second) candidates.push_back({f, nullptr, f->returnType, f->params});
-  }
-  if (const auto* overloads = model_.builtins().lookup(e.callee.name)) {
-    for (const BuiltinOverload& o : *overloads) {
-      Candidate c{nullptr, &o, o.result, {}};
-      for (const BuiltinParam& p : o.params) c.params.push_back({p.type, p.direction});
-      candidates.push_back(std::move(c));
-    }
-  }
-  if (candidates.empty()) {
-    if (findLocal(e.callee.name) || (components_ && components_->declarationOf(e.callee.name).valid())) {
-      diags_.report(DiagCode::E3018, e.callee.nameRange, fmt::format("'{}' is not a function", e.callee.name));
-      return model_.types().error();
-    }
-    std::vector<std::string_view> names = model_.builtins().names();
-    for (const auto& [name, overloads] : functions_) names.push_back(name);
-    const auto suggestion = closestSpelling(e.callee.name, names);
-    Diagnostic& d = diags_.report(
-        DiagCode::E3001, e.callee.nameRange,
-        suggestion ? fmt::format("use of undeclared function '{}'; did you mean '{}'?", e.callee.name, *suggestion)
-                   : fmt::format("use of undeclared function '{}'", e.callee.name));
-    if (suggestion) {
-      if (auto it = functions_.find(*suggestion); it != functions_.end() && !it->second.empty()) {
-        d.note(it->second.front()->decl->nameRange, fmt::format("'{}' declared here", *suggestion));
-      }
-    }
-    return model_.types().error();
-  }
-
-  // GLSL 4.50 section 6.1: an exact match wins; otherwise a unique candidate
-  // whose conversions are nowhere worse and somewhere better than every other.
-  struct Viable {
-    const Candidate* candidate;
-    std::vector<bool> exact;
-  };
-  std::vector<Viable> viable;
-  for (const Candidate& c : candidates) {
-    if (c.params.size() != args.size()) continue;
-    Viable v{&c, {}};
-    bool ok = true;
-    for (size_t i = 0; i < args.size() && ok; ++i) {
-      const Param& p = c.params[i];
-      const bool exact = args[i] == p.type;
-      if (p.direction == ast::ParamDirection::In) ok = isImplicitlyConvertible(args[i], p.type);
-      else if (p.direction == ast::ParamDirection::Out) ok = exact || isImplicitlyConvertible(p.type, args[i]);
-      else ok = exact;
-      v.exact.push_back(exact);
-    }
-    if (ok) viable.push_back(std::move(v));
-  }
-  auto better = [](const Viable& a, const Viable& b) {
-    bool someBetter = false;
-    for (size_t i = 0; i < a.exact.size(); ++i) {
-      if (b.exact[i] && !a.exact[i]) return false;
-      if (a.exact[i] && !b.exact[i]) someBetter = true;
-    }
-    return someBetter;
-  };
-  const Viable* best = nullptr;
-  for (const Viable& v : viable) {
-    if (std::all_of(viable.begin(), viable.end(), [&](const Viable& o) { return &o == &v || better(v, o); })) best = &v;
-  }
+  const std::vector<Candidate> candidates = collectCandidates(functions_, model_.builtins(), e.callee.name);
+  if (candidates.empty()) return reportUnknownFunction(e);
+  const std::vector<Viable> viable = viableCandidates(candidates, args);
+  const Viable* best = bestViable(viable);
   if (!best) {
-    const bool ambiguous = !viable.empty();
-    Diagnostic& d = diags_.report(
-        ambiguous ? DiagCode::E3016 : DiagCode::E3007, e.range,
-        fmt::format("{} call to '{}'", ambiguous ? "ambiguous" : "no matching function for", signatureText(e.callee.name, args)));
-    constexpr size_t kMaxNotes = 8;
-    size_t shown = 0;
-    const auto& list = ambiguous ? viable : std::vector<Viable>{};
-    if (ambiguous) {
-      for (const Viable& v : list) {
-        if (shown++ == kMaxNotes) break;
-        d.note(v.candidate->function ? v.candidate->function->decl->nameRange : SourceRange{},
-               fmt::format("candidate: {}", v.candidate->describe(e.callee.name)));
-      }
-    } else {
-      for (const Candidate& c : candidates) {
-        if (shown++ == kMaxNotes) break;
-        d.note(c.function ? c.function->decl->nameRange : SourceRange{},
-               fmt::format("candidate: {}", c.describe(e.callee.name)));
-      }
-    }
-    if (candidates.size() > kMaxNotes && !ambiguous) {
-      d.note({}, fmt::format("and {} more candidates", candidates.size() - kMaxNotes));
-    }
+    reportNoBestCandidate(diags_, e, args, candidates, viable);
     return model_.types().error();
   }
   const Candidate& chosen = *best->candidate;
@@ -379,6 +385,26 @@ const Type* BodyChecker::checkFunctionCall(const ast::CallExpr& e, ExprInfo& inf
     info.builtin = chosen.builtin;
   }
   return chosen.result;
+}
+
+const Type* BodyChecker::reportUnknownFunction(const ast::CallExpr& e) {
+  if (findLocal(e.callee.name) || (components_ && components_->declarationOf(e.callee.name).valid())) {
+    diags_.report(DiagCode::E3018, e.callee.nameRange, fmt::format("'{}' is not a function", e.callee.name));
+    return model_.types().error();
+  }
+  std::vector<std::string_view> names = model_.builtins().names();
+  for (const auto& [name, overloads] : functions_) names.push_back(name);
+  const auto suggestion = closestSpelling(e.callee.name, names);
+  Diagnostic& d = diags_.report(
+      DiagCode::E3001, e.callee.nameRange,
+      suggestion ? fmt::format("use of undeclared function '{}'; did you mean '{}'?", e.callee.name, *suggestion)
+                 : fmt::format("use of undeclared function '{}'", e.callee.name));
+  if (suggestion) {
+    if (auto it = functions_.find(*suggestion); it != functions_.end() && !it->second.empty()) {
+      d.note(it->second.front()->decl->nameRange, fmt::format("'{}' declared here", *suggestion));
+    }
+  }
+  return model_.types().error();
 }
 
 const Type* BodyChecker::checkMember(const ast::MemberExpr& e, ExprInfo& info) {

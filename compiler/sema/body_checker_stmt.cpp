@@ -139,62 +139,13 @@ void BodyChecker::checkVarDecl(const ast::VarDeclStmt& decl) {
 
 void BodyChecker::checkStmt(const ast::Stmt& stmt) {
   switch (stmt.kind) {
-    case ast::StmtKind::Block: {
-      pushScope();
-      for (const ast::StmtPtr& s : ast::cast<ast::BlockStmt>(stmt).statements) {
-        if (diags_.limitReached()) break;
-        checkStmt(*s);
-      }
-      popScope();
-      return;
-    }
+    case ast::StmtKind::Block: checkBlock(ast::cast<ast::BlockStmt>(stmt)); return;
     case ast::StmtKind::VarDecl: checkVarDecl(ast::cast<ast::VarDeclStmt>(stmt)); return;
     case ast::StmtKind::Expr: check(*ast::cast<ast::ExprStmt>(stmt).expr); return;
-    case ast::StmtKind::If: {
-      const auto& s = ast::cast<ast::IfStmt>(stmt);
-      checkCondition(*s.condition, "'if'");
-      pushScope();
-      checkStmt(*s.thenBranch);
-      popScope();
-      if (s.elseBranch) {
-        pushScope();
-        checkStmt(*s.elseBranch);
-        popScope();
-      }
-      return;
-    }
-    case ast::StmtKind::For: {
-      const auto& s = ast::cast<ast::ForStmt>(stmt);
-      pushScope();
-      if (s.init) checkStmt(*s.init);
-      if (s.condition) checkCondition(*s.condition, "'for'");
-      if (s.step) check(*s.step);
-      ++loopDepth_;
-      checkStmt(*s.body);
-      --loopDepth_;
-      popScope();
-      return;
-    }
-    case ast::StmtKind::While: {
-      const auto& s = ast::cast<ast::WhileStmt>(stmt);
-      checkCondition(*s.condition, "'while'");
-      ++loopDepth_;
-      pushScope();
-      checkStmt(*s.body);
-      popScope();
-      --loopDepth_;
-      return;
-    }
-    case ast::StmtKind::DoWhile: {
-      const auto& s = ast::cast<ast::DoWhileStmt>(stmt);
-      ++loopDepth_;
-      pushScope();
-      checkStmt(*s.body);
-      popScope();
-      --loopDepth_;
-      checkCondition(*s.condition, "'do-while'");
-      return;
-    }
+    case ast::StmtKind::If: checkIf(ast::cast<ast::IfStmt>(stmt)); return;
+    case ast::StmtKind::For: checkFor(ast::cast<ast::ForStmt>(stmt)); return;
+    case ast::StmtKind::While: checkWhile(ast::cast<ast::WhileStmt>(stmt)); return;
+    case ast::StmtKind::DoWhile: checkDoWhile(ast::cast<ast::DoWhileStmt>(stmt)); return;
     case ast::StmtKind::Break:
     case ast::StmtKind::Continue:
       if (loopDepth_ == 0) {
@@ -202,29 +153,79 @@ void BodyChecker::checkStmt(const ast::Stmt& stmt) {
                       fmt::format("'{}' outside of a loop", stmt.kind == ast::StmtKind::Break ? "break" : "continue"));
       }
       return;
-    case ast::StmtKind::Return: {
-      const auto& s = ast::cast<ast::ReturnStmt>(stmt);
-      if (!returnType_) return;
-      if (!s.value) {
-        if (!returnType_->isVoid() && !returnType_->isError()) {
-          diags_.report(DiagCode::E3004, stmt.range,
-                        fmt::format("{} must return a value of type '{}'", owner_, returnType_->name()));
-        }
-        return;
-      }
-      const Type* type = check(*s.value);
-      if (type->isError() || returnType_->isError()) return;
-      if (returnType_->isVoid()) {
-        diags_.report(DiagCode::E3004, s.value->range, fmt::format("{} returns 'void' but a value is returned", owner_));
-      } else if (!isImplicitlyConvertible(type, returnType_)) {
-        diags_.report(DiagCode::E3004, s.value->range,
-                      fmt::format("cannot return a value of type '{}' from {} of type '{}'", type->name(), owner_,
-                                  returnType_->name()));
-      }
-      return;
-    }
+    case ast::StmtKind::Return: checkReturn(ast::cast<ast::ReturnStmt>(stmt)); return;
     case ast::StmtKind::Discard:
     case ast::StmtKind::Empty: return;
+  }
+}
+
+void BodyChecker::checkBlock(const ast::BlockStmt& block) {
+  pushScope();
+  for (const ast::StmtPtr& s : block.statements) {
+    if (diags_.limitReached()) break;
+    checkStmt(*s);
+  }
+  popScope();
+}
+
+void BodyChecker::checkIf(const ast::IfStmt& s) {
+  checkCondition(*s.condition, "'if'");
+  pushScope();
+  checkStmt(*s.thenBranch);
+  popScope();
+  if (s.elseBranch) {
+    pushScope();
+    checkStmt(*s.elseBranch);
+    popScope();
+  }
+}
+
+void BodyChecker::checkFor(const ast::ForStmt& s) {
+  pushScope();
+  if (s.init) checkStmt(*s.init);
+  if (s.condition) checkCondition(*s.condition, "'for'");
+  if (s.step) check(*s.step);
+  ++loopDepth_;
+  checkStmt(*s.body);
+  --loopDepth_;
+  popScope();
+}
+
+void BodyChecker::checkWhile(const ast::WhileStmt& s) {
+  checkCondition(*s.condition, "'while'");
+  ++loopDepth_;
+  pushScope();
+  checkStmt(*s.body);
+  popScope();
+  --loopDepth_;
+}
+
+void BodyChecker::checkDoWhile(const ast::DoWhileStmt& s) {
+  ++loopDepth_;
+  pushScope();
+  checkStmt(*s.body);
+  popScope();
+  --loopDepth_;
+  checkCondition(*s.condition, "'do-while'");
+}
+
+void BodyChecker::checkReturn(const ast::ReturnStmt& s) {
+  if (!returnType_) return;
+  if (!s.value) {
+    if (!returnType_->isVoid() && !returnType_->isError()) {
+      diags_.report(DiagCode::E3004, s.range,
+                    fmt::format("{} must return a value of type '{}'", owner_, returnType_->name()));
+    }
+    return;
+  }
+  const Type* type = check(*s.value);
+  if (type->isError() || returnType_->isError()) return;
+  if (returnType_->isVoid()) {
+    diags_.report(DiagCode::E3004, s.value->range, fmt::format("{} returns 'void' but a value is returned", owner_));
+  } else if (!isImplicitlyConvertible(type, returnType_)) {
+    diags_.report(DiagCode::E3004, s.value->range,
+                  fmt::format("cannot return a value of type '{}' from {} of type '{}'", type->name(), owner_,
+                              returnType_->name()));
   }
 }
 

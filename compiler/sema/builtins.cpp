@@ -244,86 +244,108 @@ void addInteger(Builder& B) {
 // P is its coordinate, size what textureSize returns, offset the texel offset
 // type, grad the derivative type (dPdx/dPdy) and lodCoord the coordinate of
 // textureQueryLod (arrays drop the layer).
+struct SamplerShape {
+  SamplerKind kind;
+  uint32_t coord;     // components of P
+  uint32_t size;      // components of textureSize's result
+  uint32_t offset;    // 0 when the sampler takes no offsets (cube maps)
+  uint32_t grad;      // components of dPdx and dPdy
+  uint32_t lodCoord;  // components of textureQueryLod's P
+  bool fetch;         // texelFetch and friends (not for cube maps)
+  bool proj;          // textureProj and friends (2D and 3D)
+  bool gather;        // textureGather (2D, 2D array, cube)
+};
+
+// 8.9.1 Texture query functions.
+void addTextureQueries(Builder& B, const SamplerShape& s) {
+  const Type* smp = B.sampler(s.kind);
+  B.add("textureSize", B.ivec(s.size), {smp, B.i()});
+  B.add("textureQueryLod", B.vec(2), {smp, B.vec(s.lodCoord)});
+  B.add("textureQueryLevels", B.i(), {smp});
+}
+
+// 8.9.2 Texel lookup functions, without the projective ones.
+void addTexelLookups(Builder& B, const SamplerShape& s) {
+  const Type* f = B.f();
+  const Type* i = B.i();
+  const Type* v4 = B.vec(4);
+  const Type* smp = B.sampler(s.kind);
+  const Type* P = B.vec(s.coord);
+  const Type* off = s.offset ? B.ivec(s.offset) : nullptr;
+  const Type* d = B.vec(s.grad);
+  B.add("texture", v4, {smp, P});
+  B.add("texture", v4, {smp, P, f});  // with LOD bias
+  B.add("textureLod", v4, {smp, P, f});
+  B.add("textureGrad", v4, {smp, P, d, d});
+  if (off) {
+    B.add("textureOffset", v4, {smp, P, off});
+    B.add("textureOffset", v4, {smp, P, off, f});
+    B.add("textureLodOffset", v4, {smp, P, f, off});
+    B.add("textureGradOffset", v4, {smp, P, d, d, off});
+  }
+  if (s.fetch) {
+    const Type* iP = B.ivec(s.coord);
+    B.add("texelFetch", v4, {smp, iP, i});
+    B.add("texelFetchOffset", v4, {smp, iP, i, off});
+  }
+}
+
+// textureProj divides P's leading components by its last one. 2D samplers
+// take vec3 or vec4 (q in .w, .z ignored); 3D takes vec4.
+void addProjectiveLookups(Builder& B, const SamplerShape& s) {
+  if (!s.proj) return;
+  const Type* f = B.f();
+  const Type* v4 = B.vec(4);
+  const Type* smp = B.sampler(s.kind);
+  const Type* off = s.offset ? B.ivec(s.offset) : nullptr;
+  const Type* d = B.vec(s.grad);
+  std::vector<const Type*> projCoords;
+  if (s.kind == SamplerKind::Sampler2D) projCoords.push_back(B.vec(3));
+  projCoords.push_back(B.vec(4));
+  for (const Type* pp : projCoords) {
+    B.add("textureProj", v4, {smp, pp});
+    B.add("textureProj", v4, {smp, pp, f});
+    B.add("textureProjLod", v4, {smp, pp, f});
+    B.add("textureProjGrad", v4, {smp, pp, d, d});
+    B.add("textureProjOffset", v4, {smp, pp, off});
+    B.add("textureProjOffset", v4, {smp, pp, off, f});
+    B.add("textureProjLodOffset", v4, {smp, pp, f, off});
+    B.add("textureProjGradOffset", v4, {smp, pp, d, d, off});
+  }
+}
+
+// 8.9.4 Texture gather functions; `comp` selects the channel (0-3).
+void addTextureGathers(Builder& B, const SamplerShape& s) {
+  if (!s.gather) return;
+  const Type* i = B.i();
+  const Type* v4 = B.vec(4);
+  const Type* smp = B.sampler(s.kind);
+  const Type* P = B.vec(s.coord);
+  const Type* off = s.offset ? B.ivec(s.offset) : nullptr;
+  B.add("textureGather", v4, {smp, P});
+  B.add("textureGather", v4, {smp, P, i});
+  if (off) {
+    B.add("textureGatherOffset", v4, {smp, P, off});
+    B.add("textureGatherOffset", v4, {smp, P, off, i});
+    const Type* offsets = B.array(off, 4);
+    B.add("textureGatherOffsets", v4, {smp, P, offsets});
+    B.add("textureGatherOffsets", v4, {smp, P, offsets, i});
+  }
+}
+
 void addTexture(Builder& B) {
-  struct SamplerShape {
-    SamplerKind kind;
-    uint32_t coord;     // components of P
-    uint32_t size;      // components of textureSize's result
-    uint32_t offset;    // 0 when the sampler takes no offsets (cube maps)
-    uint32_t grad;      // components of dPdx and dPdy
-    uint32_t lodCoord;  // components of textureQueryLod's P
-    bool fetch;         // texelFetch and friends (not for cube maps)
-    bool proj;          // textureProj and friends (2D and 3D)
-    bool gather;        // textureGather (2D, 2D array, cube)
-  };
   const SamplerShape shapes[] = {
       {SamplerKind::Sampler2D, 2, 2, 2, 2, 2, true, true, true},
       {SamplerKind::Sampler3D, 3, 3, 3, 3, 3, true, true, false},
       {SamplerKind::SamplerCube, 3, 2, 0, 3, 3, false, false, true},
       {SamplerKind::Sampler2DArray, 3, 3, 2, 2, 2, true, false, true},
   };
-
-  const Type* f = B.f();
-  const Type* i = B.i();
-  const Type* v4 = B.vec(4);
-
+  // Overloads are listed in the order added, which candidate notes show.
   for (const SamplerShape& s : shapes) {
-    const Type* smp = B.sampler(s.kind);
-    const Type* P = B.vec(s.coord);
-    const Type* off = s.offset ? B.ivec(s.offset) : nullptr;
-    const Type* d = B.vec(s.grad);
-
-    // 8.9.1 Texture query functions.
-    B.add("textureSize", B.ivec(s.size), {smp, i});
-    B.add("textureQueryLod", B.vec(2), {smp, B.vec(s.lodCoord)});
-    B.add("textureQueryLevels", i, {smp});
-
-    // 8.9.2 Texel lookup functions.
-    B.add("texture", v4, {smp, P});
-    B.add("texture", v4, {smp, P, f});  // with LOD bias
-    B.add("textureLod", v4, {smp, P, f});
-    B.add("textureGrad", v4, {smp, P, d, d});
-    if (off) {
-      B.add("textureOffset", v4, {smp, P, off});
-      B.add("textureOffset", v4, {smp, P, off, f});
-      B.add("textureLodOffset", v4, {smp, P, f, off});
-      B.add("textureGradOffset", v4, {smp, P, d, d, off});
-    }
-    if (s.fetch) {
-      const Type* iP = B.ivec(s.coord);
-      B.add("texelFetch", v4, {smp, iP, i});
-      B.add("texelFetchOffset", v4, {smp, iP, i, off});
-    }
-    if (s.proj) {
-      // textureProj divides P's leading components by its last one. 2D
-      // samplers take vec3 or vec4 (q in .w, .z ignored); 3D takes vec4.
-      std::vector<const Type*> projCoords;
-      if (s.kind == SamplerKind::Sampler2D) projCoords.push_back(B.vec(3));
-      projCoords.push_back(B.vec(4));
-      for (const Type* pp : projCoords) {
-        B.add("textureProj", v4, {smp, pp});
-        B.add("textureProj", v4, {smp, pp, f});
-        B.add("textureProjLod", v4, {smp, pp, f});
-        B.add("textureProjGrad", v4, {smp, pp, d, d});
-        B.add("textureProjOffset", v4, {smp, pp, off});
-        B.add("textureProjOffset", v4, {smp, pp, off, f});
-        B.add("textureProjLodOffset", v4, {smp, pp, f, off});
-        B.add("textureProjGradOffset", v4, {smp, pp, d, d, off});
-      }
-    }
-
-    // 8.9.4 Texture gather functions; `comp` selects the channel (0-3).
-    if (s.gather) {
-      B.add("textureGather", v4, {smp, P});
-      B.add("textureGather", v4, {smp, P, i});
-      if (off) {
-        B.add("textureGatherOffset", v4, {smp, P, off});
-        B.add("textureGatherOffset", v4, {smp, P, off, i});
-        const Type* offsets = B.array(off, 4);
-        B.add("textureGatherOffsets", v4, {smp, P, offsets});
-        B.add("textureGatherOffsets", v4, {smp, P, offsets, i});
-      }
-    }
+    addTextureQueries(B, s);
+    addTexelLookups(B, s);
+    addProjectiveLookups(B, s);
+    addTextureGathers(B, s);
   }
 }
 

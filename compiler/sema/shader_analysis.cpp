@@ -17,6 +17,149 @@ std::string definitionLabel(const std::optional<WorldId>& world, const std::stri
   return label;
 }
 
+// Why a component declaration is rejected before it is added, if it is.
+struct Rejection {
+  SourceRange where;
+  std::string message;
+};
+
+std::optional<Rejection> rejectionOf(const ast::ComponentDecl& decl, const Type* type, bool worldResolved,
+                                     bool isWorldAbstract, bool isInput, bool inPipeline) {
+  if (decl.isAbstract && decl.hasDefinition()) {
+    return Rejection{decl.nameRange, fmt::format("abstract component '{}' cannot have a definition", decl.name)};
+  }
+  if (decl.isExport && !inPipeline) {
+    return Rejection{decl.range,
+                     fmt::format("'export' is only allowed on pipeline components, not on '{}'", decl.name)};
+  }
+  if (decl.isExport && isInput) {
+    return Rejection{decl.nameRange, fmt::format("exported component '{}' must be abstract or defined", decl.name)};
+  }
+  if (!decl.variation.empty() && !decl.hasDefinition()) {
+    return Rejection{decl.variationRange,
+                     fmt::format("only a definition can have a variation name, not '{}'", decl.name)};
+  }
+  if (decl.hasDefinition() && isWorldAbstract) {
+    return Rejection{
+        decl.worldRange,
+        fmt::format("component '{}' cannot be defined in abstract world '{}': abstract worlds hold no computation",
+                    decl.name, *decl.world)};
+  }
+  if (isInput && !decl.world) {
+    return Rejection{decl.nameRange, fmt::format("input component '{}' needs a world, as in '@MaterialUniform {} {};'",
+                                                 decl.name, decl.type.name, decl.name)};
+  }
+  if (isInput && worldResolved && !isWorldAbstract) {
+    return Rejection{decl.nameRange,
+                     fmt::format("component '{}' in concrete world '{}' needs a definition; mark it 'abstract' if "
+                                 "shaders must define it",
+                                 decl.name, *decl.world)};
+  }
+  if (decl.isAbstract && isWorldAbstract) {
+    return Rejection{decl.worldRange, fmt::format("abstract component '{}' must be at a concrete world, not '{}'",
+                                                  decl.name, *decl.world)};
+  }
+  if (decl.hasDefinition() && type->containsOpaque()) {
+    return Rejection{decl.type.range,
+                     fmt::format("component '{}' of opaque type '{}' must be an input at an abstract world",
+                                 decl.name, type->name())};
+  }
+  return std::nullopt;
+}
+
+void appendComponent(ComponentSet& set, Component component) {
+  set.componentByName.emplace(component.name, static_cast<ComponentId>(set.components.size()));
+  set.components.push_back(std::move(component));
+}
+
+// A rejected declaration still introduces its name, so that its uses do
+// not cascade into "undeclared identifier" errors.
+void addPlaceholder(ComponentSet& set, const ast::ComponentDecl& decl, const Type* type, const std::string& origin) {
+  if (set.componentByName.count(decl.name)) return;
+  Component placeholder;
+  placeholder.name = decl.name;
+  placeholder.type = type;
+  placeholder.firstDecl = &decl;
+  placeholder.origin = origin;
+  appendComponent(set, std::move(placeholder));
+}
+
+void addFirstDeclaration(ComponentSet& set, const ast::ComponentDecl& decl, const Type* type,
+                         std::optional<WorldId> world, const std::string& origin) {
+  Component c;
+  c.name = decl.name;
+  c.type = type;
+  c.firstDecl = &decl;
+  c.origin = origin;
+  c.isAbstract = decl.isAbstract;
+  c.isExport = decl.isExport;
+  if (decl.isAbstract) c.requiredWorld = world;
+  for (const ast::Attribute& a : decl.attributes) c.attributes.push_back(&a);
+  if (!decl.isAbstract) c.definitions.push_back({&decl, world, decl.variation, {}, {}, {}, origin, {}});
+  appendComponent(set, std::move(c));
+}
+
+// An abstract redeclaration may only repeat or add the required world.
+void redeclareAbstract(Component& existing, const Pipeline& pipeline, const ast::ComponentDecl& decl,
+                       std::optional<WorldId> world, DiagnosticList& diags) {
+  if (!existing.isAbstract || !existing.definitions.empty()) {
+    diags.report(DiagCode::E4008, decl.nameRange,
+                 fmt::format("component '{}' is already defined and cannot be redeclared abstract", decl.name))
+        .note(existing.firstDecl->nameRange, "previous declaration is here");
+  } else if (world && existing.requiredWorld && *world != *existing.requiredWorld) {
+    diags.report(DiagCode::E4008, decl.worldRange,
+                 fmt::format("abstract component '{}' is required at '{}' here, but at '{}' before", decl.name,
+                             *decl.world, pipeline.worlds[*existing.requiredWorld].name))
+        .note(existing.firstDecl->nameRange, "previous declaration is here");
+  } else if (world) {
+    existing.requiredWorld = world;
+  }
+}
+
+// Adds a definition to a declared component, or overrides the base's
+// definition of the same world and variation.
+void addDefinition(Component& existing, const Pipeline& pipeline, const ast::ComponentDecl& decl,
+                   std::optional<WorldId> world, const std::string& origin, DiagnosticList& diags) {
+  const std::optional<WorldId> effectiveWorld = world ? world : existing.requiredWorld;
+  Definition definition{&decl, effectiveWorld, decl.variation, {}, {}, {}, origin, {}};
+  for (Definition& d : existing.definitions) {
+    if (d.world != effectiveWorld || d.variation != decl.variation) continue;
+    if (d.origin == origin) {
+      diags.report(DiagCode::E3003, decl.nameRange,
+                   fmt::format("redefinition of component '{}' {}", decl.name,
+                               definitionLabel(effectiveWorld, decl.variation, pipeline)))
+          .note(d.decl->nameRange, "previous definition is here");
+      return;
+    }
+    // A derived shader overrides the base's definition of the same slot.
+    d = std::move(definition);
+    return;
+  }
+  existing.definitions.push_back(std::move(definition));
+}
+
+void mergeDeclaration(Component& existing, const Pipeline& pipeline, const ast::ComponentDecl& decl, const Type* type,
+                      std::optional<WorldId> world, const std::string& origin, bool isInput, DiagnosticList& diags) {
+  if (existing.type != type && !type->isError() && !existing.type->isError()) {
+    diags.report(DiagCode::E4008, decl.type.range,
+                 fmt::format("conflicting types for component '{}': '{}' here, but '{}' in '{}'", decl.name,
+                             type->name(), existing.type->name(), existing.origin))
+        .note(existing.firstDecl->nameRange, "previous declaration is here");
+    return;
+  }
+  for (const ast::Attribute& a : decl.attributes) existing.attributes.push_back(&a);
+  const bool existingIsInput = !existing.definitions.empty() && existing.definitions.front().isInput();
+  if (decl.isAbstract) return redeclareAbstract(existing, pipeline, decl, world, diags);
+  if (isInput || existingIsInput) {
+    diags.report(DiagCode::E3003, decl.nameRange,
+                 fmt::format("redefinition of component '{}'{}", decl.name,
+                             existingIsInput ? ", which is an input" : ""))
+        .note(existing.firstDecl->nameRange, "previous declaration is here");
+    return;
+  }
+  addDefinition(existing, pipeline, decl, world, origin, diags);
+}
+
 }  // namespace
 
 const Component* ComponentSet::findComponent(std::string_view name) const {
@@ -59,122 +202,15 @@ void Analyzer::addComponent(ComponentSet& set, const Pipeline& pipeline, const a
   const bool isWorldAbstract = world && pipeline.worlds[*world].isAbstract;
   const bool isInput = !decl.isAbstract && !decl.hasDefinition();
 
-  // A rejected declaration still introduces its name, so that its uses do
-  // not cascade into "undeclared identifier" errors.
-  auto reject = [&](SourceRange where, std::string message) {
-    diags_.report(DiagCode::E4011, where, std::move(message));
-    if (set.componentByName.count(decl.name)) return;
-    Component placeholder;
-    placeholder.name = decl.name;
-    placeholder.type = type;
-    placeholder.firstDecl = &decl;
-    placeholder.origin = origin;
-    set.componentByName.emplace(decl.name, static_cast<ComponentId>(set.components.size()));
-    set.components.push_back(std::move(placeholder));
-  };
-  if (decl.isAbstract && decl.hasDefinition()) {
-    return reject(decl.nameRange, fmt::format("abstract component '{}' cannot have a definition", decl.name));
-  }
-  if (decl.isExport && !inPipeline) {
-    return reject(decl.range, fmt::format("'export' is only allowed on pipeline components, not on '{}'", decl.name));
-  }
-  if (decl.isExport && isInput) {
-    return reject(decl.nameRange, fmt::format("exported component '{}' must be abstract or defined", decl.name));
-  }
-  if (!decl.variation.empty() && !decl.hasDefinition()) {
-    return reject(decl.variationRange, fmt::format("only a definition can have a variation name, not '{}'", decl.name));
-  }
-  if (decl.hasDefinition() && isWorldAbstract) {
-    reject(decl.worldRange,
-           fmt::format("component '{}' cannot be defined in abstract world '{}': abstract worlds hold no computation",
-                       decl.name, *decl.world));
-    return;
-  }
-  if (isInput && !decl.world) {
-    return reject(decl.nameRange, fmt::format("input component '{}' needs a world, as in '@MaterialUniform {} {};'",
-                                              decl.name, decl.type.name, decl.name));
-  }
-  if (isInput && world && !isWorldAbstract) {
-    return reject(decl.nameRange,
-                  fmt::format("component '{}' in concrete world '{}' needs a definition; mark it 'abstract' if "
-                              "shaders must define it",
-                              decl.name, *decl.world));
-  }
-  if (decl.isAbstract && isWorldAbstract) {
-    return reject(decl.worldRange, fmt::format("abstract component '{}' must be at a concrete world, not '{}'",
-                                               decl.name, *decl.world));
-  }
-  if (decl.hasDefinition() && type->containsOpaque()) {
-    return reject(decl.type.range, fmt::format("component '{}' of opaque type '{}' must be an input at an abstract world",
-                                               decl.name, type->name()));
+  if (auto rejection = rejectionOf(decl, type, world.has_value(), isWorldAbstract, isInput, inPipeline)) {
+    diags_.report(DiagCode::E4011, rejection->where, std::move(rejection->message));
+    return addPlaceholder(set, decl, type, origin);
   }
   if (decl.world && !world) return;  // unknown world, already reported
 
   auto existingIt = set.componentByName.find(decl.name);
-  if (existingIt == set.componentByName.end()) {
-    Component c;
-    c.name = decl.name;
-    c.type = type;
-    c.firstDecl = &decl;
-    c.origin = origin;
-    c.isAbstract = decl.isAbstract;
-    c.isExport = decl.isExport;
-    if (decl.isAbstract) c.requiredWorld = world;
-    for (const ast::Attribute& a : decl.attributes) c.attributes.push_back(&a);
-    if (!decl.isAbstract) c.definitions.push_back({&decl, world, decl.variation, {}, {}, {}, origin, {}});
-    set.componentByName.emplace(decl.name, static_cast<ComponentId>(set.components.size()));
-    set.components.push_back(std::move(c));
-    return;
-  }
-
-  Component& existing = set.components[existingIt->second];
-  if (existing.type != type && !type->isError() && !existing.type->isError()) {
-    diags_.report(DiagCode::E4008, decl.type.range,
-                  fmt::format("conflicting types for component '{}': '{}' here, but '{}' in '{}'", decl.name,
-                              type->name(), existing.type->name(), existing.origin))
-        .note(existing.firstDecl->nameRange, "previous declaration is here");
-    return;
-  }
-  for (const ast::Attribute& a : decl.attributes) existing.attributes.push_back(&a);
-  const bool existingIsInput = !existing.definitions.empty() && existing.definitions.front().isInput();
-  if (decl.isAbstract) {
-    if (!existing.isAbstract || !existing.definitions.empty()) {
-      diags_.report(DiagCode::E4008, decl.nameRange,
-                    fmt::format("component '{}' is already defined and cannot be redeclared abstract", decl.name))
-          .note(existing.firstDecl->nameRange, "previous declaration is here");
-    } else if (world && existing.requiredWorld && *world != *existing.requiredWorld) {
-      diags_.report(DiagCode::E4008, decl.worldRange,
-                    fmt::format("abstract component '{}' is required at '{}' here, but at '{}' before", decl.name,
-                                *decl.world, pipeline.worlds[*existing.requiredWorld].name))
-          .note(existing.firstDecl->nameRange, "previous declaration is here");
-    } else if (world) {
-      existing.requiredWorld = world;
-    }
-    return;
-  }
-  if (isInput || existingIsInput) {
-    diags_.report(DiagCode::E3003, decl.nameRange,
-                  fmt::format("redefinition of component '{}'{}", decl.name,
-                              existingIsInput ? ", which is an input" : ""))
-        .note(existing.firstDecl->nameRange, "previous declaration is here");
-    return;
-  }
-  const std::optional<WorldId> effectiveWorld = world ? world : existing.requiredWorld;
-  Definition definition{&decl, effectiveWorld, decl.variation, {}, {}, {}, origin, {}};
-  for (Definition& d : existing.definitions) {
-    if (d.world != effectiveWorld || d.variation != decl.variation) continue;
-    if (d.origin == origin) {
-      diags_.report(DiagCode::E3003, decl.nameRange,
-                    fmt::format("redefinition of component '{}' {}", decl.name,
-                                definitionLabel(effectiveWorld, decl.variation, pipeline)))
-          .note(d.decl->nameRange, "previous definition is here");
-      return;
-    }
-    // A derived shader overrides the base's definition of the same slot.
-    d = std::move(definition);
-    return;
-  }
-  existing.definitions.push_back(std::move(definition));
+  if (existingIt == set.componentByName.end()) return addFirstDeclaration(set, decl, type, world, origin);
+  mergeDeclaration(set.components[existingIt->second], pipeline, decl, type, world, origin, isInput, diags_);
 }
 
 void Analyzer::checkComponentBodies(ComponentSet& set, const std::string& origin) {

@@ -94,53 +94,82 @@ std::string bakeFormatNames() {
   return names;
 }
 
-Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
-                                           const BindingSources& sources, const TextureBakeOptions& options,
-                                           BakeTiming& timing) {
-  timing.world = kernel.world;
+namespace {
+
+// The bake's render targets in location order, and the one extent they share.
+struct BakeTargets {
+  std::vector<BakeTarget> targets;
+  uint32_t size = 0;
+};
+
+Expected<VkFormat> requestedFormat(const KernelOutput& output, VkFormat fallback) {
+  const std::string* hint = output.hint("Format");
+  if (!hint) return fallback;
+  const auto format = bakeFormat(*hint);
+  if (!format) {
+    return Error{fmt::format("'{}' asks for bake format \"{}\"; the engine supports {}", output.component, *hint,
+                             bakeFormatNames()),
+                 {},
+                 {}};
+  }
+  return *format;
+}
+
+Expected<uint32_t> requestedSize(const KernelOutput& output, uint32_t fallback) {
+  uint32_t requested = fallback;
+  if (const std::string* hint = output.hint("TextureSize")) {
+    const std::string& text = *hint;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), requested);
+    if (ec != std::errc{} || end != text.data() + text.size() || requested == 0 || requested > 8192) {
+      return Error{fmt::format("'{}' asks for bake size \"{}\"; use a whole number from 1 to 8192", output.component,
+                               text),
+                   {},
+                   {}};
+    }
+  }
+  return requested;
+}
+
+Expected<BakeTargets> collectBakeTargets(const KernelProgram& kernel, const TextureBakeOptions& options) {
   // One render pass has one extent, so every output of the bake shares the
   // largest size any of them asks for.
-  uint32_t size = 0;
-  std::vector<BakeTarget> targets;
+  BakeTargets result;
   for (const KernelOutput& output : kernel.outputs) {
     if (output.kind != OutputKind::Varying) continue;
-    BakeTarget target{output.component, output.location, options.defaultFormat};
-    if (const std::string* hint = output.hint("Format")) {
-      const auto format = bakeFormat(*hint);
-      if (!format) {
-        return Error{fmt::format("'{}' asks for bake format \"{}\"; the engine supports {}", output.component,
-                                 *hint, bakeFormatNames()),
-                     {},
-                     {}};
-      }
-      target.format = *format;
-    }
-    uint32_t requested = options.defaultSize;
-    if (const std::string* hint = output.hint("TextureSize")) {
-      const std::string& text = *hint;
-      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), requested);
-      if (ec != std::errc{} || end != text.data() + text.size() || requested == 0 || requested > 8192) {
-        return Error{fmt::format("'{}' asks for bake size \"{}\"; use a whole number from 1 to 8192",
-                                 output.component, text),
-                     {},
-                     {}};
-      }
-    }
-    if (options.forceFormat) target.format = *options.forceFormat;
-    size = std::max(size, requested);
-    targets.push_back(std::move(target));
+    auto format = requestedFormat(output, options.defaultFormat);
+    if (!format) return format.error();
+    auto requested = requestedSize(output, options.defaultSize);
+    if (!requested) return requested.error();
+    BakeTarget target{output.component, output.location, options.forceFormat ? *options.forceFormat : *format};
+    result.size = std::max(result.size, *requested);
+    result.targets.push_back(std::move(target));
   }
+  std::vector<BakeTarget>& targets = result.targets;
   std::sort(targets.begin(), targets.end(), [](const BakeTarget& a, const BakeTarget& b) { return a.location < b.location; });
   for (size_t i = 0; i < targets.size(); ++i) {
     if (targets[i].location != i) {
       return Error{fmt::format("the {} kernel's outputs must use locations 0 to {}", kernel.world, targets.size() - 1), {}, {}};
     }
   }
+  return result;
+}
 
+// The engine's vertex shader reads the UV after the kernel's varying inputs.
+uint32_t bakeUvLocation(const KernelProgram& kernel) {
   uint32_t uvLocation = 0;
   for (const KernelInput& input : kernel.inputs) {
     if (input.kind == InputKind::Varying) uvLocation = std::max(uvLocation, input.location + 1);
   }
+  return uvLocation;
+}
+
+struct BakeModules {
+  VkShaderModule vertex = VK_NULL_HANDLE;
+  VkShaderModule fragment = VK_NULL_HANDLE;
+};
+
+Expected<BakeModules> loadBakeModules(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
+                                      uint32_t uvLocation) {
   const std::string vertexSource = bakeVertexShader(kernel, uvLocation);
   codegen::SpirvResult vertexSpirv = codegen::compileGlslToSpirv(codegen::ShaderStage::Vertex, vertexSource, "bake.vert");
   if (!vertexSpirv.ok()) return Error{"the engine's bake vertex shader does not compile", {}, vertexSpirv.log};
@@ -148,15 +177,14 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
   if (!vertexModule) return vertexModule.error();
   auto fragmentModule = modules.get(ctx, kernel.hash, kernel.spirv);
   if (!fragmentModule) return fragmentModule.error();
+  return BakeModules{*vertexModule, *fragmentModule};
+}
 
-  auto bound = bindKernel(ctx, kernel, sources);
-  if (!bound) return bound.error();
-  const BoundKernel* kernels[] = {&*bound};
-  auto descriptors = createDescriptors(ctx, kernels);
-  if (!descriptors) return descriptors.error();
-
+Expected<vk::Pipeline> buildBakePipeline(const vk::Context& ctx, const BakeModules& modules,
+                                         const KernelProgram& kernel, uint32_t uvLocation,
+                                         const std::vector<BakeTarget>& targets, const DescriptorBundle& descriptors) {
   vk::GraphicsPipelineBuilder builder;
-  builder.vertexShader(*vertexModule).fragmentShader(*fragmentModule).vertexBinding(0, sizeof(scene::Vertex));
+  builder.vertexShader(modules.vertex).fragmentShader(modules.fragment).vertexBinding(0, sizeof(scene::Vertex));
   for (const KernelInput& input : kernel.inputs) {
     if (input.kind != InputKind::Varying) continue;
     const MeshAttribute* attribute = findMeshAttribute(input.component);
@@ -167,10 +195,14 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
   for (const BakeTarget& target : targets) builder.colorFormat(target.format);
   // The engine's vertex shader binds nothing, so the sets are the kernel's
   // (set 0 stays empty when the kernel's resources are in set 1).
-  builder.depthFormat(VK_FORMAT_D32_SFLOAT).descriptorSetLayouts(descriptors->layoutHandles());
+  builder.depthFormat(VK_FORMAT_D32_SFLOAT).descriptorSetLayouts(descriptors.layoutHandles());
   auto pipeline = builder.build(ctx);
   if (!pipeline) return Error::fromVk(pipeline.error());
+  return std::move(pipeline).value();
+}
 
+Expected<std::vector<vk::Image>> createTargetImages(const vk::Context& ctx, const std::vector<BakeTarget>& targets,
+                                                    uint32_t size) {
   std::vector<vk::Image> images;
   for (const BakeTarget& target : targets) {
     auto image = vk::Image::create(ctx, {size, size, target.format,
@@ -178,27 +210,79 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
     if (!image) return Error::fromVk(image.error());
     images.push_back(std::move(image).value());
   }
+  return images;
+}
+
+void recordBake(const vk::Context& ctx, VkCommandBuffer cmd, std::vector<vk::Image>& images, vk::Image& depth,
+                uint32_t size, const vk::Pipeline& pipeline, const DescriptorBundle& descriptors, const GpuMesh& mesh) {
+  std::vector<vk::ColorTarget> colors;
+  for (vk::Image& image : images) {
+    image.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    colors.push_back({image.view(), {}});
+  }
+  depth.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+  vk::beginRendering(ctx, cmd, {size, size}, colors, vk::DepthTarget{depth.view(), 1.0F});
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline.get());
+  bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout.get(), descriptors);
+  const VkBuffer vertexBuffer = mesh.vertices.handle();
+  const VkDeviceSize offset = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
+  vkCmdBindIndexBuffer(cmd, mesh.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+  vkCmdDrawIndexed(cmd, mesh.indexCount(), 1, 0, 0, 0);
+  vk::endRendering(ctx, cmd);
+}
+
+// Reads one target back, fills its uncovered texels and uploads it as the
+// texture the later kernels sample.
+Expected<BakedTexture> finishTexture(const vk::Context& ctx, vk::Image& image, const BakeTarget& target, uint32_t size,
+                                     const std::vector<uint8_t>& covered, const TextureBakeOptions& options) {
+  auto texels = readImage(ctx, image);
+  if (!texels) return texels.error();
+  dilate(*texels, texelSize(target.format), size, size, covered, options.dilationTexels);
+  auto texture = uploadImage(ctx, size, size, target.format, *texels);
+  if (!texture) return texture.error();
+  vk::SamplerDesc samplerDesc{};
+  samplerDesc.addressMode = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  auto sampler = vk::createSampler(ctx, samplerDesc);
+  if (!sampler) return Error::fromVk(sampler.error());
+  std::vector<std::byte> kept;
+  if (options.forceFormat) kept = std::move(texels).value();
+  return BakedTexture{std::move(texture).value(), std::move(sampler).value(), std::move(kept)};
+}
+
+}  // namespace
+
+Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
+                                           const BindingSources& sources, const TextureBakeOptions& options,
+                                           BakeTiming& timing) {
+  timing.world = kernel.world;
+  auto collected = collectBakeTargets(kernel, options);
+  if (!collected) return collected.error();
+  const std::vector<BakeTarget>& targets = collected->targets;
+  const uint32_t size = collected->size;
+
+  const uint32_t uvLocation = bakeUvLocation(kernel);
+  auto shaderModules = loadBakeModules(ctx, modules, kernel, uvLocation);
+  if (!shaderModules) return shaderModules.error();
+
+  auto bound = bindKernel(ctx, kernel, sources);
+  if (!bound) return bound.error();
+  const BoundKernel* kernels[] = {&*bound};
+  auto descriptors = createDescriptors(ctx, kernels);
+  if (!descriptors) return descriptors.error();
+
+  auto pipeline = buildBakePipeline(ctx, *shaderModules, kernel, uvLocation, targets, *descriptors);
+  if (!pipeline) return pipeline.error();
+
+  auto images = createTargetImages(ctx, targets, size);
+  if (!images) return images.error();
   auto depth = vk::Image::create(ctx, {size, size, VK_FORMAT_D32_SFLOAT,
                                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
   if (!depth) return Error::fromVk(depth.error());
 
   const vk::HostTimer timer;
   auto submitted = ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    std::vector<vk::ColorTarget> colors;
-    for (vk::Image& image : images) {
-      image.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-      colors.push_back({image.view(), {}});
-    }
-    depth->transition(cmd, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
-    vk::beginRendering(ctx, cmd, {size, size}, colors, vk::DepthTarget{depth->view(), 1.0F});
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->pipeline.get());
-    bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->layout.get(), *descriptors);
-    const VkBuffer vertexBuffer = sources.mesh->vertices.handle();
-    const VkDeviceSize offset = 0;
-    vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
-    vkCmdBindIndexBuffer(cmd, sources.mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, sources.mesh->indexCount(), 1, 0, 0, 0);
-    vk::endRendering(ctx, cmd);
+    recordBake(ctx, cmd, *images, *depth, size, *pipeline, *descriptors, *sources.mesh);
   });
   if (!submitted) return Error::fromVk(submitted.error());
 
@@ -210,19 +294,9 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
   result.size = size;
   result.coverage = covered;
   for (size_t t = 0; t < targets.size(); ++t) {
-    auto texels = readImage(ctx, images[t]);
-    if (!texels) return texels.error();
-    dilate(*texels, texelSize(targets[t].format), size, size, covered, options.dilationTexels);
-    auto texture = uploadImage(ctx, size, size, targets[t].format, *texels);
+    auto texture = finishTexture(ctx, (*images)[t], targets[t], size, covered, options);
     if (!texture) return texture.error();
-    vk::SamplerDesc samplerDesc{};
-    samplerDesc.addressMode = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    auto sampler = vk::createSampler(ctx, samplerDesc);
-    if (!sampler) return Error::fromVk(sampler.error());
-    std::vector<std::byte> kept;
-    if (options.forceFormat) kept = std::move(texels).value();
-    result.textures.emplace(targets[t].component,
-                            BakedTexture{std::move(texture).value(), std::move(sampler).value(), std::move(kept)});
+    result.textures.emplace(targets[t].component, std::move(texture).value());
   }
   timing.milliseconds = timer.elapsedMs();
   return result;

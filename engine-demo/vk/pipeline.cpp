@@ -3,6 +3,82 @@
 #include <array>
 
 namespace spire::vk {
+namespace {
+
+// The fixed-function state of a graphics pipeline, one create-info each. The
+// pointers they hold point into the arguments, which must outlive them.
+
+VkPipelineVertexInputStateCreateInfo vertexInputState(std::span<const VkVertexInputBindingDescription> bindings,
+                                                      std::span<const VkVertexInputAttributeDescription> attributes) {
+  VkPipelineVertexInputStateCreateInfo vertexInput{};
+  vertexInput.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+  vertexInput.vertexBindingDescriptionCount = static_cast<uint32_t>(bindings.size());
+  vertexInput.pVertexBindingDescriptions = bindings.data();
+  vertexInput.vertexAttributeDescriptionCount = static_cast<uint32_t>(attributes.size());
+  vertexInput.pVertexAttributeDescriptions = attributes.data();
+  return vertexInput;
+}
+
+VkPipelineInputAssemblyStateCreateInfo inputAssemblyState(VkPrimitiveTopology topology) {
+  VkPipelineInputAssemblyStateCreateInfo inputAssembly{};
+  inputAssembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
+  inputAssembly.topology = topology;
+  return inputAssembly;
+}
+
+// One viewport and scissor, set per draw as dynamic state.
+VkPipelineViewportStateCreateInfo viewportState() {
+  VkPipelineViewportStateCreateInfo viewport{};
+  viewport.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
+  viewport.viewportCount = 1;
+  viewport.scissorCount = 1;
+  return viewport;
+}
+
+VkPipelineRasterizationStateCreateInfo rasterizationState(VkCullModeFlags cullMode, VkFrontFace frontFace) {
+  VkPipelineRasterizationStateCreateInfo raster{};
+  raster.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = cullMode;
+  raster.frontFace = frontFace;
+  raster.lineWidth = 1.0F;
+  return raster;
+}
+
+VkPipelineMultisampleStateCreateInfo multisampleState() {
+  VkPipelineMultisampleStateCreateInfo multisample{};
+  multisample.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  return multisample;
+}
+
+// Without a depth format the pipeline neither tests nor writes depth.
+VkPipelineDepthStencilStateCreateInfo depthStencilState(VkFormat format, bool write, VkCompareOp compare) {
+  VkPipelineDepthStencilStateCreateInfo depth{};
+  depth.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
+  depth.depthTestEnable = format != VK_FORMAT_UNDEFINED ? VK_TRUE : VK_FALSE;
+  depth.depthWriteEnable = format != VK_FORMAT_UNDEFINED && write ? VK_TRUE : VK_FALSE;
+  depth.depthCompareOp = compare;
+  return depth;
+}
+
+VkPipelineColorBlendStateCreateInfo colorBlendState(std::span<const VkPipelineColorBlendAttachmentState> attachments) {
+  VkPipelineColorBlendStateCreateInfo blend{};
+  blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
+  blend.attachmentCount = static_cast<uint32_t>(attachments.size());
+  blend.pAttachments = attachments.data();
+  return blend;
+}
+
+VkPipelineDynamicStateCreateInfo dynamicState(std::span<const VkDynamicState> states) {
+  VkPipelineDynamicStateCreateInfo dynamic{};
+  dynamic.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
+  dynamic.dynamicStateCount = static_cast<uint32_t>(states.size());
+  dynamic.pDynamicStates = states.data();
+  return dynamic;
+}
+
+}  // namespace
 
 Expected<ShaderModule> createShaderModule(const Context& ctx, std::span<const uint32_t> words) {
   // 0x07230203: the SPIR-V magic number. Checked here because drivers are
@@ -103,60 +179,19 @@ Expected<Pipeline> GraphicsPipelineBuilder::build(const Context& ctx) const {
                                       VK_SHADER_STAGE_FRAGMENT_BIT, fragment_.module, fragment_.entry.c_str(),
                                       nullptr},
   };
-
-  VkPipelineVertexInputStateCreateInfo vertexInput{};
-
-  vertexInput.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
-  vertexInput.vertexBindingDescriptionCount = static_cast<uint32_t>(bindings_.size());
-  vertexInput.pVertexBindingDescriptions = bindings_.data();
-  vertexInput.vertexAttributeDescriptionCount = static_cast<uint32_t>(attributes_.size());
-  vertexInput.pVertexAttributeDescriptions = attributes_.data();
-
-  VkPipelineInputAssemblyStateCreateInfo inputAssembly{};
-
-  inputAssembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
-  inputAssembly.topology = topology_;
-
-  VkPipelineViewportStateCreateInfo viewport{};
-
-  viewport.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
-  viewport.viewportCount = 1;
-  viewport.scissorCount = 1;
-
-  VkPipelineRasterizationStateCreateInfo raster{};
-
-  raster.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
-  raster.polygonMode = VK_POLYGON_MODE_FILL;
-  raster.cullMode = cullMode_;
-  raster.frontFace = frontFace_;
-  raster.lineWidth = 1.0F;
-
-  VkPipelineMultisampleStateCreateInfo multisample{};
-
-  multisample.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
-  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-
-  VkPipelineDepthStencilStateCreateInfo depth{};
-
-  depth.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
-  depth.depthTestEnable = depthFormat_ != VK_FORMAT_UNDEFINED ? VK_TRUE : VK_FALSE;
-  depth.depthWriteEnable = depthFormat_ != VK_FORMAT_UNDEFINED && depthWrite_ ? VK_TRUE : VK_FALSE;
-  depth.depthCompareOp = depthCompare_;
-
+  const VkPipelineVertexInputStateCreateInfo vertexInput = vertexInputState(bindings_, attributes_);
+  const VkPipelineInputAssemblyStateCreateInfo inputAssembly = inputAssemblyState(topology_);
+  const VkPipelineViewportStateCreateInfo viewport = viewportState();
+  const VkPipelineRasterizationStateCreateInfo raster = rasterizationState(cullMode_, frontFace_);
+  const VkPipelineMultisampleStateCreateInfo multisample = multisampleState();
+  const VkPipelineDepthStencilStateCreateInfo depth = depthStencilState(depthFormat_, depthWrite_, depthCompare_);
   VkPipelineColorBlendAttachmentState noBlend{};
   noBlend.colorWriteMask =
       VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
   const std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(colorFormats_.size(), noBlend);
-  VkPipelineColorBlendStateCreateInfo blend{};
-  blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
-  blend.attachmentCount = static_cast<uint32_t>(blendAttachments.size());
-  blend.pAttachments = blendAttachments.data();
-
+  const VkPipelineColorBlendStateCreateInfo blend = colorBlendState(blendAttachments);
   const std::array dynamicStates{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  VkPipelineDynamicStateCreateInfo dynamic{};
-  dynamic.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
-  dynamic.dynamicStateCount = static_cast<uint32_t>(dynamicStates.size());
-  dynamic.pDynamicStates = dynamicStates.data();
+  const VkPipelineDynamicStateCreateInfo dynamic = dynamicState(dynamicStates);
 
   // Dynamic rendering: the attachment formats replace the render pass.
   VkPipelineRenderingCreateInfo rendering{};
