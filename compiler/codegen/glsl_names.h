@@ -28,6 +28,8 @@ class NameTable {
   // or equals a renamed or generated global (hiding a global the user named
   // the same way is fine: Spire scoping already resolved to the local).
   std::string local(std::string_view source) const;
+  // Whether a global (claimed or generated) already has `name`.
+  bool isTaken(std::string_view name) const { return taken_.count(name) != 0; }
 
  private:
   std::string unique(std::string base, std::string_view source);

@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <utility>
+
+#include "codegen/expression_effects.h"
 #include "codegen/kernel_builder.h"
 #include "syntax/ast_spelling.h"
 
@@ -19,6 +23,10 @@ std::string floatLiteral(const std::string& spelling) {
 }
 
 std::string indentation(int indent) { return std::string(static_cast<size_t>(indent) * 4, ' '); }
+
+bool isShortCircuit(ast::BinaryOp op) {
+  return op == ast::BinaryOp::LogicalAnd || op == ast::BinaryOp::LogicalOr || op == ast::BinaryOp::LogicalXor;
+}
 
 }  // namespace
 
@@ -60,6 +68,82 @@ std::string GlslWriter::localName(const void* decl, std::string_view source) {
   return it->second;
 }
 
+// Unique in the kernel: locals never have the generated names' `spire_`
+// prefix (NameTable renames them), so only globals need avoiding.
+std::string GlslWriter::temporaryName() {
+  std::string name;
+  do {
+    name = fmt::format("spire_chain{}", nextTemporary_++);
+  } while (table_.isTaken(name));
+  return name;
+}
+
+std::string GlslWriter::statementExpr(const ast::Expr& e, std::vector<std::string>& before,
+                                      Precedence minPrecedence) {
+  // `target = value` stores after the value is computed, so its value may
+  // hoist as long as computing the target writes nothing either.
+  const auto* assign = ast::dyn_cast<ast::AssignExpr>(&e);
+  const bool pure = assign ? !hasSideEffects(model_, *assign->target) && !hasSideEffects(model_, *assign->value)
+                           : !hasSideEffects(model_, e);
+  if (!pure) return expr(e, minPrecedence);
+  std::vector<std::string>* const saved = std::exchange(hoisted_, &before);
+  std::string text = expr(e, minPrecedence);
+  hoisted_ = saved;
+  return text;
+}
+
+std::string GlslWriter::conditionalExpr(const ast::Expr& e, Precedence minPrecedence) {
+  std::vector<std::string>* const saved = std::exchange(hoisted_, nullptr);
+  std::string text = expr(e, minPrecedence);
+  hoisted_ = saved;
+  return text;
+}
+
+// The operators spine[begin, end) of a chain whose value before spine[begin]
+// is `head`, where the grammar expects `context` or tighter (the
+// parenthesization of ast::writeChain). Right operands of `&&`, `||` and
+// `^^` are evaluated only under a condition.
+std::string GlslWriter::chainText(const std::vector<const ast::BinaryExpr*>& spine, size_t begin, size_t end,
+                                  std::string head, Precedence context) {
+  std::string opens;
+  std::string text;
+  for (size_t i = begin; i < end; ++i) {
+    const Precedence own = ast::precedenceOf(spine[i]->op);
+    const bool parenthesized = own < (i + 1 < end ? ast::precedenceOf(spine[i + 1]->op) : context);
+    if (parenthesized) opens += '(';
+    text += fmt::format(" {} ", ast::spelling(spine[i]->op));
+    const ast::Expr& rhs = *spine[i]->rhs;
+    text += isShortCircuit(spine[i]->op) ? conditionalExpr(rhs, ast::tighter(own)) : expr(rhs, ast::tighter(own));
+    if (parenthesized) text += ')';
+  }
+  return opens + head + text;
+}
+
+// In a loop, never recursing along the chain: generated code writes chains
+// of thousands of terms.
+std::string GlslWriter::binary(const ast::BinaryExpr& e, Precedence minPrecedence) {
+  const std::vector<const ast::BinaryExpr*> spine = ast::leftSpine(e);
+  std::string head = expr(*spine.front()->lhs, ast::precedenceOf(spine.front()->op));
+  if (!hoisted_ || spine.size() <= kChainSegment) {
+    if (spine.size() > kMaxInlineChain && !problem_) {
+      problem_ = Problem{e.range, fmt::format(
+          "an expression chains {} operators where the kernel cannot compute it in steps (a loop condition or "
+          "step, an expression that assigns or calls a function with 'out' parameters, or an operand evaluated "
+          "only under a condition), and GLSL compilers fail on chains much longer than {}; compute it in a local "
+          "variable first",
+          spine.size(), kMaxInlineChain)};
+    }
+    return chainText(spine, 0, spine.size(), std::move(head), minPrecedence);
+  }
+  for (size_t begin = 0; begin < spine.size(); begin += kChainSegment) {
+    const size_t end = std::min(begin + kChainSegment, spine.size());
+    std::string text = chainText(spine, begin, end, std::move(head), Precedence::Assignment);
+    head = temporaryName();
+    hoisted_->push_back(declare(model_.info(*spine[end - 1]).type, head) + " = " + text + ";");
+  }
+  return head;
+}
+
 std::string GlslWriter::expr(const ast::Expr& e, Precedence minPrecedence) {
   const sem::ExprInfo& info = model_.info(e);
   auto wrap = [&](Precedence precedence, std::string text) {
@@ -84,21 +168,16 @@ std::string GlslWriter::expr(const ast::Expr& e, Precedence minPrecedence) {
       const bool separate = !operand.empty() && (operand[0] == '-' || operand[0] == '+');
       return wrap(Precedence::Unary, op + (separate ? " " : "") + operand);
     }
-    case ast::ExprKind::Binary: {
-      // In a loop: generated code writes chains of thousands of terms.
-      return ast::writeChain(
-          ast::cast<ast::BinaryExpr>(e), minPrecedence,
-          [&](const ast::Expr& operand, Precedence context) { return expr(operand, context); },
-          [](ast::BinaryOp op) { return fmt::format(" {} ", ast::spelling(op)); });
-    }
+    case ast::ExprKind::Binary: return binary(ast::cast<ast::BinaryExpr>(e), minPrecedence);
     case ast::ExprKind::Assign: {
       const auto& a = ast::cast<ast::AssignExpr>(e);
       return wrap(Precedence::Assignment, fmt::format("{} {} {}", expr(*a.target, Precedence::Unary), ast::spelling(a.op), expr(*a.value, Precedence::Assignment)));
     }
     case ast::ExprKind::Ternary: {
       const auto& t = ast::cast<ast::TernaryExpr>(e);
-      return wrap(Precedence::Conditional, fmt::format("{} ? {} : {}", expr(*t.condition, Precedence::LogicalOr), expr(*t.thenValue, Precedence::Assignment),
-                                        expr(*t.elseValue, Precedence::Conditional)));
+      return wrap(Precedence::Conditional, fmt::format("{} ? {} : {}", expr(*t.condition, Precedence::LogicalOr),
+                                                       conditionalExpr(*t.thenValue, Precedence::Assignment),
+                                                       conditionalExpr(*t.elseValue, Precedence::Conditional)));
     }
     case ast::ExprKind::Call: {
       const auto& c = ast::cast<ast::CallExpr>(e);
@@ -144,6 +223,26 @@ std::string GlslWriter::localDeclaration(const ast::VarDeclStmt& d) {
   return text;
 }
 
+// A declaration statement of one variable may compute its initializer in
+// temporaries; with several, a later initializer may read an earlier
+// variable, which does not exist yet where the temporaries go.
+std::string GlslWriter::declarationStatement(const ast::VarDeclStmt& d, std::vector<std::string>& before) {
+  const bool single = d.declarators.size() == 1 && d.declarators.front().init;
+  if (!single || hasSideEffects(model_, *d.declarators.front().init)) return localDeclaration(d);
+  std::vector<std::string>* const saved = std::exchange(hoisted_, &before);
+  std::string text = localDeclaration(d);
+  hoisted_ = saved;
+  return text;
+}
+
+void GlslWriter::writeHoisted(GlslOutput& out, const std::string& pad, const std::vector<std::string>& before,
+                              const SourceRange& range) {
+  for (const std::string& declaration : before) {
+    out.line(pad + declaration);
+    mapLine(out, range);
+  }
+}
+
 std::string GlslWriter::forInit(const ast::Stmt& s) {
   if (const auto* e = ast::dyn_cast<ast::ExprStmt>(&s)) return expr(*e->expr);
   if (const auto* d = ast::dyn_cast<ast::VarDeclStmt>(&s)) return localDeclaration(*d);
@@ -168,11 +267,26 @@ void GlslWriter::stmt(GlslOutput& out, const ast::Stmt& s, int indent) {
       block(out, ast::cast<ast::BlockStmt>(s), indent + 1);
       out.line(pad + "}");
       return;
-    case ast::StmtKind::VarDecl: out.line(pad + localDeclaration(ast::cast<ast::VarDeclStmt>(s)) + ";"); return;
-    case ast::StmtKind::Expr: out.line(pad + expr(*ast::cast<ast::ExprStmt>(s).expr) + ";"); return;
+    case ast::StmtKind::VarDecl: {
+      std::vector<std::string> before;
+      const std::string text = declarationStatement(ast::cast<ast::VarDeclStmt>(s), before);
+      writeHoisted(out, pad, before, s.range);
+      out.line(pad + text + ";");
+      return;
+    }
+    case ast::StmtKind::Expr: {
+      std::vector<std::string> before;
+      const std::string text = statementExpr(*ast::cast<ast::ExprStmt>(s).expr, before);
+      writeHoisted(out, pad, before, s.range);
+      out.line(pad + text + ";");
+      return;
+    }
     case ast::StmtKind::If: {
       const auto& i = ast::cast<ast::IfStmt>(s);
-      out.line(pad + "if (" + expr(*i.condition) + ") {");
+      std::vector<std::string> before;
+      const std::string condition = statementExpr(*i.condition, before);
+      writeHoisted(out, pad, before, s.range);
+      out.line(pad + "if (" + condition + ") {");
       body(out, *i.thenBranch, indent + 1);
       if (i.elseBranch) {
         out.line(pad + "} else {");
@@ -207,7 +321,10 @@ void GlslWriter::stmt(GlslOutput& out, const ast::Stmt& s, int indent) {
     case ast::StmtKind::Continue: out.line(pad + "continue;"); return;
     case ast::StmtKind::Return: {
       const auto& r = ast::cast<ast::ReturnStmt>(s);
-      out.line(pad + (r.value ? "return " + expr(*r.value) + ";" : std::string("return;")));
+      std::vector<std::string> before;
+      const std::string value = r.value ? statementExpr(*r.value, before) : std::string();
+      writeHoisted(out, pad, before, s.range);
+      out.line(pad + (r.value ? "return " + value + ";" : std::string("return;")));
       return;
     }
     case ast::StmtKind::Discard: out.line(pad + "discard;"); return;

@@ -5,9 +5,11 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "codegen/glsl_names.h"
 #include "sema/semantic_model.h"
@@ -52,6 +54,29 @@ class GlslWriter {
       : model_(model), sources_(sources), names_(std::move(names)), table_(table) {}
 
   std::string expr(const ast::Expr& e, ast::Precedence minPrecedence = ast::Precedence::Comma);
+  // `e` as the whole expression of a statement about to be written. When it
+  // writes nothing (see hasSideEffects), each operator chain longer than
+  // kChainSegment operands is computed in temporaries whose declarations are
+  // appended to `before`, to be written ahead of the statement: glslang
+  // recurses along a chain and overflows the stack on generated shaders with
+  // tens of thousands of terms. The evaluation order is kept exactly.
+  std::string statementExpr(const ast::Expr& e, std::vector<std::string>& before,
+                            ast::Precedence minPrecedence = ast::Precedence::Comma);
+  // Why the text written so far may not compile: a chain too long to be
+  // written inline where no temporary can take it (a loop condition, or an
+  // expression with side effects). Empty when there is nothing to report.
+  struct Problem {
+    SourceRange range;
+    std::string message;
+  };
+  const std::optional<Problem>& problem() const { return problem_; }
+  // Writes what statementExpr hoisted, each line mapped to `range` so that
+  // the statement after them keeps its source line.
+  void writeHoisted(GlslOutput& out, const std::string& pad, const std::vector<std::string>& before,
+                    const SourceRange& range);
+
+  static constexpr size_t kChainSegment = 64;
+  static constexpr size_t kMaxInlineChain = 4096;
   // A block's statements at `indent` levels (4 spaces each), with #line.
   void block(GlslOutput& out, const ast::BlockStmt& block, int indent);
   void stmt(GlslOutput& out, const ast::Stmt& s, int indent);
@@ -67,12 +92,24 @@ class GlslWriter {
   std::string localDeclaration(const ast::VarDeclStmt& d);
   std::string forInit(const ast::Stmt& s);
   void mapLine(GlslOutput& out, const SourceRange& range);
+  std::string binary(const ast::BinaryExpr& e, ast::Precedence minPrecedence);
+  std::string chainText(const std::vector<const ast::BinaryExpr*>& spine, size_t begin, size_t end, std::string head,
+                        ast::Precedence context);
+  std::string temporaryName();
+  // `e` where it is evaluated only under a condition (a branch of `?:`, the
+  // right of `&&`, `||` or `^^`): never hoisted, since that would evaluate it
+  // unconditionally.
+  std::string conditionalExpr(const ast::Expr& e, ast::Precedence minPrecedence);
+  std::string declarationStatement(const ast::VarDeclStmt& d, std::vector<std::string>& before);
 
   const sem::Model& model_;
   const SourceManager& sources_;
   GlslNameMaps names_;
   const NameTable& table_;
   std::map<const void*, std::string> locals_;
+  std::vector<std::string>* hoisted_ = nullptr;   // set while a statement may hoist
+  std::optional<Problem> problem_;
+  size_t nextTemporary_ = 0;
 };
 
 }  // namespace spire::codegen

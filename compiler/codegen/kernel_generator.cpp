@@ -44,8 +44,9 @@ class KernelGenerator {
   std::optional<Kernel> generate(sem::WorldId world);
 
  private:
-  void fail(std::string message) {
-    diags_.report(DiagCode::E6001, graph_.shader().decl->nameRange,
+  // Reported at `where` when the cause is in the source, else at the shader.
+  void fail(std::string message, SourceRange where = {}) {
+    diags_.report(DiagCode::E6001, where.valid() ? where : graph_.shader().decl->nameRange,
                   fmt::format("cannot generate the kernel of world '{}' for shader '{}': {}", currentWorld_,
                               graph_.shader().name, message));
   }
@@ -290,6 +291,10 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
               structDeclarations(usedStructs(text.touched, text.computed, text.functions), kernel.structNames()));
   writeDefinitions(out, kernel, text, maps, writer);
   writeMain(out, kernel, text, writer);
+  if (const auto& problem = writer.problem()) {
+    fail(problem->message, problem->range);
+    return std::nullopt;
+  }
   return packageKernel(world, *stage, out.text(), kernel);
 }
 
@@ -386,8 +391,10 @@ void KernelGenerator::writeMain(GlslOutput& out, const KernelBuilder& kernel, co
     const ast::ComponentDecl& decl = chosenDecl(id);
     const SourceRange where = decl.init ? decl.init->range : decl.range;
     out.mapTo(sources_.file(where.file).logicalName, sources_.begin(where).line);
-    out.line(fmt::format("    {} = {};", text.names.at(id),
-                         decl.init ? writer.expr(*decl.init) : text.helpers.at(id) + "()"));
+    std::vector<std::string> before;
+    const std::string value = decl.init ? writer.statementExpr(*decl.init, before) : text.helpers.at(id) + "()";
+    writer.writeHoisted(out, "    ", before, where);
+    out.line(fmt::format("    {} = {};", text.names.at(id), value));
   }
   out.mapToKernel();
   for (const std::string& statement : kernel.stores()) out.line("    " + statement);

@@ -1,0 +1,17 @@
+// Whether evaluating an expression can change anything but its own value.
+// The GLSL writer moves the prefixes of long operator chains into
+// temporaries declared before the statement, which is only the same program
+// when neither the chain nor the statement around it writes anything.
+#pragma once
+
+#include "sema/semantic_model.h"
+#include "syntax/ast.h"
+
+namespace spire::codegen {
+
+// True when `e` assigns, increments or decrements, or calls a function (user
+// or built-in) with an `out` or `inout` parameter. Walks the expression with
+// an explicit stack: generated chains are deeper than the call stack allows.
+bool hasSideEffects(const sem::Model& model, const ast::Expr& e);
+
+}  // namespace spire::codegen
