@@ -8,6 +8,8 @@ set -euo pipefail
 PACKAGES=(
   # toolchain
   cmake g++ ninja-build pkg-config ccache
+  # the Format test (.clang-format) and the .clang-tidy checks
+  clang-format clang-tidy
   # shader tooling and Vulkan (code generation checks, engine demo)
   glslang-dev glslang-tools spirv-tools
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers

@@ -9,8 +9,8 @@ namespace {
 
 // The GLSL built-ins that write through an `out` parameter.
 bool writesOutParameter(std::string_view builtin) {
-  static constexpr std::array<std::string_view, 6> kWriting = {"modf",     "frexp",        "uaddCarry",
-                                                                "usubBorrow", "umulExtended", "imulExtended"};
+  static constexpr std::array<std::string_view, 6> kWriting = {"modf",       "frexp",        "uaddCarry",
+                                                               "usubBorrow", "umulExtended", "imulExtended"};
   for (std::string_view name : kWriting) {
     if (name == builtin) return true;
   }

@@ -9,6 +9,7 @@ namespace spire::codegen {
 namespace {
 
 // GLSL 4.50 keywords and reserved words (section 3.6) plus built-in type names.
+// clang-format off
 constexpr std::array kReserved = {
     "attribute", "const", "uniform", "varying", "buffer", "shared", "coherent", "volatile", "restrict", "readonly",
     "writeonly", "atomic_uint", "layout", "centroid", "flat", "smooth", "noperspective", "patch", "sample", "break",
@@ -37,6 +38,7 @@ constexpr std::array kReserved = {
     "rayPayloadEXT", "hitAttributeEXT", "callableDataEXT", "nonuniformEXT", "devicecoherent", "queuefamilycoherent",
     "workgroupcoherent", "subgroupcoherent", "nonprivate", "float16_t", "int64_t", "uint64_t",
 };
+// clang-format on
 
 const std::set<std::string, std::less<>>& reservedSet() {
   static const std::set<std::string, std::less<>> set = [] {

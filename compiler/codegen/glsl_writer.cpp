@@ -78,8 +78,7 @@ std::string GlslWriter::temporaryName() {
   return name;
 }
 
-std::string GlslWriter::statementExpr(const ast::Expr& e, std::vector<std::string>& before,
-                                      Precedence minPrecedence) {
+std::string GlslWriter::statementExpr(const ast::Expr& e, std::vector<std::string>& before, Precedence minPrecedence) {
   // `target = value` stores after the value is computed, so its value may
   // hoist as long as computing the target writes nothing either.
   const auto* assign = ast::dyn_cast<ast::AssignExpr>(&e);
@@ -126,12 +125,14 @@ std::string GlslWriter::binary(const ast::BinaryExpr& e, Precedence minPrecedenc
   std::string head = expr(*spine.front()->lhs, ast::precedenceOf(spine.front()->op));
   if (!hoisted_ || spine.size() <= kChainSegment) {
     if (spine.size() > kMaxInlineChain && !problem_) {
-      problem_ = Problem{e.range, fmt::format(
-          "an expression chains {} operators where the kernel cannot compute it in steps (a loop condition or "
-          "step, an expression that assigns or calls a function with 'out' parameters, or an operand evaluated "
-          "only under a condition), and GLSL compilers fail on chains much longer than {}; compute it in a local "
-          "variable first",
-          spine.size(), kMaxInlineChain)};
+      problem_ = Problem{
+          e.range,
+          fmt::format(
+              "an expression chains {} operators where the kernel cannot compute it in steps (a loop condition or "
+              "step, an expression that assigns or calls a function with 'out' parameters, or an operand evaluated "
+              "only under a condition), and GLSL compilers fail on chains much longer than {}; compute it in a local "
+              "variable first",
+              spine.size(), kMaxInlineChain)};
     }
     return chainText(spine, 0, spine.size(), std::move(head), minPrecedence);
   }
@@ -161,7 +162,8 @@ std::string GlslWriter::expr(const ast::Expr& e, Precedence minPrecedence) {
     }
     case ast::ExprKind::Unary: {
       const auto& u = ast::cast<ast::UnaryExpr>(e);
-      if (ast::isPostfix(u.op)) return wrap(Precedence::Postfix, expr(*u.operand, Precedence::Postfix) + std::string(ast::spelling(u.op)));
+      if (ast::isPostfix(u.op))
+        return wrap(Precedence::Postfix, expr(*u.operand, Precedence::Postfix) + std::string(ast::spelling(u.op)));
       std::string operand = expr(*u.operand, Precedence::Unary);
       const std::string op(ast::spelling(u.op));
       // `- -x` must not become the decrement `--x`.
@@ -171,7 +173,8 @@ std::string GlslWriter::expr(const ast::Expr& e, Precedence minPrecedence) {
     case ast::ExprKind::Binary: return binary(ast::cast<ast::BinaryExpr>(e), minPrecedence);
     case ast::ExprKind::Assign: {
       const auto& a = ast::cast<ast::AssignExpr>(e);
-      return wrap(Precedence::Assignment, fmt::format("{} {} {}", expr(*a.target, Precedence::Unary), ast::spelling(a.op), expr(*a.value, Precedence::Assignment)));
+      return wrap(Precedence::Assignment, fmt::format("{} {} {}", expr(*a.target, Precedence::Unary),
+                                                      ast::spelling(a.op), expr(*a.value, Precedence::Assignment)));
     }
     case ast::ExprKind::Ternary: {
       const auto& t = ast::cast<ast::TernaryExpr>(e);
@@ -182,8 +185,10 @@ std::string GlslWriter::expr(const ast::Expr& e, Precedence minPrecedence) {
     case ast::ExprKind::Call: {
       const auto& c = ast::cast<ast::CallExpr>(e);
       std::string callee = c.callee.name;
-      if (info.ref == sem::RefKind::Function) callee = names_.functions.at(info.function);
-      else if (info.ref == sem::RefKind::Constructor || info.ref == sem::RefKind::StructConstructor) callee = typeName(info.type);
+      if (info.ref == sem::RefKind::Function)
+        callee = names_.functions.at(info.function);
+      else if (info.ref == sem::RefKind::Constructor || info.ref == sem::RefKind::StructConstructor)
+        callee = typeName(info.type);
       std::string args;
       for (const ast::ExprPtr& arg : c.args) args += (args.empty() ? "" : ", ") + expr(*arg, Precedence::Assignment);
       return fmt::format("{}({})", callee, args);
@@ -196,7 +201,8 @@ std::string GlslWriter::expr(const ast::Expr& e, Precedence minPrecedence) {
     }
     case ast::ExprKind::Index: {
       const auto& i = ast::cast<ast::IndexExpr>(e);
-      return wrap(Precedence::Postfix, fmt::format("{}[{}]", expr(*i.object, Precedence::Postfix), expr(*i.index, Precedence::Comma)));
+      return wrap(Precedence::Postfix,
+                  fmt::format("{}[{}]", expr(*i.object, Precedence::Postfix), expr(*i.index, Precedence::Comma)));
     }
   }
   return "";
@@ -254,8 +260,10 @@ void GlslWriter::block(GlslOutput& out, const ast::BlockStmt& b, int indent) {
 }
 
 void GlslWriter::body(GlslOutput& out, const ast::Stmt& s, int indent) {
-  if (const auto* b = ast::dyn_cast<ast::BlockStmt>(&s)) block(out, *b, indent);
-  else stmt(out, s, indent);
+  if (const auto* b = ast::dyn_cast<ast::BlockStmt>(&s))
+    block(out, *b, indent);
+  else
+    stmt(out, s, indent);
 }
 
 void GlslWriter::stmt(GlslOutput& out, const ast::Stmt& s, int indent) {

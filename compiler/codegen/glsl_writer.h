@@ -107,7 +107,7 @@ class GlslWriter {
   GlslNameMaps names_;
   const NameTable& table_;
   std::map<const void*, std::string> locals_;
-  std::vector<std::string>* hoisted_ = nullptr;   // set while a statement may hoist
+  std::vector<std::string>* hoisted_ = nullptr;  // set while a statement may hoist
   std::optional<Problem> problem_;
   size_t nextTemporary_ = 0;
 };

@@ -54,7 +54,7 @@ class InterfaceAllocation {
 
   std::vector<std::vector<Located>> outputs_;
   std::map<std::pair<uint32_t, Key>, uint32_t> locations_;  // (linked sides' root, key) -> location
-  std::vector<uint32_t> sideRoot_;  // side -> its linked set's root
+  std::vector<uint32_t> sideRoot_;                          // side -> its linked set's root
   std::vector<sem::WorldId> importFrom_, importTo_;
   std::set<Key> lockedKeys_;  // written or read by a world the shader's bases finalize
 };

@@ -28,7 +28,7 @@ std::optional<ShaderStage> stageFromAttribute(const ast::WorldDecl& decl) {
 // call, from which its text is written.
 struct KernelText {
   std::vector<sem::ComponentId> computed;  // producers first
-  std::set<sem::ComponentId> touched;  // computed, imported or exported
+  std::set<sem::ComponentId> touched;      // computed, imported or exported
   std::map<sem::ComponentId, std::string> names;
   std::vector<const sem::Function*> functions;
   std::map<sem::ComponentId, std::string> helpers;  // the function of each block body
@@ -38,8 +38,14 @@ class KernelGenerator {
  public:
   KernelGenerator(const sem::Model& model, const SourceManager& sources, const graph::Variant& variant,
                   const StrategyRegistry& strategies, DiagnosticList& diags)
-      : model_(model), sources_(sources), variant_(variant), graph_(variant.graph()),
-        pipeline_(graph_.pipeline()), strategies_(strategies), diags_(diags), interfaces_(variant) {}
+      : model_(model),
+        sources_(sources),
+        variant_(variant),
+        graph_(variant.graph()),
+        pipeline_(graph_.pipeline()),
+        strategies_(strategies),
+        diags_(diags),
+        interfaces_(variant) {}
 
   std::optional<Kernel> generate(sem::WorldId world);
 
@@ -136,7 +142,8 @@ std::vector<sem::ComponentId> KernelGenerator::canonicalOrder(const std::vector<
   return order;
 }
 
-std::vector<const sem::Function*> KernelGenerator::calledFunctions(const std::vector<sem::ComponentId>& computed) const {
+std::vector<const sem::Function*> KernelGenerator::calledFunctions(
+    const std::vector<sem::ComponentId>& computed) const {
   // Callees before callers, each once: GLSL needs a declaration before use.
   std::vector<const sem::Function*> ordered;
   std::set<const sem::Function*> seen;
@@ -219,8 +226,11 @@ bool KernelGenerator::emitImports(sem::WorldId w, KernelBuilder& kernel,
       fail(fmt::format("no code generator is registered for strategy '{}'", import.strategy.ref->name));
       return false;
     }
-    ImportSite site{kernel, pipeline_, import, {}, {},
-                    [&, index = importIndex](sem::ComponentId id) { return interfaces_.inputLocation(index, id); }, {}};
+    ImportSite site{
+        kernel, pipeline_,
+        import, {},
+        {},     [&, index = importIndex](sem::ComponentId id) { return interfaces_.inputLocation(index, id); },
+        {}};
     for (sem::ComponentId id : byName(ids)) site.values.push_back(value(id, names));
     if (pipeline_.worlds[import.from].isAbstract || isLocked) {
       site.producerOutputs = site.values;
@@ -302,7 +312,8 @@ void KernelGenerator::claimNames(const graph::WorldPlan& plan, const std::vector
                                  KernelBuilder& kernel, KernelText& text, GlslNameMaps& maps) const {
   // Names first, in a fixed order, so renaming is deterministic: structs,
   // then every component this kernel touches, then functions.
-  for (const sem::Type* s : model_.structOrder) kernel.structNames()[s->structName] = kernel.names().claim(s->structName);
+  for (const sem::Type* s : model_.structOrder)
+    kernel.structNames()[s->structName] = kernel.names().claim(s->structName);
   text.computed = canonicalOrder(plan.computed);
   text.touched.insert(text.computed.begin(), text.computed.end());
   for (const graph::Transfer& t : plan.inputs) text.touched.insert(t.component);
@@ -348,7 +359,8 @@ void KernelGenerator::writeHeader(GlslOutput& out, const sem::World& world, Shad
     out.line("layout(local_size_x = 64) in;");
     out.line("");
   }
-  for (size_t start = 0, end = structs.find('\n'); end != std::string::npos; start = end + 1, end = structs.find('\n', start)) {
+  for (size_t start = 0, end = structs.find('\n'); end != std::string::npos;
+       start = end + 1, end = structs.find('\n', start)) {
     out.line(std::string_view(structs).substr(start, end - start));
   }
 }

@@ -27,7 +27,7 @@ struct Kernel {
 
 struct GeneratedShader {
   std::string shader;
-  std::string directory;  // file-system-safe shader name: `TerrainLOD-BaseMaterialLQ`
+  std::string directory;        // file-system-safe shader name: `TerrainLOD-BaseMaterialLQ`
   std::vector<Kernel> kernels;  // in the pipeline's world order
 
   // The whole variant's reflection.

@@ -8,9 +8,7 @@ MemberLayout layoutOf(const sem::Type* type, BlockLayout layout) {
   constexpr uint32_t kScalar = 4;  // bool, int, uint and float are 4 bytes in blocks
   MemberLayout m;
   switch (type->kind) {
-    case sem::TypeKind::Scalar:
-      m.alignment = m.size = kScalar;
-      return m;
+    case sem::TypeKind::Scalar: m.alignment = m.size = kScalar; return m;
     case sem::TypeKind::Vector:
       m.size = kScalar * type->rows;
       m.alignment = kScalar * (type->rows == 3 ? 4 : type->rows);

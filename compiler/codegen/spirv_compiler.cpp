@@ -13,12 +13,9 @@ namespace {
 
 EShLanguage toGlslang(ShaderStage stage) {
   switch (stage) {
-    case ShaderStage::Vertex:
-      return EShLangVertex;
-    case ShaderStage::Fragment:
-      return EShLangFragment;
-    case ShaderStage::Compute:
-      return EShLangCompute;
+    case ShaderStage::Vertex: return EShLangVertex;
+    case ShaderStage::Fragment: return EShLangFragment;
+    case ShaderStage::Compute: return EShLangCompute;
   }
   return EShLangVertex;  // unreachable for valid enumerators
 }
@@ -79,8 +76,8 @@ SpirvResult compileGlslToSpirv(ShaderStage stage, std::string_view glsl, std::st
 
   const glslang::TIntermediate* intermediate = program.getIntermediate(language);
   if (intermediate == nullptr) {
-    appendLog(result.log, name + ": error: glslang produced no intermediate for the " +
-                              std::string(stageName(stage)) + " stage\n");
+    appendLog(result.log,
+              name + ": error: glslang produced no intermediate for the " + std::string(stageName(stage)) + " stage\n");
     return result;
   }
 
@@ -103,29 +100,24 @@ std::optional<std::string> validateSpirv(const std::vector<uint32_t>& words) {
 
   std::string message;
   spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_2);
-  tools.SetMessageConsumer([&message](spv_message_level_t level, const char* /*source*/,
-                                      const spv_position_t& position, const char* text) {
-    const char* severity = "info";
-    switch (level) {
-      case SPV_MSG_FATAL:
-      case SPV_MSG_INTERNAL_ERROR:
-      case SPV_MSG_ERROR:
-        severity = "error";
-        break;
-      case SPV_MSG_WARNING:
-        severity = "warning";
-        break;
-      case SPV_MSG_INFO:
-      case SPV_MSG_DEBUG:
-        break;
-    }
-    if (!message.empty()) message += '\n';
-    message += severity;
-    message += " (word ";
-    message += std::to_string(position.index);
-    message += "): ";
-    message += text == nullptr ? "" : text;
-  });
+  tools.SetMessageConsumer(
+      [&message](spv_message_level_t level, const char* /*source*/, const spv_position_t& position, const char* text) {
+        const char* severity = "info";
+        switch (level) {
+          case SPV_MSG_FATAL:
+          case SPV_MSG_INTERNAL_ERROR:
+          case SPV_MSG_ERROR: severity = "error"; break;
+          case SPV_MSG_WARNING: severity = "warning"; break;
+          case SPV_MSG_INFO:
+          case SPV_MSG_DEBUG: break;
+        }
+        if (!message.empty()) message += '\n';
+        message += severity;
+        message += " (word ";
+        message += std::to_string(position.index);
+        message += "): ";
+        message += text == nullptr ? "" : text;
+      });
   if (tools.Validate(words.data(), words.size())) return std::nullopt;
   if (message.empty()) message = "invalid SPIR-V module";
   return message;

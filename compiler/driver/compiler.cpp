@@ -52,9 +52,10 @@ bool compileKernel(const codegen::Kernel& generated, const sem::Shader& shader, 
     kernel.spirv = spirv.words;
     return true;
   }
-  diags.report(DiagCode::E6002, shader.decl->nameRange,
-               fmt::format("internal error: the generated {} kernel of '{}' was rejected; this is a spirec bug",
-                           generated.world, shader.name))
+  diags
+      .report(DiagCode::E6002, shader.decl->nameRange,
+              fmt::format("internal error: the generated {} kernel of '{}' was rejected; this is a spirec bug",
+                          generated.world, shader.name))
       .note({}, spirv.ok() ? *invalid : spirv.log)
       .note({}, saveRejected(generated, options.saveRejectedTo, directory));
   return false;
@@ -78,7 +79,8 @@ const graph::ChoiceSpace* findShader(const ShaderLibrary& library, std::string_v
 CompileResult finish(ShaderLibrary& library, const std::optional<graph::Variant>& variant,
                      const CompileOptions& options, DiagnosticList& diags, std::string_view shader,
                      std::vector<std::string> skipped = {}) {
-  if (!variant || diags.hasErrors()) return failure(fmt::format("no variant of '{}' for these decisions", shader), diags);
+  if (!variant || diags.hasErrors())
+    return failure(fmt::format("no variant of '{}' for these decisions", shader), diags);
   if (options.strictDecisions && diags.warningCount() > 0) {
     return failure(fmt::format("not every decision for '{}' applies, so this is not the variant asked for", shader),
                    diags);
@@ -136,8 +138,7 @@ CompiledVariantPtr compileVariant(ShaderLibrary& library, const graph::Variant& 
     CompiledKernel& kernel = compiled->kernels.emplace_back();
     kernel.glsl = generated->kernels[i].glsl;
     if (!options.spirv) continue;
-    if (!compileKernel(generated->kernels[i], variant.graph().shader(), options, generated->directory, kernel,
-                       diags)) {
+    if (!compileKernel(generated->kernels[i], variant.graph().shader(), options, generated->directory, kernel, diags)) {
       ok = false;
       continue;
     }
@@ -164,12 +165,11 @@ CompileResult compileVariant(ShaderLibrary& library, std::string_view shader, co
   DiagnosticList diags;
   const ShaderLibrary::Attributes attributes = checkedAttributes(decisions.attributes, diags);
   std::vector<std::string> skipped;
-  const std::optional<graph::Variant> variant =
-      library.buildVariant(shader, decisions.placement, &skipped, attributes);
+  const std::optional<graph::Variant> variant = library.buildVariant(shader, decisions.placement, &skipped, attributes);
   for (const std::string& component : skipped) {
-    diags.report(DiagCode::W5003, {},
-                 fmt::format("the decision for '{}' is not applied: unknown, or infeasible with the others",
-                             component));
+    diags.report(
+        DiagCode::W5003, {},
+        fmt::format("the decision for '{}' is not applied: unknown, or infeasible with the others", component));
   }
   return finish(library, variant, options, diags, shader, std::move(skipped));
 }

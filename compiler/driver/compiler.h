@@ -44,7 +44,7 @@ struct CompiledVariant {
   std::string directory;           // file-system-safe shader name (`TerrainLOD-BaseMaterialLQ`)
   reflection::Variant reflection;  // its kernels are parallel to `kernels`
   std::vector<CompiledKernel> kernels;
-  std::string placement;           // the variant as decision-file lines
+  std::string placement;  // the variant as decision-file lines
   std::vector<Diagnostic> warnings;
   // In-memory decisions only: the components whose decision was not applied
   // (unknown, or infeasible with the others), for callers such as the tuner

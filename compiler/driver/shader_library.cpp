@@ -25,9 +25,9 @@ bool ShaderLibrary::addEntry(const sem::Shader& shader, DiagnosticList& diags) {
   if (!g) return false;
   auto space = std::make_unique<graph::ChoiceSpace>(*g);
   if (!space->consistent()) {
-    diags.report(DiagCode::E4017, shader.decl->nameRange,
-                 fmt::format("shader '{}' has no valid variant: the pipeline's requirements cannot all be met",
-                             shader.name));
+    diags.report(
+        DiagCode::E4017, shader.decl->nameRange,
+        fmt::format("shader '{}' has no valid variant: the pipeline's requirements cannot all be met", shader.name));
     return false;
   }
   entries_.push_back({&shader, std::move(g), std::move(space)});

@@ -26,7 +26,9 @@ class ShaderLibrary {
   explicit ShaderLibrary(FrontEndOptions options = {});
 
   bool addFile(const std::string& path) { return frontEnd_.addFile(path); }
-  void addSource(std::string displayPath, std::string text) { frontEnd_.addSource(std::move(displayPath), std::move(text)); }
+  void addSource(std::string displayPath, std::string text) {
+    frontEnd_.addSource(std::move(displayPath), std::move(text));
+  }
   // Analyses everything loaded and builds the graph of every concrete shader.
   // False if there were errors (see diagnostics()).
   bool compile();
@@ -50,7 +52,8 @@ class ShaderLibrary {
   // `attributes` (component -> attributes) are carried like a decision
   // line's (`[Format: "RGBA8"]`), for components that have a decision.
   using Attributes = std::map<std::string, std::vector<std::pair<std::string, std::string>>>;
-  std::optional<graph::Variant> buildVariant(std::string_view shader, const std::map<std::string, std::string>& decisions,
+  std::optional<graph::Variant> buildVariant(std::string_view shader,
+                                             const std::map<std::string, std::string>& decisions,
                                              std::vector<std::string>* skipped = nullptr,
                                              const Attributes& attributes = {}) const;
 

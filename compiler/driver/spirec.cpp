@@ -1,7 +1,7 @@
 #include "driver/spirec.h"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include <filesystem>
 #include <ostream>
@@ -147,8 +147,8 @@ std::vector<const graph::ChoiceSpace*> selectShaders(ShaderLibrary& library, con
   for (const std::string& name : library.shaderNames()) {
     const graph::ChoiceSpace* space = library.choiceSpace(name);
     const sem::Shader& shader = space->graph().shader();
-    const bool selected = options.shader.empty() || name == options.shader ||
-                          (shader.derivedFrom && shader.decl->name == options.shader);
+    const bool selected =
+        options.shader.empty() || name == options.shader || (shader.derivedFrom && shader.decl->name == options.shader);
     if (selected) spaces.push_back(space);
   }
   return spaces;
@@ -156,8 +156,8 @@ std::vector<const graph::ChoiceSpace*> selectShaders(ShaderLibrary& library, con
 
 // What spirec writes once the diagnostics allow it.
 struct SpirecOutput {
-  std::string choices;  // the choice file, with --choices
-  std::string placements;  // with --dump-placement
+  std::string choices;                       // the choice file, with --choices
+  std::string placements;                    // with --dump-placement
   std::vector<OutputDirectory> directories;  // with -o
 };
 

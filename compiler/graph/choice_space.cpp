@@ -120,8 +120,8 @@ bool ChoiceSpace::backwardPass() {
     }
     if (remaining.empty()) continue;
     for (sem::ComponentId dep : alts[remaining.front()].definition->dependencies) {
-      const bool always = std::all_of(remaining.begin(), remaining.end(),
-                                      [&](AltId a) { return dependsOn(alts[a], dep); });
+      const bool always =
+          std::all_of(remaining.begin(), remaining.end(), [&](AltId a) { return dependsOn(alts[a], dep); });
       if (!always) continue;
       mandatory_[dep] = true;
       requirements[dep].push_back(worlds);
@@ -217,8 +217,10 @@ std::string writeSharedKey(const SharedKey& k) {
     for (const auto& [shader, names] : k.shaders) {
       if (contains(names, name)) allowing.push_back(shader);
     }
-    if (allowing.size() == k.shaders.size()) common.push_back(name);
-    else comments += fmt::format("// {} is possible only for {}\n", name, fmt::join(allowing, ", "));
+    if (allowing.size() == k.shaders.size())
+      common.push_back(name);
+    else
+      comments += fmt::format("// {} is possible only for {}\n", name, fmt::join(allowing, ", "));
   }
   if (common.empty()) return comments;
   return fmt::format("{}{} = {{{}}}\n", comments, k.key, fmt::join(common, ","));

@@ -55,7 +55,7 @@ class ChoiceSpace {
 // remaining alternative.
 struct Choice {
   sem::ComponentId component = 0;
-  std::string key;                 // "Terrain.albedo"
+  std::string key;                  // "Terrain.albedo"
   std::vector<AltId> alternatives;  // remaining, in choice-file order
   std::vector<std::string> names;   // "PrebakeTex", "Vertex:basic", ...
 };

@@ -42,8 +42,8 @@ class LineParser {
     const uint32_t begin = pos_;
     while (pos_ < end_) {
       const char c = text_[pos_];
-      const bool ok = std::isalnum(static_cast<unsigned char>(c)) || c == '_' ||
-                      (allowPath && (c == '<' || c == '>' || c == '.'));
+      const bool ok =
+          std::isalnum(static_cast<unsigned char>(c)) || c == '_' || (allowPath && (c == '<' || c == '>' || c == '.'));
       if (!ok) break;
       ++pos_;
     }
@@ -204,8 +204,9 @@ Requests collectRequests(const DecisionFile& decisions, const ChoiceSpace& space
       std::vector<std::string_view> names;
       for (const sem::World& w : pipeline.worlds) names.push_back(w.name);
       const auto suggestion = closestSpelling(line.world, names);
-      diags.report(DiagCode::W5001, line.worldRange,
-                   fmt::format("unknown world '{}' in pipeline '{}'; {}", line.world, pipeline.name, skipped(suggestion)));
+      diags.report(
+          DiagCode::W5001, line.worldRange,
+          fmt::format("unknown world '{}' in pipeline '{}'; {}", line.world, pipeline.name, skipped(suggestion)));
       continue;
     }
     if (std::find(node.variations.begin(), node.variations.end(), line.variation) == node.variations.end()) {
@@ -249,7 +250,6 @@ Requests collectRequests(const DecisionFile& decisions, const ChoiceSpace& space
   return result;
 }
 
-
 }  // namespace
 
 DecisionFile parseDecisionFile(const SourceManager& sources, FileId file, DiagnosticList& diags) {
@@ -282,10 +282,14 @@ DecisionLine makeDecision(std::string prefix, std::string component, std::string
 std::string quoteDecisionString(std::string_view value) {
   std::string quoted = "\"";
   for (const char c : value) {
-    if (c == '\n') quoted += "\\n";
-    else if (c == '\r') quoted += "\\r";
-    else if (c == '"' || c == '\\') quoted += {'\\', c};
-    else quoted += c;
+    if (c == '\n')
+      quoted += "\\n";
+    else if (c == '\r')
+      quoted += "\\r";
+    else if (c == '"' || c == '\\')
+      quoted += {'\\', c};
+    else
+      quoted += c;
   }
   return quoted + '"';
 }
@@ -314,7 +318,8 @@ void checkDecisionPrefixes(const DecisionFile& decisions, const sem::Model& mode
   for (const DecisionLine& line : decisions.lines) {
     if (model.findShader(line.prefix) || model.findGroup(line.prefix)) continue;
     const auto suggestion = closestSpelling(line.prefix, names);
-    diags.report(DiagCode::W5001, line.prefixRange, fmt::format("unknown shader '{}'; {}", line.prefix, skipped(suggestion)));
+    diags.report(DiagCode::W5001, line.prefixRange,
+                 fmt::format("unknown shader '{}'; {}", line.prefix, skipped(suggestion)));
   }
 }
 
@@ -326,11 +331,12 @@ std::optional<Variant> applyDecisions(const DecisionFile& decisions, const Choic
     const DecisionOutcome& outcome = result.outcomes[i];
     if (outcome.status != DecisionStatus::Conflict) continue;
     const DecisionLine& earlier = *origins[outcome.conflictsWith];
-    Diagnostic& d = diags.report(DiagCode::W5002, origins[i]->range,
-                                 outcome.conflictsWith == i
-                                     ? fmt::format("decision '{}' leaves no valid variant and is skipped", spell(*origins[i]))
-                                     : fmt::format("decision '{}' conflicts with the earlier decision '{}' and is skipped",
-                                                   spell(*origins[i]), spell(earlier)));
+    Diagnostic& d =
+        diags.report(DiagCode::W5002, origins[i]->range,
+                     outcome.conflictsWith == i
+                         ? fmt::format("decision '{}' leaves no valid variant and is skipped", spell(*origins[i]))
+                         : fmt::format("decision '{}' conflicts with the earlier decision '{}' and is skipped",
+                                       spell(*origins[i]), spell(earlier)));
     if (outcome.conflictsWith != i) d.note(earlier.range, "the earlier decision is here");
   }
   if (!result.variant) {

@@ -232,9 +232,10 @@ bool ShaderGraph::expandComponent(sem::ComponentId id, WorldMask concrete, std::
   describeNode(id);
   ComponentNode& node = nodes_[id];
   if (component.isAbstract && component.definitions.empty()) {
-    diags.report(DiagCode::E4013, shader.decl->nameRange,
-                 fmt::format("shader '{}' does not define '{}', which '{}' requires", shader.name, component.name,
-                             component.origin))
+    diags
+        .report(DiagCode::E4013, shader.decl->nameRange,
+                fmt::format("shader '{}' does not define '{}', which '{}' requires", shader.name, component.name,
+                            component.origin))
         .note(component.firstDecl->nameRange, fmt::format("'{}' is declared abstract here", component.name));
     return false;
   }
@@ -276,13 +277,13 @@ bool ShaderGraph::addExplicitAlternative(ComponentNode& node, const sem::Definit
     const sem::ComponentId dep = d.dependencies[i];
     if ((readableBy(d, dep, available) >> *d.world) & 1) continue;
     const bool throughLocked = (available[dep] >> *d.world) & 1;
-    diags.reportOnce(DiagCode::E4015, d.dependencyUses[i],
-                     fmt::format("'{}' is not available in world '{}', where '{}' is defined ({})",
-                                 shader.components[dep].name, pipeline.worlds[*d.world].name, node.component->name,
-                                 throughLocked ? fmt::format("it would come from or through a finalized world, "
-                                                             "and a derived shader reads nothing there")
-                                               : fmt::format("it is available in {}",
-                                                             worldList(pipeline, available[dep]))));
+    diags.reportOnce(
+        DiagCode::E4015, d.dependencyUses[i],
+        fmt::format("'{}' is not available in world '{}', where '{}' is defined ({})", shader.components[dep].name,
+                    pipeline.worlds[*d.world].name, node.component->name,
+                    throughLocked ? fmt::format("it would come from or through a finalized world, "
+                                                "and a derived shader reads nothing there")
+                                  : fmt::format("it is available in {}", worldList(pipeline, available[dep]))));
     ok = false;
   }
   node.alternatives.push_back({*d.world, variationIndex(node, d.variation), &d});

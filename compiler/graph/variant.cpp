@@ -225,7 +225,8 @@ std::string Variant::describe() const {
   const sem::Pipeline& pipeline = graph_->pipeline();
   auto names = [&](const std::vector<sem::ComponentId>& ids) {
     std::string text;
-    for (sem::ComponentId c : ids) text += fmt::format("{}{}", text.empty() ? "" : ", ", graph_->node(c).component->name);
+    for (sem::ComponentId c : ids)
+      text += fmt::format("{}{}", text.empty() ? "" : ", ", graph_->node(c).component->name);
     return text;
   };
   auto transfers = [&](const std::vector<Transfer>& list, bool incoming) {

@@ -80,7 +80,7 @@ class Variant {
 };
 
 struct VariantResult {
-  std::optional<Variant> variant;  // empty only if no valid variant exists at all
+  std::optional<Variant> variant;         // empty only if no valid variant exists at all
   std::vector<DecisionOutcome> outcomes;  // one per request
 };
 

@@ -38,8 +38,8 @@ std::optional<ValueType::Scalar> scalarPrefix(char c) {
 std::optional<ValueType> parseNumeric(std::string_view type) {
   ValueType result;
   if (type == "float" || type == "int" || type == "uint" || type == "bool") {
-    result.scalar = type == "float" ? ValueType::Scalar::Float
-                    : type == "int" ? ValueType::Scalar::Int
+    result.scalar = type == "float"  ? ValueType::Scalar::Float
+                    : type == "int"  ? ValueType::Scalar::Int
                     : type == "uint" ? ValueType::Scalar::Uint
                                      : ValueType::Scalar::Bool;
     return result;
@@ -88,7 +88,7 @@ std::optional<ValueType> parseArray(std::string_view type) {
 }  // namespace
 
 ValueType parseValueType(std::string_view glsl) {
-  std::optional<ValueType> numeric = glsl.empty() ? std::nullopt
+  std::optional<ValueType> numeric = glsl.empty()         ? std::nullopt
                                      : glsl.back() == ']' ? parseArray(glsl)
                                                           : parseNumeric(glsl);
   ValueType result = numeric.value_or(ValueType{});
@@ -101,8 +101,8 @@ ValueType parseValueType(std::string_view glsl) {
 }
 
 const BlockMember* Block::member(std::string_view component) const {
-  const auto it = std::find_if(members.begin(), members.end(),
-                               [&](const BlockMember& m) { return m.component == component; });
+  const auto it =
+      std::find_if(members.begin(), members.end(), [&](const BlockMember& m) { return m.component == component; });
   return it == members.end() ? nullptr : &*it;
 }
 

@@ -34,8 +34,8 @@ void putSlot(Json& entry, DescriptorSlot slot) {
   entry["binding"] = slot.binding;
 }
 
-Json valueEntry(std::string_view kind, const std::string& component, const std::string& glslName,
-                const ValueType& type, const std::string& strategy) {
+Json valueEntry(std::string_view kind, const std::string& component, const std::string& glslName, const ValueType& type,
+                const std::string& strategy) {
   Json entry;
   entry["kind"] = kind;
   entry["component"] = component;

@@ -72,7 +72,8 @@ void Analyzer::collectDeclarations() {
 
 void Analyzer::declareStruct(const ast::StructDecl& decl) {
   if (model_->types().lookupBuiltin(decl.name)) {
-    diags_.report(DiagCode::E3003, decl.nameRange, fmt::format("'{}' is a built-in type and cannot be redefined", decl.name));
+    diags_.report(DiagCode::E3003, decl.nameRange,
+                  fmt::format("'{}' is a built-in type and cannot be redefined", decl.name));
     return;
   }
   if (!claimGlobalName(decl.name, decl.nameRange, "struct")) return;
@@ -86,7 +87,9 @@ void Analyzer::declareStruct(const ast::StructDecl& decl) {
                     fmt::format("struct field '{}' cannot have type '{}'", field.name, type->name()));
     }
     if (auto [it, inserted] = seen.try_emplace(field.name, field.nameRange); !inserted) {
-      diags_.report(DiagCode::E3003, field.nameRange, fmt::format("duplicate field '{}' in struct '{}'", field.name, decl.name))
+      diags_
+          .report(DiagCode::E3003, field.nameRange,
+                  fmt::format("duplicate field '{}' in struct '{}'", field.name, decl.name))
           .note(it->second, "previous declaration is here");
     }
     fields.push_back({field.name, type});
@@ -103,7 +106,8 @@ void Analyzer::declareStruct(const ast::StructDecl& decl) {
 
 void Analyzer::declareFunction(const ast::FunctionDecl& decl) {
   if (model_->types().lookupBuiltin(decl.name) || model_->structs.count(decl.name)) {
-    diags_.report(DiagCode::E3003, decl.nameRange, fmt::format("'{}' is a type and cannot be used as a function name", decl.name));
+    diags_.report(DiagCode::E3003, decl.nameRange,
+                  fmt::format("'{}' is a type and cannot be used as a function name", decl.name));
     return;
   }
   if (!claimGlobalName(decl.name, decl.nameRange, "function")) return;
@@ -148,8 +152,9 @@ void Analyzer::declareFunction(const ast::FunctionDecl& decl) {
     }
     if (!same) continue;
     if (existing->returnType != function->returnType) {
-      diags_.report(DiagCode::E3003, decl.nameRange,
-                    fmt::format("functions '{}' differ only in their return type", decl.name))
+      diags_
+          .report(DiagCode::E3003, decl.nameRange,
+                  fmt::format("functions '{}' differ only in their return type", decl.name))
           .note(existing->decl->nameRange, "previous declaration is here");
       return;
     }
@@ -232,7 +237,8 @@ void Analyzer::checkUndefinedFunctions() {
   for (const auto& f : model_->functions) {
     if (f->defined) continue;
     if (auto it = firstCall.find(f.get()); it != firstCall.end()) {
-      diags_.report(DiagCode::E3019, f->decl->nameRange, fmt::format("function '{}' is used but never defined", f->name))
+      diags_
+          .report(DiagCode::E3019, f->decl->nameRange, fmt::format("function '{}' is used but never defined", f->name))
           .note(it->second, "used from here");
     }
   }

@@ -10,7 +10,7 @@
 namespace spire::sem {
 namespace {
 
-constexpr std::string_view kFormats[] = {"R8",   "RG8",     "RGBA8", "RGB10_A2", "R16F",
+constexpr std::string_view kFormats[] = {"R8",    "RG8",     "RGBA8", "RGB10_A2", "R16F",
                                          "RG16F", "RGBA16F", "R32F",  "RGBA32F"};
 
 std::string_view siteName(AttributeSite site) {
@@ -25,15 +25,35 @@ std::string_view siteName(AttributeSite site) {
 
 const std::vector<AttributeSpec>& catalog() {
   static const std::vector<AttributeSpec> specs = {
-      {"Stage", {AttributeSite::World}, "the pipeline stage of the world's kernel", {"vertex", "fragment", "compute"},
-       {}, {}, "vertex"},
+      {"Stage",
+       {AttributeSite::World},
+       "the pipeline stage of the world's kernel",
+       {"vertex", "fragment", "compute"},
+       {},
+       {},
+       "vertex"},
       {"Priority", {AttributeSite::Import}, "breaks ties between equally faithful routes", {}, -1000, 1000, "1"},
-      {"Format", {AttributeSite::Component, AttributeSite::Decision}, "the texture format a bake stores the value in",
-       std::vector<std::string_view>(std::begin(kFormats), std::end(kFormats)), {}, {}, "RGBA8"},
-      {"TextureSize", {AttributeSite::Component, AttributeSite::Decision}, "the size in texels of a baked texture", {},
-       1, 8192, "512"},
-      {"Encoding", {AttributeSite::Component, AttributeSite::Decision},
-       "stores values in [-1, 1] remapped to [0, 1] for unsigned texture formats", {"signed"}, {}, {}, "signed"},
+      {"Format",
+       {AttributeSite::Component, AttributeSite::Decision},
+       "the texture format a bake stores the value in",
+       std::vector<std::string_view>(std::begin(kFormats), std::end(kFormats)),
+       {},
+       {},
+       "RGBA8"},
+      {"TextureSize",
+       {AttributeSite::Component, AttributeSite::Decision},
+       "the size in texels of a baked texture",
+       {},
+       1,
+       8192,
+       "512"},
+      {"Encoding",
+       {AttributeSite::Component, AttributeSite::Decision},
+       "stores values in [-1, 1] remapped to [0, 1] for unsigned texture formats",
+       {"signed"},
+       {},
+       {},
+       "signed"},
   };
   return specs;
 }
@@ -49,8 +69,7 @@ bool valueAllowed(const AttributeSpec& spec, std::string_view value) {
   if (!spec.values.empty()) return std::find(spec.values.begin(), spec.values.end(), value) != spec.values.end();
   long number = 0;
   const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), number);
-  return ec == std::errc{} && end == value.data() + value.size() && number >= *spec.minimum &&
-         number <= *spec.maximum;
+  return ec == std::errc{} && end == value.data() + value.size() && number >= *spec.minimum && number <= *spec.maximum;
 }
 
 std::optional<AttributeProblem> unknownName(std::string_view name) {

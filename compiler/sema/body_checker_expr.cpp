@@ -75,9 +75,12 @@ std::vector<Viable> viableCandidates(const std::vector<Candidate>& candidates, c
     for (size_t i = 0; i < args.size() && ok; ++i) {
       const Param& p = c.params[i];
       const bool exact = args[i] == p.type;
-      if (p.direction == ast::ParamDirection::In) ok = isImplicitlyConvertible(args[i], p.type);
-      else if (p.direction == ast::ParamDirection::Out) ok = exact || isImplicitlyConvertible(p.type, args[i]);
-      else ok = exact;
+      if (p.direction == ast::ParamDirection::In)
+        ok = isImplicitlyConvertible(args[i], p.type);
+      else if (p.direction == ast::ParamDirection::Out)
+        ok = exact || isImplicitlyConvertible(p.type, args[i]);
+      else
+        ok = exact;
       v.exact.push_back(exact);
     }
     if (ok) viable.push_back(std::move(v));
@@ -161,7 +164,8 @@ const Type* BodyChecker::checkUncached(const ast::Expr& expr, ExprInfo& info) {
   TypeTable& types = model_.types();
   switch (expr.kind) {
     case ast::ExprKind::BoolLiteral: return types.boolType();
-    case ast::ExprKind::IntLiteral: return ast::cast<ast::IntLiteral>(expr).isUnsigned ? types.uintType() : types.intType();
+    case ast::ExprKind::IntLiteral:
+      return ast::cast<ast::IntLiteral>(expr).isUnsigned ? types.uintType() : types.intType();
     case ast::ExprKind::FloatLiteral: return types.floatType();
     case ast::ExprKind::Name: return checkName(ast::cast<ast::NameExpr>(expr), info);
     case ast::ExprKind::Unary: return checkUnary(ast::cast<ast::UnaryExpr>(expr), info);
@@ -204,11 +208,14 @@ const Type* BodyChecker::checkName(const ast::NameExpr& e, ExprInfo& info) {
     diags_.report(DiagCode::E3001, e.range, fmt::format("use of undeclared identifier '{}'", e.name));
     return model_.types().error();
   }
-  Diagnostic& d = diags_.report(DiagCode::E3001, e.range,
-                                fmt::format("use of undeclared identifier '{}'; did you mean '{}'?", e.name, *suggestion));
+  Diagnostic& d =
+      diags_.report(DiagCode::E3001, e.range,
+                    fmt::format("use of undeclared identifier '{}'; did you mean '{}'?", e.name, *suggestion));
   SourceRange where;
-  if (const Local* local = findLocal(*suggestion)) where = local->declRange;
-  else if (components_) where = components_->declarationOf(*suggestion);
+  if (const Local* local = findLocal(*suggestion))
+    where = local->declRange;
+  else if (components_)
+    where = components_->declarationOf(*suggestion);
   if (where.valid()) d.note(where, fmt::format("'{}' declared here", *suggestion));
   return model_.types().error();
 }
@@ -250,8 +257,10 @@ const Type* BodyChecker::checkBinary(const ast::BinaryExpr& e, const Type* lhs) 
   if (e.op == ast::BinaryOp::Comma) return rhs;
   const Type* result = binaryResultType(model_.types(), e.op, lhs, rhs);
   if (!result) {
-    diags_.report(DiagCode::E3005, e.opRange,
-                  fmt::format("invalid operands to binary '{}' ('{}' and '{}')", ast::spelling(e.op), lhs->name(), rhs->name()))
+    diags_
+        .report(DiagCode::E3005, e.opRange,
+                fmt::format("invalid operands to binary '{}' ('{}' and '{}')", ast::spelling(e.op), lhs->name(),
+                            rhs->name()))
         .note(e.lhs->range, fmt::format("left operand has type '{}'", lhs->name()))
         .note(e.rhs->range, fmt::format("right operand has type '{}'", rhs->name()));
     return model_.types().error();
@@ -266,16 +275,18 @@ const Type* BodyChecker::checkAssign(const ast::AssignExpr& e) {
   if (!requireLValue(*e.target, e.opRange, "assign to")) return model_.types().error();
   if (e.op == ast::AssignOp::Assign) {
     if (!isImplicitlyConvertible(value, target)) {
-      diags_.report(DiagCode::E3004, e.value->range,
-                    fmt::format("cannot assign a value of type '{}' to a variable of type '{}'", value->name(), target->name()));
+      diags_.report(
+          DiagCode::E3004, e.value->range,
+          fmt::format("cannot assign a value of type '{}' to a variable of type '{}'", value->name(), target->name()));
       return model_.types().error();
     }
     return target;
   }
   const Type* result = binaryResultType(model_.types(), compoundOperator(e.op), target, value);
   if (!result || result != target) {
-    diags_.report(DiagCode::E3005, e.opRange,
-                  fmt::format("invalid operands to '{}' ('{}' and '{}')", ast::spelling(e.op), target->name(), value->name()));
+    diags_.report(
+        DiagCode::E3005, e.opRange,
+        fmt::format("invalid operands to '{}' ('{}' and '{}')", ast::spelling(e.op), target->name(), value->name()));
     return model_.types().error();
   }
   return target;
@@ -327,8 +338,9 @@ const Type* BodyChecker::checkConstructorCall(const ast::CallExpr& e, const Type
     }
     for (size_t i = 0; i < args.size(); ++i) {
       if (!isImplicitlyConvertible(args[i], target->element)) {
-        diags_.report(DiagCode::E3010, e.args[i]->range,
-                      fmt::format("cannot convert '{}' to array element type '{}'", args[i]->name(), target->element->name()));
+        diags_.report(
+            DiagCode::E3010, e.args[i]->range,
+            fmt::format("cannot convert '{}' to array element type '{}'", args[i]->name(), target->element->name()));
         return model_.types().error();
       }
     }
@@ -358,7 +370,8 @@ const Type* BodyChecker::checkConstructorCall(const ast::CallExpr& e, const Type
   return target;
 }
 
-const Type* BodyChecker::checkFunctionCall(const ast::CallExpr& e, ExprInfo& info, const std::vector<const Type*>& args) {
+const Type* BodyChecker::checkFunctionCall(const ast::CallExpr& e, ExprInfo& info,
+                                           const std::vector<const Type*>& args) {
   const std::vector<Candidate> candidates = collectCandidates(functions_, model_.builtins(), e.callee.name);
   if (candidates.empty()) return reportUnknownFunction(e);
   const std::vector<Viable> viable = viableCandidates(candidates, args);
@@ -424,7 +437,8 @@ const Type* BodyChecker::checkMember(const ast::MemberExpr& e, ExprInfo& info) {
     for (const StructField& f : object->fields) names.push_back(f.name);
     const auto suggestion = closestSpelling(e.member, names);
     diags_.report(DiagCode::E3008, e.memberRange,
-                  suggestion ? fmt::format("no field '{}' in struct '{}'; did you mean '{}'?", e.member, object->name(), *suggestion)
+                  suggestion ? fmt::format("no field '{}' in struct '{}'; did you mean '{}'?", e.member, object->name(),
+                                           *suggestion)
                              : fmt::format("no field '{}' in struct '{}'", e.member, object->name()));
     return model_.types().error();
   }
@@ -465,7 +479,8 @@ const Type* BodyChecker::checkIndex(const ast::IndexExpr& e, ExprInfo& info) {
   const Type* index = check(*e.index);
   if (object->isError() || index->isError()) return model_.types().error();
   if (!index->isScalar() || (index->scalar != ScalarKind::Int && index->scalar != ScalarKind::Uint)) {
-    diags_.report(DiagCode::E3009, e.index->range, fmt::format("array index must be 'int' or 'uint', not '{}'", index->name()));
+    diags_.report(DiagCode::E3009, e.index->range,
+                  fmt::format("array index must be 'int' or 'uint', not '{}'", index->name()));
     return model_.types().error();
   }
   const Type* element = nullptr;
@@ -480,12 +495,14 @@ const Type* BodyChecker::checkIndex(const ast::IndexExpr& e, ExprInfo& info) {
     element = model_.types().vector(ScalarKind::Float, object->rows);
     bound = object->columns;
   } else {
-    diags_.report(DiagCode::E3009, e.object->range, fmt::format("a value of type '{}' cannot be indexed", object->name()));
+    diags_.report(DiagCode::E3009, e.object->range,
+                  fmt::format("a value of type '{}' cannot be indexed", object->name()));
     return model_.types().error();
   }
   if (const auto& constant = model_.info(*e.index).constant; constant && (*constant < 0 || *constant >= bound)) {
-    diags_.report(DiagCode::E3009, e.index->range,
-                  fmt::format("index {} is out of bounds for '{}' (valid: 0 to {})", *constant, object->name(), bound - 1));
+    diags_.report(
+        DiagCode::E3009, e.index->range,
+        fmt::format("index {} is out of bounds for '{}' (valid: 0 to {})", *constant, object->name(), bound - 1));
     return model_.types().error();
   }
   info.isLValue = model_.info(*e.object).isLValue;
@@ -498,9 +515,12 @@ bool BodyChecker::requireLValue(const ast::Expr& target, SourceRange opRange, st
   // Walk to the root name to explain why it is read-only.
   const ast::Expr* root = &target;
   while (true) {
-    if (const auto* m = ast::dyn_cast<ast::MemberExpr>(root)) root = m->object.get();
-    else if (const auto* i = ast::dyn_cast<ast::IndexExpr>(root)) root = i->object.get();
-    else break;
+    if (const auto* m = ast::dyn_cast<ast::MemberExpr>(root))
+      root = m->object.get();
+    else if (const auto* i = ast::dyn_cast<ast::IndexExpr>(root))
+      root = i->object.get();
+    else
+      break;
   }
   std::string reason = "it is not a variable";
   if (const auto* name = ast::dyn_cast<ast::NameExpr>(root)) {
@@ -526,7 +546,8 @@ std::optional<uint32_t> BodyChecker::arraySize(const ast::Expr& size) {
     return std::nullopt;
   }
   if (*constant <= 0 || *constant > (1 << 20)) {
-    diags_.report(DiagCode::E3015, size.range, fmt::format("array size must be between 1 and 1048576, not {}", *constant));
+    diags_.report(DiagCode::E3015, size.range,
+                  fmt::format("array size must be between 1 and 1048576, not {}", *constant));
     return std::nullopt;
   }
   return static_cast<uint32_t>(*constant);
@@ -547,8 +568,10 @@ void BodyChecker::foldConstant(const ast::Expr& expr, ExprInfo& info) {
       const auto& u = ast::cast<ast::UnaryExpr>(expr);
       const auto v = value(u.operand);
       if (!v) break;
-      if (u.op == ast::UnaryOp::Negate) result = -*v;
-      else if (u.op == ast::UnaryOp::Plus) result = *v;
+      if (u.op == ast::UnaryOp::Negate)
+        result = -*v;
+      else if (u.op == ast::UnaryOp::Plus)
+        result = *v;
       break;
     }
     case ast::ExprKind::Binary: {
@@ -560,8 +583,12 @@ void BodyChecker::foldConstant(const ast::Expr& expr, ExprInfo& info) {
         case ast::BinaryOp::Add: result = *l + *r; break;
         case ast::BinaryOp::Sub: result = *l - *r; break;
         case ast::BinaryOp::Mul: result = *l * *r; break;
-        case ast::BinaryOp::Div: if (*r != 0) result = *l / *r; break;
-        case ast::BinaryOp::Mod: if (*r != 0) result = *l % *r; break;
+        case ast::BinaryOp::Div:
+          if (*r != 0) result = *l / *r;
+          break;
+        case ast::BinaryOp::Mod:
+          if (*r != 0) result = *l % *r;
+          break;
         default: break;
       }
       break;

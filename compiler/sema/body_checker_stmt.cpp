@@ -85,8 +85,9 @@ void BodyChecker::checkConversion(const ast::Expr& value, const Type* target, st
   const Type* type = check(value);
   if (type->isError() || target->isError()) return;
   if (!isImplicitlyConvertible(type, target)) {
-    diags_.report(DiagCode::E3004, value.range,
-                  fmt::format("cannot initialize {} of type '{}' with a value of type '{}'", what, target->name(), type->name()));
+    diags_.report(
+        DiagCode::E3004, value.range,
+        fmt::format("cannot initialize {} of type '{}' with a value of type '{}'", what, target->name(), type->name()));
   }
 }
 

@@ -76,8 +76,8 @@ class Builder {
 
 // 8.1 Angle and trigonometry functions; all component-wise over genType.
 void addTrigonometry(Builder& B) {
-  for (std::string_view name : {"radians", "degrees", "sin", "cos", "tan", "asin", "acos", "sinh", "cosh", "tanh",
-                                "asinh", "acosh", "atanh"}) {
+  for (std::string_view name :
+       {"radians", "degrees", "sin", "cos", "tan", "asin", "acos", "sinh", "cosh", "tanh", "asinh", "acosh", "atanh"}) {
     for (uint32_t n = 1; n <= 4; ++n) B.add(name, B.vec(n), {B.vec(n)});
   }
   for (uint32_t n = 1; n <= 4; ++n) {
@@ -351,8 +351,8 @@ void addTexture(Builder& B) {
 
 // 8.13.1 Derivative functions (fragment processing).
 void addDerivatives(Builder& B) {
-  for (std::string_view name : {"dFdx", "dFdy", "dFdxFine", "dFdyFine", "dFdxCoarse", "dFdyCoarse", "fwidth",
-                                "fwidthFine", "fwidthCoarse"}) {
+  for (std::string_view name :
+       {"dFdx", "dFdy", "dFdxFine", "dFdyFine", "dFdxCoarse", "dFdyCoarse", "fwidth", "fwidthFine", "fwidthCoarse"}) {
     for (uint32_t n = 1; n <= 4; ++n) B.add(name, B.vec(n), {B.vec(n)});
   }
 }

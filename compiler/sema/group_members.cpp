@@ -23,12 +23,12 @@ bool isOptionalMemberInstance(const Shader& shader) {
 
 void reportMemberLeftOut(DiagnosticList& diags, const ast::ShaderDecl& derived, const std::string& member,
                          const std::vector<Diagnostic>& errors) {
-  const auto first = std::find_if(errors.begin(), errors.end(),
-                                  [](const Diagnostic& d) { return d.severity == Severity::Error; });
+  const auto first =
+      std::find_if(errors.begin(), errors.end(), [](const Diagnostic& d) { return d.severity == Severity::Error; });
   const std::string reason = first == errors.end() ? std::string("it does not fit") : first->message;
-  Diagnostic& w = diags.report(DiagCode::W4101, derived.nameRange,
-                               fmt::format("optional group member '{}' is left out of '{}': {}", member, derived.name,
-                                           reason));
+  Diagnostic& w =
+      diags.report(DiagCode::W4101, derived.nameRange,
+                   fmt::format("optional group member '{}' is left out of '{}': {}", member, derived.name, reason));
   for (const Diagnostic& e : errors) {
     w.note(e.range, fmt::format("{}[{}]: {}", severityName(e.severity), diagCodeInfo(e.code).name, e.message));
     for (const DiagNote& n : e.notes) w.note(n.range, n.message);

@@ -42,21 +42,25 @@ bool Analyzer::checkLockedDefinition(const Shader& base, const Pipeline& pipelin
   if (base.finalizedWorlds.empty() || !decl.hasDefinition()) return true;
   const Component* inherited = base.findComponent(decl.name);
   std::optional<WorldId> world;
-  if (decl.world) world = pipeline.findWorld(*decl.world);
-  else if (inherited) world = inherited->requiredWorld;
+  if (decl.world)
+    world = pipeline.findWorld(*decl.world);
+  else if (inherited)
+    world = inherited->requiredWorld;
   std::string message;
   SourceRange where = decl.world ? decl.worldRange : decl.nameRange;
   if (world && isLocked(base, *world)) {
     message = decl.world ? fmt::format("world '{}' is finalized by '{}'; a derived shader cannot add definitions there",
                                        pipeline.worlds[*world].name, base.name)
-                         : fmt::format("'{}' can only be computed in world '{}', which is finalized by '{}'; a derived "
-                                       "shader cannot redefine it",
-                                       decl.name, pipeline.worlds[*world].name, base.name);
+                         : fmt::format(
+                               "'{}' can only be computed in world '{}', which is finalized by '{}'; a derived "
+                               "shader cannot redefine it",
+                               decl.name, pipeline.worlds[*world].name, base.name);
   } else if (inherited && (world = lockedWorldOf(base, *inherited))) {
     where = decl.nameRange;
-    message = fmt::format("'{}' is defined by '{}' and may be computed in world '{}', which is finalized; a derived "
-                          "shader cannot redefine it",
-                          decl.name, inherited->origin, pipeline.worlds[*world].name);
+    message = fmt::format(
+        "'{}' is defined by '{}' and may be computed in world '{}', which is finalized; a derived "
+        "shader cannot redefine it",
+        decl.name, inherited->origin, pipeline.worlds[*world].name);
   } else {
     return true;
   }

@@ -20,9 +20,7 @@ std::optional<ScalarKind> commonScalar(ScalarKind a, ScalarKind b) {
   return std::nullopt;
 }
 
-bool isArithmeticOperand(const Type* t) {
-  return t->isNumericShape() && t->scalar != ScalarKind::Bool;
-}
+bool isArithmeticOperand(const Type* t) { return t->isNumericShape() && t->scalar != ScalarKind::Bool; }
 
 // +, -, *, / and % over scalars, vectors and matrices.
 const Type* arithmeticType(const TypeTable& types, BinaryOp op, const Type* lhs, const Type* rhs) {
@@ -39,8 +37,10 @@ const Type* arithmeticType(const TypeTable& types, BinaryOp op, const Type* lhs,
   if (r->isScalar()) return l;
   if (l->isVector() && r->isVector()) return l->rows == r->rows ? l : nullptr;
   if (op == BinaryOp::Mul) {
-    if (l->isMatrix() && r->isVector()) return l->columns == r->rows ? types.vector(ScalarKind::Float, l->rows) : nullptr;
-    if (l->isVector() && r->isMatrix()) return l->rows == r->rows ? types.vector(ScalarKind::Float, r->columns) : nullptr;
+    if (l->isMatrix() && r->isVector())
+      return l->columns == r->rows ? types.vector(ScalarKind::Float, l->rows) : nullptr;
+    if (l->isVector() && r->isMatrix())
+      return l->rows == r->rows ? types.vector(ScalarKind::Float, r->columns) : nullptr;
     if (l->isMatrix() && r->isMatrix()) return l->columns == r->rows ? types.matrix(r->columns, l->rows) : nullptr;
     return nullptr;
   }
@@ -104,8 +104,7 @@ const Type* binaryResultType(const TypeTable& types, BinaryOp op, const Type* lh
     case BinaryOp::BitOr: return bitwiseType(types, lhs, rhs);
     case BinaryOp::LogicalAnd:
     case BinaryOp::LogicalXor:
-    case BinaryOp::LogicalOr:
-      return lhs == types.boolType() && rhs == types.boolType() ? types.boolType() : nullptr;
+    case BinaryOp::LogicalOr: return lhs == types.boolType() && rhs == types.boolType() ? types.boolType() : nullptr;
     case BinaryOp::Comma: return rhs;
   }
   return nullptr;
@@ -119,7 +118,8 @@ const Type* unaryResultType(ast::UnaryOp op, const Type* operand) {
     case ast::UnaryOp::PreDecrement:
     case ast::UnaryOp::PostIncrement:
     case ast::UnaryOp::PostDecrement: return isArithmeticOperand(operand) ? operand : nullptr;
-    case ast::UnaryOp::LogicalNot: return operand->isScalar() && operand->scalar == ScalarKind::Bool ? operand : nullptr;
+    case ast::UnaryOp::LogicalNot:
+      return operand->isScalar() && operand->scalar == ScalarKind::Bool ? operand : nullptr;
     case ast::UnaryOp::BitNot: return operand->isIntegerShape() ? operand : nullptr;
   }
   return nullptr;

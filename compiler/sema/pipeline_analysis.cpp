@@ -59,11 +59,13 @@ std::optional<WorldId> Analyzer::resolveWorld(const Pipeline& pipeline, std::str
   std::vector<std::string_view> names;
   for (const World& w : pipeline.worlds) names.push_back(w.name);
   const auto suggestion = closestSpelling(name, names);
-  Diagnostic& d = diags_.report(
-      DiagCode::E4001, range,
-      suggestion ? fmt::format("unknown world '{}' in pipeline '{}'; did you mean '{}'?", name, pipeline.name, *suggestion)
-                 : fmt::format("unknown world '{}' in pipeline '{}'", name, pipeline.name));
-  if (suggestion) d.note(pipeline.worlds[*pipeline.findWorld(*suggestion)].decl->nameRange, fmt::format("'{}' declared here", *suggestion));
+  Diagnostic& d = diags_.report(DiagCode::E4001, range,
+                                suggestion ? fmt::format("unknown world '{}' in pipeline '{}'; did you mean '{}'?",
+                                                         name, pipeline.name, *suggestion)
+                                           : fmt::format("unknown world '{}' in pipeline '{}'", name, pipeline.name));
+  if (suggestion)
+    d.note(pipeline.worlds[*pipeline.findWorld(*suggestion)].decl->nameRange,
+           fmt::format("'{}' declared here", *suggestion));
   return std::nullopt;
 }
 
@@ -100,13 +102,15 @@ void Analyzer::checkWorld(Pipeline& pipeline, const ast::WorldDecl& decl) {
   World& world = pipeline.worlds[*id];
   if (decl.isAbstract) {
     if (decl.language) {
-      diags_.report(DiagCode::E4010, decl.languageRange,
-                    fmt::format("abstract world '{}' cannot have a target language: it holds no computation", decl.name));
+      diags_.report(
+          DiagCode::E4010, decl.languageRange,
+          fmt::format("abstract world '{}' cannot have a target language: it holds no computation", decl.name));
       pipeline.valid = false;
     }
     if (decl.exportStrategy) {
-      diags_.report(DiagCode::E4010, decl.exportStrategy->range,
-                    fmt::format("abstract world '{}' cannot have an export strategy: it holds no computation", decl.name));
+      diags_.report(
+          DiagCode::E4010, decl.exportStrategy->range,
+          fmt::format("abstract world '{}' cannot have an export strategy: it holds no computation", decl.name));
       pipeline.valid = false;
     }
     return;
@@ -150,8 +154,9 @@ void Analyzer::checkImport(Pipeline& pipeline, const ast::ImportDecl& decl) {
     return;
   }
   if (pipeline.worlds[*to].isAbstract) {
-    diags_.report(DiagCode::E4010, decl.toRange,
-                  fmt::format("cannot import into abstract world '{}': abstract worlds hold no computation", decl.to))
+    diags_
+        .report(DiagCode::E4010, decl.toRange,
+                fmt::format("cannot import into abstract world '{}': abstract worlds hold no computation", decl.to))
         .note(pipeline.worlds[*to].decl->nameRange, fmt::format("'{}' declared abstract here", decl.to));
     pipeline.valid = false;
     return;
@@ -177,7 +182,7 @@ std::vector<std::string> Analyzer::checkStrategy(Pipeline& pipeline, const ast::
     const auto suggestion = closestSpelling(ref.name, strategies_.names(role));
     std::string message = signature ? fmt::format("'{}' is an {} strategy, but an {} strategy is needed here", ref.name,
                                                   roleName(signature->role), roleName(role))
-                                     : fmt::format("unknown {} strategy '{}'", roleName(role), ref.name);
+                                    : fmt::format("unknown {} strategy '{}'", roleName(role), ref.name);
     if (suggestion) message += fmt::format("; did you mean '{}'?", *suggestion);
     Diagnostic& d = diags_.report(DiagCode::E4002, ref.nameRange, message);
     std::string known;
@@ -191,11 +196,11 @@ std::vector<std::string> Analyzer::checkStrategy(Pipeline& pipeline, const ast::
     expected += fmt::format("{}{} {}", expected.empty() ? "" : ", ", p.typeName, p.name);
   }
   if (ref.args.size() != signature->params.size()) {
-    diags_.report(DiagCode::E4003, ref.range,
-                  fmt::format("strategy '{}' takes {} argument{}{}, but {} {} given", ref.name, signature->params.size(),
-                              signature->params.size() == 1 ? "" : "s",
-                              expected.empty() ? "" : fmt::format(" ({})", expected), ref.args.size(),
-                              ref.args.size() == 1 ? "was" : "were"));
+    diags_.report(
+        DiagCode::E4003, ref.range,
+        fmt::format("strategy '{}' takes {} argument{}{}, but {} {} given", ref.name, signature->params.size(),
+                    signature->params.size() == 1 ? "" : "s", expected.empty() ? "" : fmt::format(" ({})", expected),
+                    ref.args.size(), ref.args.size() == 1 ? "was" : "were"));
     pipeline.valid = false;
     return {};
   }

@@ -24,9 +24,7 @@ struct Search {
   uint32_t level = 0;  // the worst transfer allowed
   std::vector<std::optional<Cost>> cost;
 
-  bool allowed(const Import& import) const {
-    return static_cast<uint32_t>(transferOf(pipeline, import)) <= level;
-  }
+  bool allowed(const Import& import) const { return static_cast<uint32_t>(transferOf(pipeline, import)) <= level; }
   Cost through(const Import& import) const {
     const Cost& before = *cost[import.from];
     const bool lossy = transferOf(pipeline, import) != ValueTransfer::Exact;

@@ -55,11 +55,11 @@ struct Definition {
   const ast::ComponentDecl* decl = nullptr;
   std::optional<WorldId> world;
   std::string variation;
-  std::vector<ComponentId> dependencies;   // sorted, unique
+  std::vector<ComponentId> dependencies;    // sorted, unique
   std::vector<SourceRange> dependencyUses;  // first use of each dependency, same order
-  std::vector<const Function*> functions;  // user functions called directly
-  std::string origin;                      // shader or pipeline that wrote it
-  std::vector<const Type*> structs;        // struct types its body names (BodyChecker::usedStructs)
+  std::vector<const Function*> functions;   // user functions called directly
+  std::string origin;                       // shader or pipeline that wrote it
+  std::vector<const Type*> structs;         // struct types its body names (BodyChecker::usedStructs)
 
   bool isInput() const { return !decl->hasDefinition(); }
 };
@@ -68,8 +68,8 @@ struct Component {
   std::string name;
   const Type* type = nullptr;
   const ast::ComponentDecl* firstDecl = nullptr;  // where the name was introduced
-  std::string origin;  // shader or pipeline that introduced it: the choice-file prefix
-  bool isAbstract = false;  // declared `abstract`: a derived shader must define it
+  std::string origin;                             // shader or pipeline that introduced it: the choice-file prefix
+  bool isAbstract = false;                        // declared `abstract`: a derived shader must define it
   bool isExport = false;
   // From `abstract @W`: definitions without an explicit world go to W.
   std::optional<WorldId> requiredWorld;
@@ -117,8 +117,8 @@ struct Shader : ComponentSet {
   std::string name;
   const ast::ShaderDecl* decl = nullptr;
   const Pipeline* pipeline = nullptr;
-  const Shader* base = nullptr;  // the base shader, or the group member for an instance
-  const Group* derivedFrom = nullptr;  // set on instances of a shader whose base is a group
+  const Shader* base = nullptr;          // the base shader, or the group member for an instance
+  const Group* derivedFrom = nullptr;    // set on instances of a shader whose base is a group
   std::vector<WorldId> finalizedWorlds;  // own and inherited
   // The components (ComponentSet) are the pipeline's first, then each
   // base's, then this shader's own; ids of inherited components are stable.
@@ -145,7 +145,7 @@ struct Param {
 
 struct Function {
   std::string name;
-  const ast::FunctionDecl* decl = nullptr;        // the definition, or the first prototype
+  const ast::FunctionDecl* decl = nullptr;  // the definition, or the first prototype
   const Type* returnType = nullptr;
   std::vector<Param> params;
   std::vector<const Function*> callees;  // user functions called directly, in first-call order
@@ -156,15 +156,15 @@ struct Function {
 // What a name or call in an expression refers to.
 enum class RefKind : uint8_t {
   None,
-  Local,               // local variable (VarDeclarator)
-  Parameter,           // function parameter
-  Component,           // a component, by name in the enclosing shader
-  Function,            // a user function call
-  Builtin,             // a built-in function call
-  Constructor,         // a built-in type constructor (vec4(...), float[2](...))
+  Local,        // local variable (VarDeclarator)
+  Parameter,    // function parameter
+  Component,    // a component, by name in the enclosing shader
+  Function,     // a user function call
+  Builtin,      // a built-in function call
+  Constructor,  // a built-in type constructor (vec4(...), float[2](...))
   StructConstructor,
-  Swizzle,             // vector swizzle (MemberExpr)
-  Field,               // struct field (MemberExpr)
+  Swizzle,  // vector swizzle (MemberExpr)
+  Field,    // struct field (MemberExpr)
 };
 
 struct ExprInfo {

@@ -61,8 +61,8 @@ std::optional<Rejection> rejectionOf(const ast::ComponentDecl& decl, const Type*
   }
   if (decl.hasDefinition() && type->containsOpaque()) {
     return Rejection{decl.type.range,
-                     fmt::format("component '{}' of opaque type '{}' must be an input at an abstract world",
-                                 decl.name, type->name())};
+                     fmt::format("component '{}' of opaque type '{}' must be an input at an abstract world", decl.name,
+                                 type->name())};
   }
   return std::nullopt;
 }
@@ -103,13 +103,15 @@ void addFirstDeclaration(ComponentSet& set, const ast::ComponentDecl& decl, cons
 void redeclareAbstract(Component& existing, const Pipeline& pipeline, const ast::ComponentDecl& decl,
                        std::optional<WorldId> world, DiagnosticList& diags) {
   if (!existing.isAbstract || !existing.definitions.empty()) {
-    diags.report(DiagCode::E4008, decl.nameRange,
-                 fmt::format("component '{}' is already defined and cannot be redeclared abstract", decl.name))
+    diags
+        .report(DiagCode::E4008, decl.nameRange,
+                fmt::format("component '{}' is already defined and cannot be redeclared abstract", decl.name))
         .note(existing.firstDecl->nameRange, "previous declaration is here");
   } else if (world && existing.requiredWorld && *world != *existing.requiredWorld) {
-    diags.report(DiagCode::E4008, decl.worldRange,
-                 fmt::format("abstract component '{}' is required at '{}' here, but at '{}' before", decl.name,
-                             *decl.world, pipeline.worlds[*existing.requiredWorld].name))
+    diags
+        .report(DiagCode::E4008, decl.worldRange,
+                fmt::format("abstract component '{}' is required at '{}' here, but at '{}' before", decl.name,
+                            *decl.world, pipeline.worlds[*existing.requiredWorld].name))
         .note(existing.firstDecl->nameRange, "previous declaration is here");
   } else if (world) {
     existing.requiredWorld = world;
@@ -125,9 +127,10 @@ void addDefinition(Component& existing, const Pipeline& pipeline, const ast::Com
   for (Definition& d : existing.definitions) {
     if (d.world != effectiveWorld || d.variation != decl.variation) continue;
     if (d.origin == origin) {
-      diags.report(DiagCode::E3003, decl.nameRange,
-                   fmt::format("redefinition of component '{}' {}", decl.name,
-                               definitionLabel(effectiveWorld, decl.variation, pipeline)))
+      diags
+          .report(DiagCode::E3003, decl.nameRange,
+                  fmt::format("redefinition of component '{}' {}", decl.name,
+                              definitionLabel(effectiveWorld, decl.variation, pipeline)))
           .note(d.decl->nameRange, "previous definition is here");
       return;
     }
@@ -141,9 +144,10 @@ void addDefinition(Component& existing, const Pipeline& pipeline, const ast::Com
 void mergeDeclaration(Component& existing, const Pipeline& pipeline, const ast::ComponentDecl& decl, const Type* type,
                       std::optional<WorldId> world, const std::string& origin, bool isInput, DiagnosticList& diags) {
   if (existing.type != type && !type->isError() && !existing.type->isError()) {
-    diags.report(DiagCode::E4008, decl.type.range,
-                 fmt::format("conflicting types for component '{}': '{}' here, but '{}' in '{}'", decl.name,
-                             type->name(), existing.type->name(), existing.origin))
+    diags
+        .report(DiagCode::E4008, decl.type.range,
+                fmt::format("conflicting types for component '{}': '{}' here, but '{}' in '{}'", decl.name,
+                            type->name(), existing.type->name(), existing.origin))
         .note(existing.firstDecl->nameRange, "previous declaration is here");
     return;
   }
@@ -151,9 +155,10 @@ void mergeDeclaration(Component& existing, const Pipeline& pipeline, const ast::
   const bool existingIsInput = !existing.definitions.empty() && existing.definitions.front().isInput();
   if (decl.isAbstract) return redeclareAbstract(existing, pipeline, decl, world, diags);
   if (isInput || existingIsInput) {
-    diags.report(DiagCode::E3003, decl.nameRange,
-                 fmt::format("redefinition of component '{}'{}", decl.name,
-                             existingIsInput ? ", which is an input" : ""))
+    diags
+        .report(
+            DiagCode::E3003, decl.nameRange,
+            fmt::format("redefinition of component '{}'{}", decl.name, existingIsInput ? ", which is an input" : ""))
         .note(existing.firstDecl->nameRange, "previous declaration is here");
     return;
   }
@@ -221,8 +226,10 @@ void Analyzer::checkComponentBodies(ComponentSet& set, const std::string& origin
       ComponentTableResolver resolver(set);
       BodyChecker checker(*model_, diags_, functions_, &resolver);
       const std::string owner = fmt::format("component '{}'", component.name);
-      if (definition.decl->init) checker.checkConversion(*definition.decl->init, component.type, owner);
-      else checker.checkBody(*definition.decl->body, component.type, owner);
+      if (definition.decl->init)
+        checker.checkConversion(*definition.decl->init, component.type, owner);
+      else
+        checker.checkBody(*definition.decl->body, component.type, owner);
       resolver.takeDependencies(definition.dependencies, definition.dependencyUses);
       definition.functions = checker.calledFunctions();
       definition.structs = checker.usedStructs();
@@ -281,8 +288,8 @@ void Analyzer::checkComponentCycles(Shader& shader) {
       for (ComponentId id : cycle) path += shader.components[id].name + " -> ";
       path += shader.components[edge.to].name;
       const Component& first = shader.components[cycle.front()];
-      Diagnostic& d = diags_.report(DiagCode::E4007, first.firstDecl->nameRange,
-                                    fmt::format("cycle among components: {}", path));
+      Diagnostic& d =
+          diags_.report(DiagCode::E4007, first.firstDecl->nameRange, fmt::format("cycle among components: {}", path));
       for (size_t i = 0; i < cycle.size(); ++i) {
         const ComponentId from = cycle[i];
         const ComponentId to = i + 1 < cycle.size() ? cycle[i + 1] : edge.to;
@@ -309,7 +316,8 @@ void Analyzer::analyzeShaders() {
 }
 
 void Analyzer::analyzeShaderDecl(const ast::ShaderDecl& decl) {
-  if (auto it = std::find(shadersInProgress_.begin(), shadersInProgress_.end(), &decl); it != shadersInProgress_.end()) {
+  if (auto it = std::find(shadersInProgress_.begin(), shadersInProgress_.end(), &decl);
+      it != shadersInProgress_.end()) {
     std::string path;
     for (auto p = it; p != shadersInProgress_.end(); ++p) path += (*p)->name + " -> ";
     path += decl.name;
@@ -329,8 +337,9 @@ void Analyzer::analyzeShaderDecl(const ast::ShaderDecl& decl) {
       for (const auto& p : model_->pipelines) names.push_back(p->name);
       const auto suggestion = closestSpelling(decl.pipeline->name, names);
       diags_.report(DiagCode::E4005, decl.pipeline->range,
-                    suggestion ? fmt::format("unknown pipeline '{}'; did you mean '{}'?", decl.pipeline->name, *suggestion)
-                               : fmt::format("unknown pipeline '{}'", decl.pipeline->name));
+                    suggestion
+                        ? fmt::format("unknown pipeline '{}'; did you mean '{}'?", decl.pipeline->name, *suggestion)
+                        : fmt::format("unknown pipeline '{}'", decl.pipeline->name));
     } else {
       buildShader(decl, decl.name, *pipeline, nullptr);
     }
@@ -350,7 +359,8 @@ void Analyzer::analyzeShaderDecl(const ast::ShaderDecl& decl) {
       for (const auto& [name, d] : groupDecls_) names.push_back(name);
       const auto suggestion = closestSpelling(decl.base->name, names);
       diags_.report(DiagCode::E4006, decl.base->range,
-                    suggestion ? fmt::format("unknown base shader or group '{}'; did you mean '{}'?", decl.base->name, *suggestion)
+                    suggestion ? fmt::format("unknown base shader or group '{}'; did you mean '{}'?", decl.base->name,
+                                             *suggestion)
                                : fmt::format("unknown base shader or group '{}'", decl.base->name));
     }
   } else {
@@ -360,7 +370,8 @@ void Analyzer::analyzeShaderDecl(const ast::ShaderDecl& decl) {
   shadersInProgress_.pop_back();
 }
 
-Shader* Analyzer::buildShader(const ast::ShaderDecl& decl, std::string name, const Pipeline& pipeline, const Shader* base) {
+Shader* Analyzer::buildShader(const ast::ShaderDecl& decl, std::string name, const Pipeline& pipeline,
+                              const Shader* base) {
   const uint32_t errorsBefore = diags_.errorCount();
   auto owned = std::make_unique<Shader>();
   Shader& shader = *owned;
@@ -436,8 +447,8 @@ const Group* Analyzer::analyzeGroup(const ast::GroupDecl& decl) {
     }
     group->members.push_back({member, entry.isOptional});
   }
-  if (decl.entries.empty() || std::all_of(decl.entries.begin(), decl.entries.end(),
-                                          [](const ast::GroupEntry& e) { return e.isOptional; })) {
+  if (decl.entries.empty() ||
+      std::all_of(decl.entries.begin(), decl.entries.end(), [](const ast::GroupEntry& e) { return e.isOptional; })) {
     diags_.report(DiagCode::E4012, decl.nameRange,
                   fmt::format("group '{}' needs at least one required (non-optional) shader", decl.name));
     valid = false;
@@ -459,8 +470,8 @@ void Analyzer::buildGroupInstances(const ast::ShaderDecl& decl, const Group& bas
   derived->derivedDecl = &decl;
   for (const GroupMember& member : base.members) {
     const size_t mark = diags_.size();
-    Shader* instance = buildShader(decl, fmt::format("{}<{}>", decl.name, member.shader->name), *member.shader->pipeline,
-                                   member.shader);
+    Shader* instance = buildShader(decl, fmt::format("{}<{}>", decl.name, member.shader->name),
+                                   *member.shader->pipeline, member.shader);
     instance->derivedFrom = derived.get();
     if (member.isOptional && !instance->valid) {
       reportMemberLeftOut(diags_, decl, member.shader->name, diags_.takeSince(mark));

@@ -34,7 +34,7 @@ struct StrategySignature {
   std::string name;
   StrategyRole role = StrategyRole::Import;
   std::vector<StrategyParam> params;
-  std::string summary;  // one line for docs and "did you mean" notes
+  std::string summary;                            // one line for docs and "did you mean" notes
   ValueTransfer transfer = ValueTransfer::Exact;  // imports only
   // Imports: reads `in` variables at locations; exports: writes `out`
   // variables at locations. Two kernels linked this way must agree on every

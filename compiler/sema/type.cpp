@@ -110,8 +110,8 @@ TypeTable::TypeTable() {
       if (c == r) builtinNames_[fmt::format("mat{}", c)] = mt;
     }
   }
-  for (SamplerKind k : {SamplerKind::Sampler2D, SamplerKind::Sampler3D, SamplerKind::SamplerCube,
-                        SamplerKind::Sampler2DArray}) {
+  for (SamplerKind k :
+       {SamplerKind::Sampler2D, SamplerKind::Sampler3D, SamplerKind::SamplerCube, SamplerKind::Sampler2DArray}) {
     Type s;
     s.kind = TypeKind::Sampler;
     s.sampler = k;

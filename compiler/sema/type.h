@@ -28,12 +28,12 @@ struct StructField {
 struct Type {
   TypeKind kind = TypeKind::Error;
   ScalarKind scalar = ScalarKind::Float;  // Scalar, Vector and Matrix
-  uint8_t rows = 1;     // vector size, or matrix rows
-  uint8_t columns = 1;  // matrix columns
+  uint8_t rows = 1;                       // vector size, or matrix rows
+  uint8_t columns = 1;                    // matrix columns
   SamplerKind sampler = SamplerKind::Sampler2D;
-  const Type* element = nullptr;  // Array
-  uint32_t arraySize = 0;         // Array
-  std::string structName;         // Struct
+  const Type* element = nullptr;    // Array
+  uint32_t arraySize = 0;           // Array
+  std::string structName;           // Struct
   std::vector<StructField> fields;  // Struct
 
   bool isError() const { return kind == TypeKind::Error; }
@@ -95,7 +95,7 @@ class TypeTable {
   const Type* error_ = nullptr;
   const Type* void_ = nullptr;
   const Type* scalars_[4] = {};
-  const Type* vectors_[4][5] = {};  // [scalar][size]
+  const Type* vectors_[4][5] = {};   // [scalar][size]
   const Type* matrices_[5][5] = {};  // [columns][rows]
   const Type* samplers_[4] = {};
   std::map<std::pair<const Type*, uint32_t>, const Type*> arrays_;

@@ -41,7 +41,9 @@ Diagnostic& DiagnosticList::report(DiagCode code, SourceRange range, std::string
   }
   if (severity == Severity::Error && errorCount_ >= errorLimit_) {
     limitReached_ = true;
-    diagnostics_.push_back({Severity::Error, DiagCode::E2005, {},
+    diagnostics_.push_back({Severity::Error,
+                            DiagCode::E2005,
+                            {},
                             "too many errors emitted (limit " + std::to_string(errorLimit_) + "), stopping now",
                             {}});
     ++errorCount_;

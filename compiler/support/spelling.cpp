@@ -13,8 +13,8 @@ size_t editDistance(std::string_view a, std::string_view b) {
   for (size_t i = 1; i <= n; ++i) {
     cur[0] = 2 * i;
     for (size_t j = 1; j <= m; ++j) {
-      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                        std::tolower(static_cast<unsigned char>(b[j - 1]));
+      const bool same =
+          std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
       // A case-only difference costs less than a real typo but is not free.
       const size_t subst = a[i - 1] == b[j - 1] ? 0 : (same ? 1 : 2);
       cur[j] = std::min({prev[j] + 2, cur[j - 1] + 2, prev[j - 1] + subst});
@@ -32,7 +32,8 @@ std::optional<std::string> closestSpelling(std::string_view name, const std::vec
   size_t bestDistance = limit + 1;
   for (std::string_view candidate : candidates) {
     if (candidate == name || candidate.empty()) continue;
-    const size_t lengthGap = candidate.size() > name.size() ? candidate.size() - name.size() : name.size() - candidate.size();
+    const size_t lengthGap =
+        candidate.size() > name.size() ? candidate.size() - name.size() : name.size() - candidate.size();
     if (lengthGap > limit) continue;
     const size_t d = editDistance(name, candidate);
     if (d < bestDistance) {

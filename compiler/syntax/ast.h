@@ -16,7 +16,19 @@ namespace spire::ast {
 // ---------------------------------------------------------------------------
 // Expressions
 
-enum class ExprKind : uint8_t { BoolLiteral, IntLiteral, FloatLiteral, Name, Unary, Binary, Assign, Ternary, Call, Member, Index };
+enum class ExprKind : uint8_t {
+  BoolLiteral,
+  IntLiteral,
+  FloatLiteral,
+  Name,
+  Unary,
+  Binary,
+  Assign,
+  Ternary,
+  Call,
+  Member,
+  Index
+};
 
 struct Expr {
   ExprKind kind;
@@ -69,7 +81,16 @@ struct NameExpr final : Expr {
   NameExpr(SourceRange r, std::string n) : Expr(kKind, r), name(std::move(n)) {}
 };
 
-enum class UnaryOp : uint8_t { Plus, Negate, LogicalNot, BitNot, PreIncrement, PreDecrement, PostIncrement, PostDecrement };
+enum class UnaryOp : uint8_t {
+  Plus,
+  Negate,
+  LogicalNot,
+  BitNot,
+  PreIncrement,
+  PreDecrement,
+  PostIncrement,
+  PostDecrement
+};
 
 struct UnaryExpr final : Expr {
   static constexpr ExprKind kKind = ExprKind::Unary;
@@ -82,9 +103,26 @@ struct UnaryExpr final : Expr {
 
 // GLSL binary operators, including the sequence (comma) operator.
 enum class BinaryOp : uint8_t {
-  Mul, Div, Mod, Add, Sub, Shl, Shr,
-  Less, Greater, LessEqual, GreaterEqual, Equal, NotEqual,
-  BitAnd, BitXor, BitOr, LogicalAnd, LogicalXor, LogicalOr, Comma,
+  Mul,
+  Div,
+  Mod,
+  Add,
+  Sub,
+  Shl,
+  Shr,
+  Less,
+  Greater,
+  LessEqual,
+  GreaterEqual,
+  Equal,
+  NotEqual,
+  BitAnd,
+  BitXor,
+  BitOr,
+  LogicalAnd,
+  LogicalXor,
+  LogicalOr,
+  Comma,
 };
 
 struct BinaryExpr final : Expr {
@@ -181,7 +219,20 @@ struct IndexExpr final : Expr {
 // ---------------------------------------------------------------------------
 // Statements
 
-enum class StmtKind : uint8_t { Block, VarDecl, Expr, If, For, While, DoWhile, Break, Continue, Return, Discard, Empty };
+enum class StmtKind : uint8_t {
+  Block,
+  VarDecl,
+  Expr,
+  If,
+  For,
+  While,
+  DoWhile,
+  Break,
+  Continue,
+  Return,
+  Discard,
+  Empty
+};
 
 struct Stmt {
   StmtKind kind;
@@ -240,9 +291,9 @@ struct IfStmt final : Stmt {
 
 struct ForStmt final : Stmt {
   static constexpr StmtKind kKind = StmtKind::For;
-  StmtPtr init;        // VarDeclStmt, ExprStmt or null
-  ExprPtr condition;   // may be null
-  ExprPtr step;        // may be null
+  StmtPtr init;       // VarDeclStmt, ExprStmt or null
+  ExprPtr condition;  // may be null
+  ExprPtr step;       // may be null
   StmtPtr body;
   explicit ForStmt(SourceRange r) : Stmt(kKind, r) {}
 };
@@ -345,8 +396,8 @@ struct ComponentDecl {
   SourceRange nameRange;
   std::string variation;  // empty when none
   SourceRange variationRange;
-  ExprPtr init;                      // `= expr;`
-  std::unique_ptr<BlockStmt> body;   // `{ ... }`; at most one of init/body
+  ExprPtr init;                     // `= expr;`
+  std::unique_ptr<BlockStmt> body;  // `{ ... }`; at most one of init/body
 
   bool hasDefinition() const { return init || body; }
 };

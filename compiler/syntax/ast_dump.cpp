@@ -19,9 +19,7 @@ std::string exprs(const std::vector<ast::ExprPtr>& items) {
 std::string type(const ast::TypeSyntax& t) { return "(type " + t.name + exprs(t.arraySizes) + ")"; }
 
 // Array sizes of a declarator, or nothing when there are none.
-std::string dims(const std::vector<ast::ExprPtr>& sizes) {
-  return sizes.empty() ? "" : " (dims" + exprs(sizes) + ")";
-}
+std::string dims(const std::vector<ast::ExprPtr>& sizes) { return sizes.empty() ? "" : " (dims" + exprs(sizes) + ")"; }
 
 // `(binary op lhs rhs)` for every node of a chain, in a loop however long
 // the chain is (ast::leftSpine): the heads outermost first, then the first
@@ -151,7 +149,8 @@ class TreeDumper {
       case DeclKind::Group: {
         const auto& g = cast<GroupDecl>(decl);
         open("group " + g.name);
-        for (const auto& entry : g.entries) leaf("(entry " + entry.shader.name + (entry.isOptional ? " optional)" : ")"));
+        for (const auto& entry : g.entries)
+          leaf("(entry " + entry.shader.name + (entry.isOptional ? " optional)" : ")"));
         return close();
       }
     }

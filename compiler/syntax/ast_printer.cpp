@@ -71,7 +71,8 @@ std::string unparenthesized(const ast::Expr& e) {
       // The target is parsed as a conditional-expr, which a bare ternary would
       // swallow the assignment into.
       const auto& a = cast<AssignExpr>(e);
-      return fmt::format("{} {} {}", expr(*a.target, Prec::LogicalOr), spelling(a.op), expr(*a.value, Prec::Assignment));
+      return fmt::format("{} {} {}", expr(*a.target, Prec::LogicalOr), spelling(a.op),
+                         expr(*a.value, Prec::Assignment));
     }
     case ExprKind::Ternary: {
       const auto& t = cast<TernaryExpr>(e);
@@ -208,7 +209,8 @@ class SourcePrinter {
   void group(const ast::GroupDecl& decl) {
     line("group " + decl.name + " {");
     ++depth_;
-    for (const auto& entry : decl.entries) line((entry.isOptional ? "optional shader " : "shader ") + entry.shader.name + ";");
+    for (const auto& entry : decl.entries)
+      line((entry.isOptional ? "optional shader " : "shader ") + entry.shader.name + ";");
     --depth_;
     line("}");
   }

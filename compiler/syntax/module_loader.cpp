@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include <filesystem>
 #include <algorithm>
+#include <filesystem>
 #include <unordered_set>
 
 #include "support/file_io.h"
@@ -129,7 +129,8 @@ struct ModuleLoader::Impl {
     std::vector<std::string> unreadable;
     for (auto& candidate : candidates) {
       std::string key = fileKey(candidate.path);
-      const auto open = std::find_if(openFiles.begin(), openFiles.end(), [&](const OpenFile& f) { return f.key == key; });
+      const auto open =
+          std::find_if(openFiles.begin(), openFiles.end(), [&](const OpenFile& f) { return f.key == key; });
       if (open != openFiles.end()) return reportCycle(include, open);
       if (loaded.contains(key)) return;
       auto text = readThrough(options.readFile, candidate.path);

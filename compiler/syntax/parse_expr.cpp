@@ -85,7 +85,8 @@ ast::ExprPtr Parser::parseExpression() {
     const Token& comma = advance();
     ast::ExprPtr rhs = parseAssignment();
     if (!rhs) return nullptr;
-    lhs = makeExpr<ast::BinaryExpr>(rangeFrom(begin), ast::BinaryOp::Comma, std::move(lhs), std::move(rhs), comma.range);
+    lhs =
+        makeExpr<ast::BinaryExpr>(rangeFrom(begin), ast::BinaryOp::Comma, std::move(lhs), std::move(rhs), comma.range);
   }
   return lhs;
 }
@@ -117,8 +118,7 @@ ast::ExprPtr Parser::parseConditional() {
   if (!thenValue || !expectClosing(TokenKind::Colon, question, "in conditional expression")) return nullptr;
   ast::ExprPtr elseValue = parseAssignment();
   if (!elseValue) return nullptr;
-  return makeExpr<ast::TernaryExpr>(rangeFrom(begin), std::move(condition), std::move(thenValue),
-                                    std::move(elseValue));
+  return makeExpr<ast::TernaryExpr>(rangeFrom(begin), std::move(condition), std::move(thenValue), std::move(elseValue));
 }
 
 // logical-or-expr  = logical-xor-expr { "||" logical-xor-expr } ;
@@ -171,8 +171,8 @@ ast::ExprPtr Parser::parsePostfix() {
   DepthScope scope(*this);
   const uint32_t begin = current().range.begin;
   ast::ExprPtr expr = parsePrimary();
-  while (expr && (at(TokenKind::LBracket) || at(TokenKind::Dot) || at(TokenKind::PlusPlus) ||
-                  at(TokenKind::MinusMinus))) {
+  while (expr &&
+         (at(TokenKind::LBracket) || at(TokenKind::Dot) || at(TokenKind::PlusPlus) || at(TokenKind::MinusMinus))) {
     if (!nestDeeper()) return nullptr;
     const Token& op = advance();
     if (op.kind == TokenKind::LBracket) {
@@ -181,8 +181,8 @@ ast::ExprPtr Parser::parsePostfix() {
       expr = makeExpr<ast::IndexExpr>(rangeFrom(begin), std::move(expr), std::move(index));
     } else if (op.kind == TokenKind::Dot) {
       if (!expectName("a member name")) return nullptr;
-      expr = makeExpr<ast::MemberExpr>(rangeFrom(begin), std::move(expr), std::string(previous().text),
-                                       previous().range);
+      expr =
+          makeExpr<ast::MemberExpr>(rangeFrom(begin), std::move(expr), std::string(previous().text), previous().range);
     } else {
       const auto postfix = op.kind == TokenKind::PlusPlus ? ast::UnaryOp::PostIncrement : ast::UnaryOp::PostDecrement;
       expr = makeExpr<ast::UnaryExpr>(rangeFrom(begin), postfix, std::move(expr), op.range);
@@ -205,9 +205,7 @@ ast::ExprPtr Parser::parsePrimary() {
       advance();
       return makeExpr<ast::FloatLiteral>(token.range, floatLiteralValue(token), std::string(token.text));
     case TokenKind::KwTrue:
-    case TokenKind::KwFalse:
-      advance();
-      return makeExpr<ast::BoolLiteral>(token.range, token.kind == TokenKind::KwTrue);
+    case TokenKind::KwFalse: advance(); return makeExpr<ast::BoolLiteral>(token.range, token.kind == TokenKind::KwTrue);
     case TokenKind::LParen: {
       DepthScope scope(*this);
       if (!nestDeeper()) return nullptr;
@@ -316,8 +314,7 @@ ast::ExprPtr Parser::cloneExpr(const ast::Expr& expr) {
     }
     case ExprKind::Ternary: {
       const auto& e = cast<TernaryExpr>(expr);
-      return makeExpr<TernaryExpr>(e.range, cloneExpr(*e.condition), cloneExpr(*e.thenValue),
-                                   cloneExpr(*e.elseValue));
+      return makeExpr<TernaryExpr>(e.range, cloneExpr(*e.condition), cloneExpr(*e.thenValue), cloneExpr(*e.elseValue));
     }
     case ExprKind::Call: {
       const auto& e = cast<CallExpr>(expr);

@@ -51,8 +51,8 @@ uint32_t Parser::lineOf(uint32_t offset) const {
 Diagnostic& Parser::report(DiagCode code, SourceRange where, std::string message) {
   // A second error at the same token, or next to a token the lexer already
   // complained about, is almost always a consequence of the first.
-  const bool cascade = pos_ == lastErrorPos_ || current().malformed || current().followsStray ||
-                       (pos_ > 0 && previous().malformed);
+  const bool cascade =
+      pos_ == lastErrorPos_ || current().malformed || current().followsStray || (pos_ > 0 && previous().malformed);
   if (cascade) {
     scratch_ = {};
     return scratch_;
@@ -70,8 +70,8 @@ Diagnostic& Parser::reportMissing(std::string message) {
 }
 
 Diagnostic& Parser::reportUnexpected(DiagCode code, std::string message) {
-  const SourceRange where = atEnd() && pos_ > 0 ? SourceRange{file_, previous().range.end, previous().range.end}
-                                                : current().range;
+  const SourceRange where =
+      atEnd() && pos_ > 0 ? SourceRange{file_, previous().range.end, previous().range.end} : current().range;
   return report(code, where, std::move(message));
 }
 
@@ -118,8 +118,7 @@ bool Parser::atKeywordDeclarationStart() const {
     case TokenKind::KwPipeline:
     case TokenKind::KwGroup:
     case TokenKind::KwStruct: return named && peek(2).kind == TokenKind::LBrace;
-    case TokenKind::KwShader:
-      return named && (peek(2).kind == TokenKind::KwUsing || peek(2).kind == TokenKind::Colon);
+    case TokenKind::KwShader: return named && (peek(2).kind == TokenKind::KwUsing || peek(2).kind == TokenKind::Colon);
     default: return false;
   }
 }
@@ -128,8 +127,8 @@ bool Parser::atKeywordDeclarationStart() const {
 // is not recognized, which keeps the check constant-time where recovery
 // applies it to every token.
 bool Parser::atDeclarationStart() const {
-  return atKeywordDeclarationStart() || (at(TokenKind::Identifier) && peek(1).kind == TokenKind::Identifier &&
-                                         peek(2).kind == TokenKind::LParen);
+  return atKeywordDeclarationStart() ||
+         (at(TokenKind::Identifier) && peek(1).kind == TokenKind::Identifier && peek(2).kind == TokenKind::LParen);
 }
 
 bool Parser::stopsRecovery(SyncLevel level) const {

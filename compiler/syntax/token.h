@@ -45,9 +45,7 @@ inline constexpr std::array kTokenSpellings = {
 
 // The fixed spelling of a keyword or punctuator (`while`, `->`), or a
 // description of a token class (`identifier`).
-constexpr std::string_view tokenSpelling(TokenKind kind) {
-  return detail::kTokenSpellings[static_cast<size_t>(kind)];
-}
+constexpr std::string_view tokenSpelling(TokenKind kind) { return detail::kTokenSpellings[static_cast<size_t>(kind)]; }
 
 constexpr bool hasFixedSpelling(TokenKind kind) {
   return kind != TokenKind::EndOfFile && kind != TokenKind::Identifier && kind != TokenKind::IntLiteral &&

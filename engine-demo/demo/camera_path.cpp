@@ -1,8 +1,8 @@
 #include "demo/camera_path.h"
 
 #include <glm/common.hpp>
-#include <glm/gtc/constants.hpp>
 #include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 #include "demo/demo.h"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include <filesystem>
 #include <optional>
@@ -130,8 +130,8 @@ std::optional<int> openDevice(const Options& options, engine::ToolRun& run, std:
                               std::ostream& out, std::ostream& err) {
   engine::DeviceOptions device{options.device, options.validation, {}, {}};
   if (options.window) {
-    auto opened = GlfwWindow::open(run.scene().width, run.scene().height,
-                                   fmt::format("spire-demo | {}", options.scenePath));
+    auto opened =
+        GlfwWindow::open(run.scene().width, run.scene().height, fmt::format("spire-demo | {}", options.scenePath));
     if (!opened) {
       err << fmt::format("spire-demo: error: {}\n", opened.error());
       return kExitInputError;
@@ -237,8 +237,8 @@ std::optional<int> writeImages(engine::ToolRun& run, const fs::path& dir, const 
     if (auto written = scene::writePng(dir / (results[i].name + ".png"), results[i].image); !written) {
       return run.fail(written.error());
     }
-    panels.push_back({results[i].image, fmt::format("{} {:.2f}X RMSE {:.4f}", results[i].name, rows[i].speedup,
-                                                    rows[i].rmse)});
+    panels.push_back(
+        {results[i].image, fmt::format("{} {:.2f}X RMSE {:.4f}", results[i].name, rows[i].speedup, rows[i].rmse)});
   }
   auto comparison = measure::makeComparisonImage(panels);
   if (!comparison) return run.fail(comparison.error());

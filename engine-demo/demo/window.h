@@ -10,8 +10,8 @@
 #include <string>
 
 #include "demo/glfw_window.h"
-#include "tool/error_report.h"
 #include "renderer/scene_renderer.h"
+#include "tool/error_report.h"
 
 namespace spire::demo {
 

@@ -15,6 +15,7 @@ struct Glyph {
   std::string_view rows;
 };
 
+// clang-format off
 constexpr std::array kGlyphs = {
     Glyph{'A', ".###. #...# #...# ##### #...# #...# #...#"},
     Glyph{'B', "####. #...# #...# ####. #...# #...# ####."},
@@ -63,8 +64,10 @@ constexpr std::array kGlyphs = {
     Glyph{')', ".#... ..#.. ...#. ...#. ...#. ..#.. .#..."},
     Glyph{'=', "..... ..... ##### ..... ##### ..... ....."},
 };
-static_assert(std::all_of(kGlyphs.begin(), kGlyphs.end(),
-                          [](const Glyph& glyph) { return glyph.rows.size() == kGlyphHeight * (kGlyphWidth + 1) - 1; }));
+// clang-format on
+static_assert(std::all_of(kGlyphs.begin(), kGlyphs.end(), [](const Glyph& glyph) {
+  return glyph.rows.size() == kGlyphHeight * (kGlyphWidth + 1) - 1;
+}));
 
 constexpr std::string_view kUnknownGlyph = "##### #...# #...# #...# #...# #...# #####";
 
@@ -93,8 +96,7 @@ uint32_t textWidth(std::string_view text, uint32_t scale) {
   return static_cast<uint32_t>(std::min<uint64_t>(width, UINT32_MAX));
 }
 
-void drawText(scene::Image& image, uint32_t x, uint32_t y, std::string_view text, uint32_t scale,
-              scene::Rgba8 color) {
+void drawText(scene::Image& image, uint32_t x, uint32_t y, std::string_view text, uint32_t scale, scene::Rgba8 color) {
   if (image.rgba8.size() != static_cast<size_t>(image.width) * image.height * 4) return;
   // 64-bit positions: a long caption at a large scale must clip, not wrap around.
   uint64_t left = x;

@@ -22,7 +22,6 @@ uint32_t textWidth(std::string_view text, uint32_t scale);
 
 // Draws `text` with its top-left corner at (x, y); pixels falling outside the
 // image are skipped.
-void drawText(scene::Image& image, uint32_t x, uint32_t y, std::string_view text, uint32_t scale,
-              scene::Rgba8 color);
+void drawText(scene::Image& image, uint32_t x, uint32_t y, std::string_view text, uint32_t scale, scene::Rgba8 color);
 
 }  // namespace spire::measure

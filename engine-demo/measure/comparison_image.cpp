@@ -53,9 +53,10 @@ scene::Expected<scene::Image> makeComparisonImage(const std::vector<Panel>& pane
   for (size_t i = 0; i < panels.size(); ++i) {
     const scene::Image& image = panels[i].image;
     if (image.rgba8.size() != static_cast<size_t>(image.width) * image.height * 4) {
-      return scene::Error{fmt::format("cannot make a comparison image: image {} ('{}') has pixel data that does "
-                                      "not match {}x{} RGBA8",
-                                      i, panels[i].caption, image.width, image.height)};
+      return scene::Error{
+          fmt::format("cannot make a comparison image: image {} ('{}') has pixel data that does "
+                      "not match {}x{} RGBA8",
+                      i, panels[i].caption, image.width, image.height)};
     }
     width += uint64_t{image.width} + layout.gap;
     tallest = std::max<uint64_t>(tallest, image.height);

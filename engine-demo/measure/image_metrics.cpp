@@ -50,13 +50,13 @@ scene::Expected<ImageError> compareImages(const FloatImage& reference, const Flo
                                     reference.width, reference.height)};
   }
   if (!consistent(reference) || !consistent(test)) {
-    return scene::Error{fmt::format("cannot compare images: pixel data does not match {}x{} RGBA32F",
-                                    reference.width, reference.height)};
+    return scene::Error{fmt::format("cannot compare images: pixel data does not match {}x{} RGBA32F", reference.width,
+                                    reference.height)};
   }
   size_t pixels = pixelCount(reference);
   if (coverage != nullptr && coverage->size() != pixels) {
-    return scene::Error{fmt::format("cannot compare images: coverage mask has {} entries for {} pixels",
-                                    coverage->size(), pixels)};
+    return scene::Error{
+        fmt::format("cannot compare images: coverage mask has {} entries for {} pixels", coverage->size(), pixels)};
   }
   ImageError error;
   for (size_t p = 0; p < pixels; ++p) {
@@ -108,12 +108,8 @@ scene::Image toRgba8(const FloatImage& image) {
     const float* in = &image.rgba[p * 4];
     uint8_t* px = &out.rgba8[p * 4];
     switch (pixelHazard(in)) {
-      case Hazard::NaN:
-        std::copy_n(kNanColor, 4, px);
-        break;
-      case Hazard::Inf:
-        std::copy_n(kInfColor, 4, px);
-        break;
+      case Hazard::NaN: std::copy_n(kNanColor, 4, px); break;
+      case Hazard::Inf: std::copy_n(kInfColor, 4, px); break;
       case Hazard::None:
         for (int c = 0; c < 4; ++c) px[c] = static_cast<uint8_t>(std::lround(std::clamp(in[c], 0.0F, 1.0F) * 255.0F));
         break;

@@ -25,9 +25,9 @@ struct FloatImage {
 };
 
 struct ImageError {
-  double rmse = 0.0;  // over the RGB channels of covered pixels
+  double rmse = 0.0;                                      // over the RGB channels of covered pixels
   double psnr = std::numeric_limits<double>::infinity();  // dB, peak 1.0; infinite when rmse is 0
-  double maxError = 0.0;  // largest absolute RGB channel difference over covered pixels
+  double maxError = 0.0;                                  // largest absolute RGB channel difference over covered pixels
   // Kept so that errors of several views combine exactly (ErrorAccumulator).
   double sumSquaredError = 0.0;
   uint64_t coveredPixels = 0;
@@ -39,9 +39,7 @@ struct ImageError {
   uint64_t referenceNanPixels = 0;
   uint64_t referenceInfPixels = 0;
 
-  [[nodiscard]] bool hasHazards() const {
-    return nanPixels + infPixels + referenceNanPixels + referenceInfPixels > 0;
-  }
+  [[nodiscard]] bool hasHazards() const { return nanPixels + infPixels + referenceNanPixels + referenceInfPixels > 0; }
 };
 
 // A pixel is covered when `coverage` (width * height bytes, or null for every
@@ -55,11 +53,11 @@ scene::Expected<ImageError> compareImages(const FloatImage& reference, const Flo
 // pixel counts are summed, so the total RMSE is that of all covered pixels of
 // all views together, not an average of per-view RMSEs.
 class ErrorAccumulator {
-public:
+ public:
   void add(const ImageError& error);
   [[nodiscard]] ImageError total() const;
 
-private:
+ private:
   ImageError sum_;
 };
 

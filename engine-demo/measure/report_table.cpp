@@ -28,9 +28,7 @@ std::string fixed(double value, int decimals) {
 
 // Errors span orders of magnitude (1e-6 for a reordering, 0.1 for a wrong
 // texture), so they keep four significant digits rather than fixed decimals.
-std::string significant(double value) {
-  return std::isfinite(value) ? fmt::format("{:.4g}", value) : nonFinite(value);
-}
+std::string significant(double value) { return std::isfinite(value) ? fmt::format("{:.4g}", value) : nonFinite(value); }
 
 Cells cells(const ReportRow& row) {
   return {row.variant,

@@ -26,8 +26,8 @@ std::string chooseFormat(BakeLayout& layout) {
   if (!layout.finite) return n == 1 ? "R32F" : "RGBA32F";
   if (unit) return n == 1 ? "R8" : n == 2 ? "RG8" : "RGBA8";
   // RGB10_A2 keeps 2 bits of alpha: enough only for a vec3 or an alpha of 0 or 1.
-  const bool alphaFits = n == 3 || (layout.minimum[3] >= 0.0F && layout.maximum[3] <= 1.0F &&
-                                    (layout.minimum[3] == layout.maximum[3]));
+  const bool alphaFits =
+      n == 3 || (layout.minimum[3] >= 0.0F && layout.maximum[3] <= 1.0F && (layout.minimum[3] == layout.maximum[3]));
   if (layout.unitVectors && alphaFits) {
     layout.signedEncoding = true;
     return "RGB10_A2";

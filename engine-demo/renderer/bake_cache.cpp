@@ -66,9 +66,8 @@ Expected<BakedInputs> BakeCache::bake(const vk::Context& ctx, ModuleCache& modul
         break;
       }
       case WorldRole::VertexBake: {
-        auto result = cached(vertex_, milliseconds_, key, baked, kernel->world, [&](BakeTiming& timing) {
-          return runVertexBake(ctx, modules, *kernel, sources, timing);
-        });
+        auto result = cached(vertex_, milliseconds_, key, baked, kernel->world,
+                             [&](BakeTiming& timing) { return runVertexBake(ctx, modules, *kernel, sources, timing); });
         if (!result) return result.error();
         baked.vertex = sources.vertexBake = *result;
         break;
@@ -81,8 +80,7 @@ Expected<BakedInputs> BakeCache::bake(const vk::Context& ctx, ModuleCache& modul
         baked.texture = sources.textureBake = *result;
         break;
       }
-      default:
-        continue;
+      default: continue;
     }
     upstream[pass.role] = key;
   }

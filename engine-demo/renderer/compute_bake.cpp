@@ -70,8 +70,8 @@ Expected<UniformBakeResult> runUniformBake(const vk::Context& ctx, ModuleCache& 
   UniformBakeResult result;
   for (const BlockMember& member : layout.members) {
     if (!member.type.isNumeric()) {
-      return Error{fmt::format("cannot average '{}' of type {} over vertices", member.component, member.type.name),
-                   {}, {}};
+      return Error{
+          fmt::format("cannot average '{}' of type {} over vertices", member.component, member.type.name), {}, {}};
     }
     std::vector<double> sum(member.type.componentCount(), 0.0);
     for (uint32_t i = 0; i < count; ++i) {

@@ -28,7 +28,8 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
   const KernelProgram* vertex = program.kernelWithRole(WorldRole::VertexStage);
   const KernelProgram* fragment = program.kernelWithRole(WorldRole::FragmentStage);
   if (!vertex || !fragment) {
-    return Error{fmt::format("'{}' has no {} kernel to draw with", program.shader, vertex ? "fragment" : "vertex"), {}, {}};
+    return Error{
+        fmt::format("'{}' has no {} kernel to draw with", program.shader, vertex ? "fragment" : "vertex"), {}, {}};
   }
   auto outputs = fragmentOutputs(*fragment);
   if (!outputs) return outputs.error();
@@ -62,7 +63,10 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
     if (input.kind != InputKind::Varying) continue;
     const MeshAttribute* attribute = findMeshAttribute(input.component);
     if (!attribute) {
-      return Error{fmt::format("the {} kernel reads '{}', which is not a mesh attribute", vertex->world, input.component), {}, {}};
+      return Error{
+          fmt::format("the {} kernel reads '{}', which is not a mesh attribute", vertex->world, input.component),
+          {},
+          {}};
     }
     builder.vertexAttribute(input.location, 0, attribute->format, attribute->offset);
   }

@@ -18,7 +18,7 @@ struct Error {
   Error(const Failure& failure) : message(failure.message) {}  // NOLINT(google-explicit-constructor)
 
   std::string message;
-  SourceRange range;  // invalid when the error is not about a scene-file value
+  SourceRange range;    // invalid when the error is not about a scene-file value
   std::string details;  // already-rendered text shown after the message (compiler diagnostics)
 
   static Error fromVk(const vk::VkError& error) { return Error(error.message()); }

@@ -81,8 +81,8 @@ std::vector<uint8_t> depthCoverage(std::span<const std::byte> depthTexels) {
 }
 
 Expected<std::unique_ptr<GpuTexture>> uploadTexture(const vk::Context& ctx, const scene::Image& image, bool clamp) {
-  auto uploaded = uploadImage(ctx, image.width, image.height, VK_FORMAT_R8G8B8A8_UNORM,
-                              std::as_bytes(std::span(image.rgba8)));
+  auto uploaded =
+      uploadImage(ctx, image.width, image.height, VK_FORMAT_R8G8B8A8_UNORM, std::as_bytes(std::span(image.rgba8)));
   if (!uploaded) return uploaded.error();
   vk::SamplerDesc samplerDesc{};
   samplerDesc.addressMode = clamp ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE : VK_SAMPLER_ADDRESS_MODE_REPEAT;

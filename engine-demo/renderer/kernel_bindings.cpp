@@ -109,7 +109,8 @@ class KernelBinder {
   }
 
   Expected<void> bindStorage(const Block& block) {
-    if (!sources_.mesh) return Error{fmt::format("the {} kernel reads vertex records but has no mesh", kernel_.world), {}, {}};
+    if (!sources_.mesh)
+      return Error{fmt::format("the {} kernel reads vertex records but has no mesh", kernel_.world), {}, {}};
     const uint32_t records = sources_.mesh->vertexCount();
     const bool written = std::any_of(kernel_.outputs.begin(), kernel_.outputs.end(), [&](const KernelOutput& o) {
       return o.kind == OutputKind::BufferMember && o.slot == block.slot;
@@ -169,7 +170,8 @@ class KernelBinder {
     if (input.kind == InputKind::Texture) {
       if (!sources_.textureBake) return missing(kernel_, input, "no texture bake ran");
       const auto it = sources_.textureBake->textures.find(input.component);
-      if (it == sources_.textureBake->textures.end()) return missing(kernel_, input, "the texture bake did not produce it");
+      if (it == sources_.textureBake->textures.end())
+        return missing(kernel_, input, "the texture bake did not produce it");
       view = it->second.image.view();
       sampler = it->second.sampler.get();
     } else {
@@ -178,9 +180,9 @@ class KernelBinder {
       view = bound->texture->image.view();
       sampler = bound->texture->sampler.get();
     }
-    bound_.descriptors.push_back({input.slot, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, view, sampler,
-                                  fmt::format("{} '{}'", input.kind == InputKind::Texture ? "texture" : "sampler",
-                                              input.component)});
+    bound_.descriptors.push_back(
+        {input.slot, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, view, sampler,
+         fmt::format("{} '{}'", input.kind == InputKind::Texture ? "texture" : "sampler", input.component)});
     return {};
   }
 

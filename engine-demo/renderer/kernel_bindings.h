@@ -44,8 +44,8 @@ struct VertexBakeResult {
 
 struct TextureBakeResult {
   std::map<std::string, BakedTexture, std::less<>> textures;  // component -> its texture
-  uint32_t size = 0;               // width and height of every texture
-  std::vector<uint8_t> coverage;   // 1 for texels a triangle covered (before dilation)
+  uint32_t size = 0;                                          // width and height of every texture
+  std::vector<uint8_t> coverage;                              // 1 for texels a triangle covered (before dilation)
 };
 
 struct BindingSources {

@@ -34,8 +34,8 @@ class MaterialResolver {
     for (const scene::MaterialBinding& binding : instance_.material) {
       if (!used_.contains(binding.component)) {
         diags_.reportOnce(DiagCode::W7101, binding.keyRange,
-                      fmt::format("'{}' is not an input of this variant of '{}'; the value is ignored",
-                                  binding.component, program_.shader));
+                          fmt::format("'{}' is not an input of this variant of '{}'; the value is ignored",
+                                      binding.component, program_.shader));
       }
     }
     if (diags_.errorCount() != errorsBefore) return std::nullopt;
@@ -52,10 +52,10 @@ class MaterialResolver {
                         fmt::format("'{}' has a kernel for world '{}', which this engine does not implement",
                                     program_.shader, kernel.world));
     } else if (*pass->stage != kernel.stage) {
-      diags_.reportOnce(DiagCode::E7104, shaderRange(),
-                        fmt::format("the engine runs world '{}' as a {} kernel, but '{}' compiles it as {}",
-                                    kernel.world, codegen::stageName(*pass->stage), program_.shader,
-                                    codegen::stageName(kernel.stage)));
+      diags_.reportOnce(
+          DiagCode::E7104, shaderRange(),
+          fmt::format("the engine runs world '{}' as a {} kernel, but '{}' compiles it as {}", kernel.world,
+                      codegen::stageName(*pass->stage), program_.shader, codegen::stageName(kernel.stage)));
     }
   }
 
@@ -127,9 +127,9 @@ class MaterialResolver {
   void resolveBinding(const KernelInput& input, const scene::MaterialBinding& binding) {
     if (input.type.kind == ValueType::Kind::Sampler) {
       if (!binding.texture) {
-        diags_.report(DiagCode::E7103, binding.valueRange,
-                      fmt::format("'{}' is a {}: bind it to a texture name, not numbers", input.component,
-                                  input.type.name));
+        diags_.report(
+            DiagCode::E7103, binding.valueRange,
+            fmt::format("'{}' is a {}: bind it to a texture name, not numbers", input.component, input.type.name));
         return;
       }
       if (const GpuTexture* texture = textureFor_(*binding.texture, binding.valueRange)) {
@@ -139,8 +139,9 @@ class MaterialResolver {
     }
     const ValueType* type = input.type.isNumeric() ? &input.type : nullptr;
     if (!type) {
-      diags_.report(DiagCode::E7103, binding.valueRange,
-                    fmt::format("'{}' has type {}, which a scene file cannot supply", input.component, input.type.name));
+      diags_.report(
+          DiagCode::E7103, binding.valueRange,
+          fmt::format("'{}' has type {}, which a scene file cannot supply", input.component, input.type.name));
       return;
     }
     if (binding.texture) {
@@ -150,10 +151,10 @@ class MaterialResolver {
       return;
     }
     if (binding.numbers.size() != type->componentCount()) {
-      diags_.report(DiagCode::E7103, binding.valueRange,
-                    fmt::format("'{}' is a {} and needs {} number{}, but the value has {}", input.component,
-                                input.type.name, type->componentCount(), type->componentCount() == 1 ? "" : "s",
-                                binding.numbers.size()));
+      diags_.report(
+          DiagCode::E7103, binding.valueRange,
+          fmt::format("'{}' is a {} and needs {} number{}, but the value has {}", input.component, input.type.name,
+                      type->componentCount(), type->componentCount() == 1 ? "" : "s", binding.numbers.size()));
       return;
     }
     if (type->scalar != ValueType::Scalar::Float) {

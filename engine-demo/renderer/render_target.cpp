@@ -14,8 +14,8 @@ Expected<RenderTarget> RenderTarget::create(const vk::Context& ctx, uint32_t wid
                                             size_t colorTargets) {
   RenderTarget target;
   for (size_t i = 0; i < colorTargets; ++i) {
-    auto image = vk::Image::create(ctx, {width, height, kColorFormat,
-                                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+    auto image = vk::Image::create(
+        ctx, {width, height, kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
     if (!image) return Error::fromVk(image.error());
     target.colors_.push_back(std::move(image).value());
     target.formats_.colors.push_back(kColorFormat);

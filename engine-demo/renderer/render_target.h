@@ -30,8 +30,8 @@ class RenderTarget {
 
   // Writes this frame's values into every item, then draws them all in one
   // submission and waits for it.
-  Expected<FrameTiming> render(const vk::Context& ctx, std::span<const DrawItem* const> items,
-                               const FrameState& frame, const glm::vec4& clearColor);
+  Expected<FrameTiming> render(const vk::Context& ctx, std::span<const DrawItem* const> items, const FrameState& frame,
+                               const glm::vec4& clearColor);
 
   // Color target 0 as read back, rows top to bottom.
   Expected<measure::FloatImage> readColor(const vk::Context& ctx);

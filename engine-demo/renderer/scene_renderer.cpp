@@ -61,17 +61,19 @@ Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDes
                                                         const std::optional<std::filesystem::path>& decisions) {
   if (instance.kernels) {
     if (decisions) {
-      return Error{"this instance uses precompiled kernels, so a scene variant cannot recompile it; give it "
-                   "\"source\" and \"shader\" instead",
-                   instance.kernelsRange, {}};
+      return Error{
+          "this instance uses precompiled kernels, so a scene variant cannot recompile it; give it "
+          "\"source\" and \"shader\" instead",
+          instance.kernelsRange,
+          {}};
     }
     auto program = loadProgram(*instance.kernels);
     if (!program) return Error{program.error().message, instance.kernelsRange, {}};
     return program;
   }
   const std::optional<std::filesystem::path> decisionPath = decisions ? decisions : instance.decisions;
-  const std::string key = fmt::format("{}|{}|{}", instance.source.string(), instance.shader,
-                                      decisionPath ? decisionPath->string() : "");
+  const std::string key =
+      fmt::format("{}|{}|{}", instance.source.string(), instance.shader, decisionPath ? decisionPath->string() : "");
   if (const auto it = programs_.find(key); it != programs_.end()) return it->second;
 
   auto library = libraryFor(instance);
@@ -96,9 +98,9 @@ Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDes
                  renderAll(lib.sources(), reported)};
   }
   if (skipped && strictDecisions_) {
-    return Error{fmt::format("not every decision for '{}' applies, so this is not the variant asked for",
-                             instance.shader),
-                 where, renderAll(lib.sources(), reported)};
+    return Error{
+        fmt::format("not every decision for '{}' applies, so this is not the variant asked for", instance.shader),
+        where, renderAll(lib.sources(), reported)};
   }
   CompileOptions options;
   options.strictDecisions = strictDecisions_;
@@ -115,7 +117,8 @@ Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDes
   return programs_.emplace(key, std::move(program).value()).first->second;
 }
 
-Expected<VariantProgram> SceneRenderer::compileVariant(size_t index, const std::map<std::string, std::string>& decisions,
+Expected<VariantProgram> SceneRenderer::compileVariant(size_t index,
+                                                       const std::map<std::string, std::string>& decisions,
                                                        std::vector<std::string>* skipped,
                                                        const ShaderLibrary::Attributes& attributes) {
   const scene::InstanceDesc& instance = scene_.instances.at(index);

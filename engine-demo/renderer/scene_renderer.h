@@ -20,18 +20,18 @@
 namespace spire::engine {
 
 struct PreparedScene {
-  std::vector<MaterialValues> materials;  // per instance
-  std::vector<DrawItem> items;            // per instance
-  std::vector<BakeRecord> bakes;          // every bake world the variants use, run or reused
-  std::vector<std::string> fingerprints;  // per instance: its kernels' hashes
+  std::vector<MaterialValues> materials;               // per instance
+  std::vector<DrawItem> items;                         // per instance
+  std::vector<BakeRecord> bakes;                       // every bake world the variants use, run or reused
+  std::vector<std::string> fingerprints;               // per instance: its kernels' hashes
   std::vector<const TextureBakeResult*> textureBakes;  // per instance: its PrebakeTex result, or null
 };
 
 struct FrameStats {
-  double firstFrameMs = 0.0;     // host time of the first frame: lavapipe compiles shaders at first draw
-  double medianGpuMs = 0.0;      // over the measured frames, from timestamps
-  double medianHostMs = 0.0;     // over the measured frames, submit to fence
-  std::vector<double> gpuMs;     // every measured frame
+  double firstFrameMs = 0.0;  // host time of the first frame: lavapipe compiles shaders at first draw
+  double medianGpuMs = 0.0;   // over the measured frames, from timestamps
+  double medianHostMs = 0.0;  // over the measured frames, submit to fence
+  std::vector<double> gpuMs;  // every measured frame
 };
 
 // Frame statistics from the first frame's host time and measured frames.

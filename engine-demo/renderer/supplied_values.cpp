@@ -72,19 +72,32 @@ std::optional<SuppliedValue> frameValue(std::string_view component, const FrameS
   if (info == kFrameValues.end()) return std::nullopt;
   const glm::mat4 modelInverse = glm::inverse(model);
   std::vector<double> numbers;
-  if (component == "matMVP") numbers = flatten(frame.projection * frame.view * model);
-  else if (component == "matModel") numbers = flatten(model);
-  else if (component == "matView") numbers = flatten(frame.view);
-  else if (component == "matProj") numbers = flatten(frame.projection);
-  else if (component == "matViewProj") numbers = flatten(frame.projection * frame.view);
-  else if (component == "matNormal") numbers = flatten(glm::transpose(glm::mat3(modelInverse)));
-  else if (component == "cameraPos") numbers = flattenVector(glm::vec3(modelInverse * glm::vec4(frame.cameraPosition, 1.0F)));
-  else if (component == "cameraPosWorld") numbers = flattenVector(frame.cameraPosition);
-  else if (component == "lightDir") numbers = flattenVector(glm::normalize(glm::mat3(modelInverse) * frame.lightDirection));
-  else if (component == "lightDirWorld") numbers = flattenVector(frame.lightDirection);
-  else if (component == "lightColor") numbers = flattenVector(frame.lightColor);
-  else if (component == "time") numbers = {frame.time};
-  else numbers = {frame.resolution.x, frame.resolution.y};
+  if (component == "matMVP")
+    numbers = flatten(frame.projection * frame.view * model);
+  else if (component == "matModel")
+    numbers = flatten(model);
+  else if (component == "matView")
+    numbers = flatten(frame.view);
+  else if (component == "matProj")
+    numbers = flatten(frame.projection);
+  else if (component == "matViewProj")
+    numbers = flatten(frame.projection * frame.view);
+  else if (component == "matNormal")
+    numbers = flatten(glm::transpose(glm::mat3(modelInverse)));
+  else if (component == "cameraPos")
+    numbers = flattenVector(glm::vec3(modelInverse * glm::vec4(frame.cameraPosition, 1.0F)));
+  else if (component == "cameraPosWorld")
+    numbers = flattenVector(frame.cameraPosition);
+  else if (component == "lightDir")
+    numbers = flattenVector(glm::normalize(glm::mat3(modelInverse) * frame.lightDirection));
+  else if (component == "lightDirWorld")
+    numbers = flattenVector(frame.lightDirection);
+  else if (component == "lightColor")
+    numbers = flattenVector(frame.lightColor);
+  else if (component == "time")
+    numbers = {frame.time};
+  else
+    numbers = {frame.resolution.x, frame.resolution.y};
   return SuppliedValue{info->type, std::move(numbers)};
 }
 

@@ -22,8 +22,9 @@ std::string bakeVertexShader(const KernelProgram& kernel, uint32_t uvLocation) {
   std::string body;
   for (const KernelInput& input : kernel.inputs) {
     if (input.kind != InputKind::Varying) continue;
-    declarations += fmt::format("layout(location = {0}) in {1} spire_in_{0};\nlayout(location = {0}) out {1} spire_out_{0};\n",
-                                input.location, input.type.name);
+    declarations +=
+        fmt::format("layout(location = {0}) in {1} spire_in_{0};\nlayout(location = {0}) out {1} spire_out_{0};\n",
+                    input.location, input.type.name);
     body += fmt::format("    spire_out_{0} = spire_in_{0};\n", input.location);
   }
   return fmt::format(
@@ -45,7 +46,8 @@ void dilate(std::vector<std::byte>& texels, uint32_t bytesPerTexel, uint32_t wid
       for (uint32_t x = 0; x < width; ++x) {
         const size_t i = size_t{y} * width + x;
         if (covered[i]) continue;
-        const std::array<std::pair<int64_t, int64_t>, 4> neighbours{{{x - 1LL, y}, {x + 1LL, y}, {x, y - 1LL}, {x, y + 1LL}}};
+        const std::array<std::pair<int64_t, int64_t>, 4> neighbours{
+            {{x - 1LL, y}, {x + 1LL, y}, {x, y - 1LL}, {x, y + 1LL}}};
         for (const auto& [nx, ny] : neighbours) {
           if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
           const size_t n = static_cast<size_t>(ny) * width + static_cast<size_t>(nx);
@@ -72,10 +74,14 @@ struct FormatName {
 };
 
 constexpr FormatName kBakeFormats[] = {
-    {"R8", VK_FORMAT_R8_UNORM},          {"RG8", VK_FORMAT_R8G8_UNORM},
-    {"RGBA8", VK_FORMAT_R8G8B8A8_UNORM}, {"RGB10_A2", VK_FORMAT_A2B10G10R10_UNORM_PACK32},
-    {"R16F", VK_FORMAT_R16_SFLOAT},      {"RG16F", VK_FORMAT_R16G16_SFLOAT},
-    {"RGBA16F", VK_FORMAT_R16G16B16A16_SFLOAT}, {"R32F", VK_FORMAT_R32_SFLOAT},
+    {"R8", VK_FORMAT_R8_UNORM},
+    {"RG8", VK_FORMAT_R8G8_UNORM},
+    {"RGBA8", VK_FORMAT_R8G8B8A8_UNORM},
+    {"RGB10_A2", VK_FORMAT_A2B10G10R10_UNORM_PACK32},
+    {"R16F", VK_FORMAT_R16_SFLOAT},
+    {"RG16F", VK_FORMAT_R16G16_SFLOAT},
+    {"RGBA16F", VK_FORMAT_R16G16B16A16_SFLOAT},
+    {"R32F", VK_FORMAT_R32_SFLOAT},
     {"RGBA32F", VK_FORMAT_R32G32B32A32_SFLOAT},
 };
 
@@ -121,10 +127,10 @@ Expected<uint32_t> requestedSize(const KernelOutput& output, uint32_t fallback) 
     const std::string& text = *hint;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), requested);
     if (ec != std::errc{} || end != text.data() + text.size() || requested == 0 || requested > 8192) {
-      return Error{fmt::format("'{}' asks for bake size \"{}\"; use a whole number from 1 to 8192", output.component,
-                               text),
-                   {},
-                   {}};
+      return Error{
+          fmt::format("'{}' asks for bake size \"{}\"; use a whole number from 1 to 8192", output.component, text),
+          {},
+          {}};
     }
   }
   return requested;
@@ -145,10 +151,12 @@ Expected<BakeTargets> collectBakeTargets(const KernelProgram& kernel, const Text
     result.targets.push_back(std::move(target));
   }
   std::vector<BakeTarget>& targets = result.targets;
-  std::sort(targets.begin(), targets.end(), [](const BakeTarget& a, const BakeTarget& b) { return a.location < b.location; });
+  std::sort(targets.begin(), targets.end(),
+            [](const BakeTarget& a, const BakeTarget& b) { return a.location < b.location; });
   for (size_t i = 0; i < targets.size(); ++i) {
     if (targets[i].location != i) {
-      return Error{fmt::format("the {} kernel's outputs must use locations 0 to {}", kernel.world, targets.size() - 1), {}, {}};
+      return Error{
+          fmt::format("the {} kernel's outputs must use locations 0 to {}", kernel.world, targets.size() - 1), {}, {}};
     }
   }
   return result;
@@ -171,7 +179,8 @@ struct BakeModules {
 Expected<BakeModules> loadBakeModules(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
                                       uint32_t uvLocation) {
   const std::string vertexSource = bakeVertexShader(kernel, uvLocation);
-  codegen::SpirvResult vertexSpirv = codegen::compileGlslToSpirv(codegen::ShaderStage::Vertex, vertexSource, "bake.vert");
+  codegen::SpirvResult vertexSpirv =
+      codegen::compileGlslToSpirv(codegen::ShaderStage::Vertex, vertexSource, "bake.vert");
   if (!vertexSpirv.ok()) return Error{"the engine's bake vertex shader does not compile", {}, vertexSpirv.log};
   auto vertexModule = modules.get(ctx, "bake-vertex:" + vertexSource, vertexSpirv.words);
   if (!vertexModule) return vertexModule.error();
@@ -188,7 +197,11 @@ Expected<vk::Pipeline> buildBakePipeline(const vk::Context& ctx, const BakeModul
   for (const KernelInput& input : kernel.inputs) {
     if (input.kind != InputKind::Varying) continue;
     const MeshAttribute* attribute = findMeshAttribute(input.component);
-    if (!attribute) return Error{fmt::format("the {} kernel reads '{}', which is not a mesh attribute", kernel.world, input.component), {}, {}};
+    if (!attribute)
+      return Error{
+          fmt::format("the {} kernel reads '{}', which is not a mesh attribute", kernel.world, input.component),
+          {},
+          {}};
     builder.vertexAttribute(input.location, 0, attribute->format, attribute->offset);
   }
   builder.vertexAttribute(uvLocation, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(scene::Vertex, uv));
@@ -205,8 +218,8 @@ Expected<std::vector<vk::Image>> createTargetImages(const vk::Context& ctx, cons
                                                     uint32_t size) {
   std::vector<vk::Image> images;
   for (const BakeTarget& target : targets) {
-    auto image = vk::Image::create(ctx, {size, size, target.format,
-                                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+    auto image = vk::Image::create(
+        ctx, {size, size, target.format, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
     if (!image) return Error::fromVk(image.error());
     images.push_back(std::move(image).value());
   }

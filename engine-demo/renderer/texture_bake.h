@@ -12,7 +12,7 @@
 namespace spire::engine {
 
 struct TextureBakeOptions {
-  uint32_t defaultSize = 1024;  // when an output has no TextureSize hint
+  uint32_t defaultSize = 1024;                             // when an output has no TextureSize hint
   VkFormat defaultFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // when it has no Format hint
   // Bake every output in this format whatever its hint says (data-layout
   // analysis bakes in RGBA32F), and keep the texels on the CPU.

@@ -23,8 +23,7 @@ size_t componentOffset(const BlockMember& member, const ValueType& type, uint32_
 
 }  // namespace
 
-void writeValue(std::span<std::byte> memory, const BlockMember& member,
-                std::span<const double> values) {
+void writeValue(std::span<std::byte> memory, const BlockMember& member, std::span<const double> values) {
   const ValueType& type = member.type;
   if (!type.isNumeric()) return;
   const uint32_t count = std::min<uint32_t>(type.componentCount(), static_cast<uint32_t>(values.size()));

@@ -13,7 +13,8 @@
 namespace spire::engine {
 
 const KernelProgram* VariantProgram::kernel(std::string_view world) const {
-  const auto it = std::find_if(kernels.begin(), kernels.end(), [&](const KernelProgram& k) { return k.world == world; });
+  const auto it =
+      std::find_if(kernels.begin(), kernels.end(), [&](const KernelProgram& k) { return k.world == world; });
   return it == kernels.end() ? nullptr : &*it;
 }
 
@@ -89,9 +90,8 @@ Expected<std::vector<uint32_t>> readKernelSpirv(const std::filesystem::path& dir
   }
   const std::filesystem::path file = directory / kernel.spirvFile;
   if (kernel.spirvHash.empty()) {
-    return Error{fmt::format("kernel '{}' has no SPIR-V hash: compile it with spirec --emit spirv or both",
-                             kernel.world),
-                 {}};
+    return Error{
+        fmt::format("kernel '{}' has no SPIR-V hash: compile it with spirec --emit spirv or both", kernel.world), {}};
   }
   const auto bytes = readWholeFile(file.string());
   if (!bytes || bytes->empty() || bytes->size() % 4 != 0) {

@@ -154,9 +154,16 @@ class JsonParser {
         ok = parseString(out.string);
         break;
       case '-':
-      case '0': case '1': case '2': case '3': case '4': case '5': case '6': case '7': case '8': case '9':
-        ok = parseNumber(out);
-        break;
+      case '0':
+      case '1':
+      case '2':
+      case '3':
+      case '4':
+      case '5':
+      case '6':
+      case '7':
+      case '8':
+      case '9': ok = parseNumber(out); break;
       default: ok = parseLiteral(out); break;
     }
     out.range = {file_, begin, position()};

@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 
 // Keys of each object, in the order docs/scene.md lists them; unknown keys
 // get a "did you mean" from these.
-const KeyList kSceneKeys = {"resolution", "frames",   "warmupFrames", "clearColor", "includePaths", "camera",
-                            "light",      "meshes",   "textures",     "instances",  "variants"};
+const KeyList kSceneKeys = {"resolution", "frames", "warmupFrames", "clearColor", "includePaths", "camera",
+                            "light",      "meshes", "textures",     "instances",  "variants"};
 const KeyList kCameraKeys = {"fovY", "near", "far", "up", "views"};
 const KeyList kViewKeys = {"position", "target"};
 const KeyList kLightKeys = {"direction", "color"};
@@ -138,9 +138,8 @@ class SceneReader {
       readNamed(value, "'textures'",
                 [&](const JsonMember& texture) { scene.textures.push_back(readTexture(texture)); });
     } else if (key == "instances") {
-      readList(value, "'instances'", "instance", [&](const JsonValue& instance) {
-        scene.instances.push_back(readInstance(instance));
-      });
+      readList(value, "'instances'", "instance",
+               [&](const JsonValue& instance) { scene.instances.push_back(readInstance(instance)); });
     } else if (key == "variants") {
       readVariants(value, scene.variants);
     } else {
@@ -259,9 +258,9 @@ class SceneReader {
     }
     // Checked once the whole camera is read: 'near' and 'up' may come last.
     if (farValue != nullptr && camera.farPlane <= camera.nearPlane) {
-      diags_.report(DiagCode::E7004, farValue->range,
-                    fmt::format("'far' must be greater than 'near' ({}), found {}", camera.nearPlane,
-                                check_.written(*farValue)));
+      diags_.report(
+          DiagCode::E7004, farValue->range,
+          fmt::format("'far' must be greater than 'near' ({}), found {}", camera.nearPlane, check_.written(*farValue)));
     }
     if (value.find("views") == nullptr) check_.missing(value, "'camera' has no 'views' (it needs at least one)");
     for (size_t i = 0; i < camera.views.size(); ++i) checkViewDirection(camera.views[i], *views[i], camera, upValid);
@@ -553,9 +552,9 @@ class SceneReader {
         } else if (v.is(JsonKind::Array)) {
           s = check_.vector3(v, "'scale'", greaterThan(0.0));
         } else {
-          diags_.report(DiagCode::E7003, v.range,
-                        fmt::format("'scale' must be a number or an array of 3 numbers [x, y, z], found {}",
-                                    check_.kindOf(v)));
+          diags_.report(
+              DiagCode::E7003, v.range,
+              fmt::format("'scale' must be a number or an array of 3 numbers [x, y, z], found {}", check_.kindOf(v)));
         }
         assign(scale, s);
         ok = ok && s.has_value();
@@ -623,8 +622,9 @@ class SceneReader {
       if (item.find("decisions") == nullptr) check_.missing(item, "a variant needs 'decisions' (a decision file)");
       for (size_t i = 0; !variant.name.empty() && i < variants.size(); ++i) {
         if (variants[i].name != variant.name) continue;
-        diags_.report(DiagCode::E7007, nameRange,
-                      fmt::format("duplicate variant name {}", quotedForMessage(variant.name)))
+        diags_
+            .report(DiagCode::E7007, nameRange,
+                    fmt::format("duplicate variant name {}", quotedForMessage(variant.name)))
             .note(nameRanges[i], "first used here");
         break;
       }

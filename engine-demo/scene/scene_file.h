@@ -59,17 +59,17 @@ struct TextureDesc {
   std::string name;
   SourceRange range;  // the texture's key in "textures"
   TextureKind kind = TextureKind::Solid;
-  std::filesystem::path file;  // File (PNG, JPEG) and Gltf (.gltf/.glb), resolved like MeshDesc::file
-  uint32_t image = 0;          // Gltf: index into the file's images array
-  uint32_t size = 256;         // procedural kinds: width and height
-  uint32_t seed = 1;           // Noise, NormalMap
-  uint32_t octaves = 5;        // Noise
-  uint32_t cells = 8;          // Checker
-  float strength = 1.0F;       // NormalMap
-  glm::vec4 color{1.0F};       // Solid; Checker's first color (components in [0, 1])
+  std::filesystem::path file;                // File (PNG, JPEG) and Gltf (.gltf/.glb), resolved like MeshDesc::file
+  uint32_t image = 0;                        // Gltf: index into the file's images array
+  uint32_t size = 256;                       // procedural kinds: width and height
+  uint32_t seed = 1;                         // Noise, NormalMap
+  uint32_t octaves = 5;                      // Noise
+  uint32_t cells = 8;                        // Checker
+  float strength = 1.0F;                     // NormalMap
+  glm::vec4 color{1.0F};                     // Solid; Checker's first color (components in [0, 1])
   glm::vec4 color2{0.0F, 0.0F, 0.0F, 1.0F};  // Checker's second color
-  bool clamp = false;          // sampler addressing: "address", default repeat (clamp for GgxLut)
-  std::vector<ChannelSource> channels;  // Pack: its R, G, B, A in order (1 to 4 of them)
+  bool clamp = false;                        // sampler addressing: "address", default repeat (clamp for GgxLut)
+  std::vector<ChannelSource> channels;       // Pack: its R, G, B, A in order (1 to 4 of them)
 };
 
 // A material value for one shader input, by component name. Either the name
@@ -145,8 +145,8 @@ struct SceneFile {
   std::filesystem::path directory;  // relative paths in the file resolve against it
   uint32_t width = 640;
   uint32_t height = 480;
-  uint32_t frames = 10;        // measured frames per variant
-  uint32_t warmupFrames = 1;   // rendered first, not measured (lavapipe compiles shaders at first draw)
+  uint32_t frames = 10;       // measured frames per variant
+  uint32_t warmupFrames = 1;  // rendered first, not measured (lavapipe compiles shaders at first draw)
   glm::vec4 clearColor{0.0F, 0.0F, 0.0F, 1.0F};
   CameraDesc camera;
   LightDesc light;

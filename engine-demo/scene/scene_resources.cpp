@@ -116,8 +116,7 @@ Expected<Mesh> buildMesh(const MeshDesc& desc) {
       mesh = makeSphere(desc.radius, desc.rings, desc.segments);
       break;
     }
-    case MeshKind::Gltf:
-      return mergeGltf(desc);
+    case MeshKind::Gltf: return mergeGltf(desc);
   }
   mesh.name = desc.name;
   return mesh;
@@ -141,10 +140,10 @@ Expected<Image> packChannels(const TextureDesc& desc, const SceneFile& scene) {
   const Image& first = sources.at(desc.channels.front().texture);
   for (const auto& [name, image] : sources) {
     if (image.width != first.width || image.height != first.height) {
-      return Error{fmt::format("texture '{}': its channels come from textures of different sizes ('{}' is {}x{}, '{}' "
-                               "{}x{})",
-                               desc.name, desc.channels.front().texture, first.width, first.height, name, image.width,
-                               image.height)};
+      return Error{fmt::format(
+          "texture '{}': its channels come from textures of different sizes ('{}' is {}x{}, '{}' "
+          "{}x{})",
+          desc.name, desc.channels.front().texture, first.width, first.height, name, image.width, image.height)};
     }
   }
   Image packed{first.width, first.height, std::vector<uint8_t>(first.rgba8.size(), 0)};
@@ -166,22 +165,15 @@ Expected<Image> buildTexture(const TextureDesc& desc, const SceneFile& scene) {
     if (auto error = checkProcedural(desc)) return Error{"texture '" + desc.name + "': " + *error};
   }
   switch (desc.kind) {
-    case TextureKind::File:
-      return loadImage(desc.file);
-    case TextureKind::Gltf:
-      return loadGltfImage(desc.file, desc.image);
+    case TextureKind::File: return loadImage(desc.file);
+    case TextureKind::Gltf: return loadGltfImage(desc.file, desc.image);
     case TextureKind::Noise:
       return colorizeNoise(makeNoise(desc.size, desc.seed, desc.octaves), desc.color, desc.color2);
-    case TextureKind::Checker:
-      return makeChecker(desc.size, desc.cells, toColor8(desc.color), toColor8(desc.color2));
-    case TextureKind::NormalMap:
-      return makeNormalMap(desc.size, desc.seed, desc.strength);
-    case TextureKind::Solid:
-      return makeSolid(desc.size, toColor8(desc.color));
-    case TextureKind::GgxLut:
-      return makeGgxLut(desc.size);
-    case TextureKind::Pack:
-      return packChannels(desc, scene);
+    case TextureKind::Checker: return makeChecker(desc.size, desc.cells, toColor8(desc.color), toColor8(desc.color2));
+    case TextureKind::NormalMap: return makeNormalMap(desc.size, desc.seed, desc.strength);
+    case TextureKind::Solid: return makeSolid(desc.size, toColor8(desc.color));
+    case TextureKind::GgxLut: return makeGgxLut(desc.size);
+    case TextureKind::Pack: return packChannels(desc, scene);
   }
   return Error{"texture '" + desc.name + "': unknown kind"};
 }

@@ -32,9 +32,7 @@ void setPixel(Image& image, uint32_t x, uint32_t y, Rgba8 color) {
   for (int c = 0; c < 4; ++c) image.rgba8[offset + static_cast<size_t>(c)] = color[c];
 }
 
-uint8_t toUnorm8(float value) {
-  return static_cast<uint8_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f));
-}
+uint8_t toUnorm8(float value) { return static_cast<uint8_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f)); }
 
 }  // namespace
 
@@ -121,8 +119,8 @@ Expected<Image> loadImage(const std::filesystem::path& path) {
   int width = 0;
   int height = 0;
   int channels = 0;
-  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
-      stbi_load(path.c_str(), &width, &height, &channels, STBI_rgb_alpha), stbi_image_free);
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load(path.c_str(), &width, &height, &channels, STBI_rgb_alpha),
+                                                   stbi_image_free);
   if (!pixels) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) {

@@ -41,8 +41,8 @@ void line(scene::Image& image, int64_t x0, int64_t y0, int64_t x1, int64_t y1, s
 
 }  // namespace
 
-scene::Image plotErrorAgainstTime(const std::vector<Measured>& points, const std::vector<size_t>& front,
-                                  uint32_t width, uint32_t height) {
+scene::Image plotErrorAgainstTime(const std::vector<Measured>& points, const std::vector<size_t>& front, uint32_t width,
+                                  uint32_t height) {
   scene::Image image;
   image.width = width;
   image.height = height;
@@ -60,8 +60,12 @@ scene::Image plotErrorAgainstTime(const std::vector<Measured>& points, const std
   const int64_t right = width - 20;
   const int64_t top = 20;
   const int64_t bottom = height - 50;
-  const auto px = [&](double ms) { return left + static_cast<int64_t>(std::lround(ms / maxTime * double(right - left))); };
-  const auto py = [&](double e) { return bottom - static_cast<int64_t>(std::lround(e / maxError * double(bottom - top))); };
+  const auto px = [&](double ms) {
+    return left + static_cast<int64_t>(std::lround(ms / maxTime * double(right - left)));
+  };
+  const auto py = [&](double e) {
+    return bottom - static_cast<int64_t>(std::lround(e / maxError * double(bottom - top)));
+  };
 
   line(image, left, bottom, right, bottom, kAxis);
   line(image, left, bottom, left, top, kAxis);
@@ -70,9 +74,10 @@ scene::Image plotErrorAgainstTime(const std::vector<Measured>& points, const std
     const double e = maxError * tick / 4.0;
     line(image, px(ms), bottom, px(ms), bottom + 5, kAxis);
     line(image, left - 5, py(e), left, py(e), kAxis);
-    measure::drawText(image, static_cast<uint32_t>(std::max<int64_t>(0, px(ms) - 12)), static_cast<uint32_t>(bottom + 10),
-                      fmt::format("{:.1f}", ms), 1, kAxis);
-    measure::drawText(image, 4, static_cast<uint32_t>(std::max<int64_t>(0, py(e) - 3)), fmt::format("{:.4f}", e), 1, kAxis);
+    measure::drawText(image, static_cast<uint32_t>(std::max<int64_t>(0, px(ms) - 12)),
+                      static_cast<uint32_t>(bottom + 10), fmt::format("{:.1f}", ms), 1, kAxis);
+    measure::drawText(image, 4, static_cast<uint32_t>(std::max<int64_t>(0, py(e) - 3)), fmt::format("{:.4f}", e), 1,
+                      kAxis);
   }
   measure::drawText(image, static_cast<uint32_t>((left + right) / 2 - 40), height - 18, "FRAME MS", 2, kAxis);
   measure::drawText(image, static_cast<uint32_t>(left + 10), static_cast<uint32_t>(top), "RMSE", 2, kAxis);

@@ -73,7 +73,8 @@ Expected<LayoutSelection> selectLayouts(engine::SceneRenderer& renderer, size_t 
     ShaderLibrary::Attributes one{{layout.component, attributesOf(layout)}};
     // The other outputs stay in 32-bit float, so only this format's error shows.
     for (const engine::BakeLayout& other : selection.layouts) {
-      if (other.component != layout.component) one[other.component] = {{"Format", other.channels == 1 ? "R32F" : "RGBA32F"}};
+      if (other.component != layout.component)
+        one[other.component] = {{"Format", other.channels == 1 ? "R32F" : "RGBA32F"}};
     }
     auto views = renderViews(renderer, instance, point, one);
     if (!views) return views.error();
@@ -90,7 +91,8 @@ Expected<LayoutSelection> selectLayouts(engine::SceneRenderer& renderer, size_t 
 }
 
 std::string layoutTable(const LayoutSelection& selection) {
-  std::string table = "| component | channels | range | unit vectors | format | RMSE added vs RGBA32F |\n|---|---|---|---|---|---|\n";
+  std::string table =
+      "| component | channels | range | unit vectors | format | RMSE added vs RGBA32F |\n|---|---|---|---|---|---|\n";
   for (size_t i = 0; i < selection.layouts.size(); ++i) {
     const engine::BakeLayout& l = selection.layouts[i];
     std::string range;

@@ -24,8 +24,8 @@ struct LayoutSelection {
 // `renderer` renders with the selected formats; the 32-bit analysis uses a
 // renderer of its own over the same scene. A variant without PrebakeTex
 // outputs gives an empty selection.
-engine::Expected<LayoutSelection> selectLayouts(engine::SceneRenderer& renderer, size_t instance, const TunePoint& point,
-                                                uint32_t bakeSize);
+engine::Expected<LayoutSelection> selectLayouts(engine::SceneRenderer& renderer, size_t instance,
+                                                const TunePoint& point, uint32_t bakeSize);
 
 // Markdown table of a selection.
 std::string layoutTable(const LayoutSelection& selection);

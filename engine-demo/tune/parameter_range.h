@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "scene/scene_file.h"
-#include "tune/tuner.h"
 #include "support/expected.h"
+#include "tune/tuner.h"
 
 namespace spire::tune {
 

@@ -11,8 +11,9 @@ namespace spire::tune {
 
 namespace {
 
-constexpr const char* kTrailing[] = {"status",  "frame_ms",   "first_frame_ms", "prebake_ms", "rmse", "psnr",
-                                     "max_error", "nan_pixels", "inf_pixels",     "same_as",    "kernels", "hazard_inputs"};
+constexpr const char* kTrailing[] = {"status",     "frame_ms", "first_frame_ms", "prebake_ms",
+                                     "rmse",       "psnr",     "max_error",      "nan_pixels",
+                                     "inf_pixels", "same_as",  "kernels",        "hazard_inputs"};
 
 std::string quote(const std::string& field) {
   if (field.find_first_of(",\"\n") == std::string::npos) return field;
@@ -81,10 +82,10 @@ std::string csvHeader(const std::vector<std::string>& components) {
 std::string csvRow(const VariantResult& r) {
   std::string row = std::to_string(r.index);
   for (const std::string& p : r.placements) row += "," + quote(p);
-  row += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{}\n", quote(r.status), number(r.frameMs),
-                     number(r.firstFrameMs), number(r.prebakeMs), number(r.rmse), number(r.psnr), number(r.maxError),
-                     r.nanPixels, r.infPixels, r.sameAs ? std::to_string(*r.sameAs) : "", quote(r.kernels),
-                     quote(r.hazardInputs));
+  row +=
+      fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{}\n", quote(r.status), number(r.frameMs), number(r.firstFrameMs),
+                  number(r.prebakeMs), number(r.rmse), number(r.psnr), number(r.maxError), r.nanPixels, r.infPixels,
+                  r.sameAs ? std::to_string(*r.sameAs) : "", quote(r.kernels), quote(r.hazardInputs));
   return row;
 }
 

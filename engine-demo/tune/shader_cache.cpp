@@ -12,8 +12,10 @@ namespace fs = std::filesystem;
 
 ShaderCacheSetting::~ShaderCacheSetting() {
   for (const auto& [name, value] : saved_) {
-    if (value) ::setenv(name.c_str(), value->c_str(), 1);
-    else ::unsetenv(name.c_str());
+    if (value)
+      ::setenv(name.c_str(), value->c_str(), 1);
+    else
+      ::unsetenv(name.c_str());
   }
   std::error_code ec;
   if (!directory_.empty()) fs::remove_all(directory_, ec);

@@ -1,7 +1,7 @@
 #include "tune/tune_cli.h"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <filesystem>
@@ -86,15 +86,15 @@ int measureShard(const TuneOptions& options, engine::ToolRun& run, TuneSession& 
 // The coordinator: measures what is not done yet, in this process or in
 // worker processes.
 std::optional<int> measureAll(const TuneOptions& options, engine::ToolRun& run, TuneSession& session,
-                              const std::vector<std::string>& args, const std::string& workerProgram,
-                              std::ostream& out, std::ostream& err) {
+                              const std::vector<std::string>& args, const std::string& workerProgram, std::ostream& out,
+                              std::ostream& err) {
   const TuneSpace& space = session.space;
   const size_t total = space.points.size();
-  out << fmt::format("tuning {} of '{}': {} components, {} variants{}{}\n", options.shader, options.scenePath,
-                     session.components.size(), space.productSize,
-                     space.sampled ? fmt::format(" (too many: measuring a sample of {})", total) : std::string(),
-                     session.done.empty() ? std::string()
-                                          : fmt::format(", resuming with {} measured", session.done.size()));
+  out << fmt::format(
+      "tuning {} of '{}': {} components, {} variants{}{}\n", options.shader, options.scenePath,
+      session.components.size(), space.productSize,
+      space.sampled ? fmt::format(" (too many: measuring a sample of {})", total) : std::string(),
+      session.done.empty() ? std::string() : fmt::format(", resuming with {} measured", session.done.size()));
   size_t already = 0;
   for (const TunePoint& point : space.points) already += session.done.contains(point.index) ? 1 : 0;
   if (already == total) return std::nullopt;

@@ -48,10 +48,11 @@ void defineTuneOptions(CLI::App& app, TuneOptions& options) {
   app.add_option("--param-samples", options.paramSamples, "Random samples besides the minimum and maximum")
       ->check(CLI::Range(0U, 100U))
       ->type_name("N");
-  app.add_option("--shader-cache", options.shaderCache,
-                 "lavapipe's shader cache: 'run' (default) a fresh one for this run, shared by its workers, so a kernel "
-                 "that variants share is compiled once; 'off' compiles every pipeline in full; 'inherit' keeps the "
-                 "environment's MESA_SHADER_CACHE_* settings")
+  app.add_option(
+         "--shader-cache", options.shaderCache,
+         "lavapipe's shader cache: 'run' (default) a fresh one for this run, shared by its workers, so a kernel "
+         "that variants share is compiled once; 'off' compiles every pipeline in full; 'inherit' keeps the "
+         "environment's MESA_SHADER_CACHE_* settings")
       ->check(CLI::IsMember({"run", "off", "inherit"}))
       ->type_name("MODE");
   app.add_option("--worker", options.worker, "Internal: measure shard K")->group("");

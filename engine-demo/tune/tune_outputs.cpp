@@ -126,11 +126,12 @@ std::optional<int> writeBest(const TuneOptions& options, engine::ToolRun& run, T
   if (!layouts->layouts.empty()) {
     layoutReport += fmt::format("\n### Data layout of `{}`\n\n{}", file, layoutTable(*layouts));
   }
-  const std::string text = decisionFile(
-      options.shader, *program,
-      fmt::format("{} (variant {}: {:.3f} ms, RMSE {:.4g})", why, best.index, best.frameMs, best.rmse),
-      layouts->attributes);
-  if (auto written = writeFileAtomically((fs::path(options.outputDir) / file).string(), text); !written) return run.fail(written.error().message);
+  const std::string text =
+      decisionFile(options.shader, *program,
+                   fmt::format("{} (variant {}: {:.3f} ms, RMSE {:.4g})", why, best.index, best.frameMs, best.rmse),
+                   layouts->attributes);
+  if (auto written = writeFileAtomically((fs::path(options.outputDir) / file).string(), text); !written)
+    return run.fail(written.error().message);
   out << fmt::format("{}: variant {} ({}) -> {}/{}\n", why, best.index, placementsText(session.components, best),
                      options.outputDir, file);
   return std::nullopt;
@@ -201,12 +202,13 @@ std::string reportFindings(const TuneOptions& options, const TuneSession& sessio
                           placementsText(session.components, r), r.nanPixels, r.infPixels, r.hazardInputs);
     }
   }
-  text += fmt::format("\n{} variants had NaN or Inf pixels (infinite error, never on the front); {} were infeasible; "
-                      "{} had kernels identical to an earlier variant and were measured once.\n\n"
-                      "Time: compile {:.1f} s, first-use shader compilation {:.1f} s, render {:.1f} s, error {:.1f} s "
-                      "(summed over {} worker(s)).\n",
-                      summary.hazards, summary.infeasible, summary.reused, split.compileMs / 1000,
-                      split.firstUseMs / 1000, split.renderMs / 1000, split.errorMs / 1000, options.jobs);
+  text += fmt::format(
+      "\n{} variants had NaN or Inf pixels (infinite error, never on the front); {} were infeasible; "
+      "{} had kernels identical to an earlier variant and were measured once.\n\n"
+      "Time: compile {:.1f} s, first-use shader compilation {:.1f} s, render {:.1f} s, error {:.1f} s "
+      "(summed over {} worker(s)).\n",
+      summary.hazards, summary.infeasible, summary.reused, split.compileMs / 1000, split.firstUseMs / 1000,
+      split.renderMs / 1000, split.errorMs / 1000, options.jobs);
   return text;
 }
 
@@ -217,8 +219,10 @@ std::optional<int> writeReport(const TuneOptions& options, engine::ToolRun& run,
   if (const auto status = appendFrontTable(options, run, session, results, summary, report)) return status;
   report += reportFindings(options, session, results, summary, split);
   if (!layoutReport.empty()) {
-    report += "\n## Data-layout selection\n\nEach baked output of the chosen variants, analysed in a 32-bit float "
-              "bake; the error is what the selected format adds to the image against that bake.\n" + layoutReport;
+    report +=
+        "\n## Data-layout selection\n\nEach baked output of the chosen variants, analysed in a 32-bit float "
+        "bake; the error is what the selected format adds to the image against that bake.\n" +
+        layoutReport;
   }
   if (auto written = writeFileAtomically((fs::path(options.outputDir) / "report.md").string(), report); !written) {
     return run.fail(written.error().message);
@@ -227,8 +231,8 @@ std::optional<int> writeReport(const TuneOptions& options, engine::ToolRun& run,
 }
 
 void printSummary(const TuneOptions& options, const TuneSession& session, const std::vector<VariantResult>& results,
-                  const FrontSummary& summary, const TimeSplit& split, const vk::HostTimer& wall,
-                  std::ostream& out, std::ostream& err) {
+                  const FrontSummary& summary, const TimeSplit& split, const vk::HostTimer& wall, std::ostream& out,
+                  std::ostream& err) {
   for (const VariantResult& r : results) {
     if (r.nanPixels + r.infPixels > 0 && !r.sameAs) {
       err << fmt::format("spire-tune: warning: variant {} ({}) produced {} NaN and {} Inf pixels, first under {}\n",

@@ -44,8 +44,10 @@ std::optional<int> buildSpace(const TuneOptions& options, engine::ToolRun& run, 
 // The reference, the parameter samples and the tuner.
 std::optional<int> startTuner(const TuneOptions& options, engine::ToolRun& run, TuneSession& session,
                               std::ostream& err) {
-  if (!options.reference.empty()) session.reference = options.reference;
-  else if (!run.scene().variants.empty()) session.reference = run.scene().variants.front().decisions;
+  if (!options.reference.empty())
+    session.reference = options.reference;
+  else if (!run.scene().variants.empty())
+    session.reference = run.scene().variants.front().decisions;
   std::vector<ParameterRange> ranges;
   for (const std::string& text : options.params) {
     auto range = parseParameter(text, *session.instance);

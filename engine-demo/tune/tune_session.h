@@ -26,7 +26,7 @@ struct TuneSession {
   size_t instanceIndex = 0;
   const scene::InstanceDesc* instance = nullptr;
   TuneSpace space;
-  std::vector<std::string> components;  // the explored components, in axis order
+  std::vector<std::string> components;             // the explored components, in axis order
   std::optional<std::filesystem::path> reference;  // its decision file; nullopt: each instance's own
   std::optional<Tuner> tuner;
   std::map<uint64_t, VariantResult> done;  // by point index

@@ -21,8 +21,9 @@ bool kept(const std::string& placement, const std::vector<std::string>& only) {
   const size_t colon = placement.find(':');
   const std::string world = placement.substr(0, colon);
   const std::string variation = colon == std::string::npos ? "" : placement.substr(colon + 1);
-  return std::any_of(only.begin(), only.end(),
-                     [&](const std::string& name) { return name == world || (!variation.empty() && name == variation); });
+  return std::any_of(only.begin(), only.end(), [&](const std::string& name) {
+    return name == world || (!variation.empty() && name == variation);
+  });
 }
 
 }  // namespace
@@ -57,7 +58,8 @@ Expected<TuneSpace, Failure> buildTuneSpace(const std::vector<graph::Choice>& ch
       if (inWorld && kept(name, request.only)) axis.placements.push_back(name);
     }
     if (axis.placements.empty()) {
-      return Failure{fmt::format("component '{}' has no placement among the requested worlds and variations", component)};
+      return Failure{
+          fmt::format("component '{}' has no placement among the requested worlds and variations", component)};
     }
     space.axes.push_back(std::move(axis));
   }
@@ -66,8 +68,8 @@ Expected<TuneSpace, Failure> buildTuneSpace(const std::vector<graph::Choice>& ch
   }
   constexpr uint64_t kLimit = uint64_t{1} << 62;
   for (const Axis& axis : space.axes) {
-    space.productSize = space.productSize > kLimit / axis.placements.size() ? kLimit
-                                                                            : space.productSize * axis.placements.size();
+    space.productSize =
+        space.productSize > kLimit / axis.placements.size() ? kLimit : space.productSize * axis.placements.size();
   }
   if (space.productSize <= request.maxVariants) {
     for (uint64_t i = 0; i < space.productSize; ++i) space.points.push_back(pointAt(space.axes, i));

@@ -15,7 +15,8 @@ Tuner::Tuner(engine::SceneRenderer& renderer, size_t instance, std::vector<Axis>
     : renderer_(renderer), instance_(instance), axes_(std::move(axes)), options_(options) {}
 
 std::vector<ParameterSample> Tuner::samples() const {
-  return options_.parameterSamples.empty() ? std::vector<ParameterSample>{ParameterSample{}} : options_.parameterSamples;
+  return options_.parameterSamples.empty() ? std::vector<ParameterSample>{ParameterSample{}}
+                                           : options_.parameterSamples;
 }
 
 engine::Expected<void> Tuner::renderReference(const std::optional<std::filesystem::path>& decisions) {
@@ -39,7 +40,7 @@ engine::Expected<void> Tuner::renderReference(const std::optional<std::filesyste
 }
 
 engine::Expected<std::vector<engine::VariantProgram>> Tuner::programsFor(const TunePoint& point,
-                                                                          std::vector<std::string>* skipped) {
+                                                                         std::vector<std::string>* skipped) {
   if (others_.empty()) {
     auto own = renderer_.compile(std::nullopt);
     if (!own) return own.error();

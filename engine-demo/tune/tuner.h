@@ -69,7 +69,8 @@ class Tuner {
   // added to `accumulated`; the first capture of sample 0 is the first use.
   engine::Expected<void> compareViews(const engine::PreparedScene& prepared, size_t s, const ParameterSample& sample,
                                       VariantResult& result, measure::ErrorAccumulator& accumulated, double& errorMs);
-  engine::Expected<std::vector<engine::VariantProgram>> programsFor(const TunePoint& point, std::vector<std::string>* skipped);
+  engine::Expected<std::vector<engine::VariantProgram>> programsFor(const TunePoint& point,
+                                                                    std::vector<std::string>* skipped);
 
   engine::SceneRenderer& renderer_;
   size_t instance_;

@@ -56,8 +56,7 @@ std::optional<std::vector<pid_t>> spawnWorkers(const WorkerPlan& plan) {
 }
 
 // Waits for every worker, updating the progress from their shards.
-bool waitForWorkers(std::vector<pid_t> pids, const WorkerPlan& plan, size_t already, size_t total,
-                    std::ostream& err) {
+bool waitForWorkers(std::vector<pid_t> pids, const WorkerPlan& plan, size_t already, size_t total, std::ostream& err) {
   Progress progress(err, total, already);
   bool ok = true;
   size_t running = pids.size();

@@ -14,8 +14,8 @@
 namespace spire::tune {
 
 struct WorkerPlan {
-  std::string program;            // the spire-tune executable
-  std::vector<std::string> args;  // the coordinator's arguments; each worker adds --worker K
+  std::string program;                        // the spire-tune executable
+  std::vector<std::string> args;              // the coordinator's arguments; each worker adds --worker K
   std::vector<std::filesystem::path> shards;  // one per worker: the rows it measured
 };
 

@@ -23,12 +23,16 @@ Expected<Buffer> Buffer::create(const Context& ctx, VkDeviceSize size, VkBufferU
 
   VkMemoryRequirements requirements;
   vkGetBufferMemoryRequirements(ctx.device(), raw, &requirements);
-  auto memory = ctx.allocateMemory(requirements, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  auto memory =
+      ctx.allocateMemory(requirements, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   if (!memory) return memory.error();
   buffer.memory_ = std::move(*memory);
-  if (auto ok = check(vkBindBufferMemory(ctx.device(), raw, buffer.memory_.get(), 0), "vkBindBufferMemory"); !ok) return ok.error();
+  if (auto ok = check(vkBindBufferMemory(ctx.device(), raw, buffer.memory_.get(), 0), "vkBindBufferMemory"); !ok)
+    return ok.error();
   // Freeing the memory unmaps it implicitly, so no unmap is needed.
-  if (auto ok = check(vkMapMemory(ctx.device(), buffer.memory_.get(), 0, VK_WHOLE_SIZE, 0, &buffer.mapped_), "vkMapMemory"); !ok) {
+  if (auto ok =
+          check(vkMapMemory(ctx.device(), buffer.memory_.get(), 0, VK_WHOLE_SIZE, 0, &buffer.mapped_), "vkMapMemory");
+      !ok) {
     return ok.error();
   }
   return buffer;

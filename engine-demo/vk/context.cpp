@@ -64,16 +64,11 @@ std::string lower(std::string_view text) {
 
 const char* deviceTypeName(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
-      return "integrated GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
-      return "discrete GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
-      return "virtual GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU:
-      return "CPU";
-    default:
-      return "other";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+    default: return "other";
   }
 }
 
@@ -186,9 +181,9 @@ Expected<void> Context::pickPhysicalDevice(const std::string& filter, uint32_t a
   }
   const auto selected = selectPhysicalDevice(devices_, filter);
   if (!selected) {
-    return VkError{VK_ERROR_INITIALIZATION_FAILED, "Context::create",
-                   devices_.empty() ? std::string("no Vulkan device found")
-                                    : fmt::format("no device matches '{}'", filter)};
+    return VkError{
+        VK_ERROR_INITIALIZATION_FAILED, "Context::create",
+        devices_.empty() ? std::string("no Vulkan device found") : fmt::format("no device matches '{}'", filter)};
   }
   selected_ = *selected;
   vkGetPhysicalDeviceProperties(physicalDevice(), &properties_);
@@ -221,10 +216,10 @@ Expected<void> Context::pickQueueFamily() {
   uint32_t family = 0;
   while (family < familyCount && !usable(family)) ++family;
   if (family == familyCount) {
-    std::string detail =
-        surface_ ? fmt::format("'{}' has no graphics+compute queue family that can present to the window",
-                               properties_.deviceName)
-                 : std::string("no graphics+compute queue family");
+    std::string detail = surface_
+                             ? fmt::format("'{}' has no graphics+compute queue family that can present to the window",
+                                           properties_.deviceName)
+                             : std::string("no graphics+compute queue family");
     return VkError{VK_ERROR_FEATURE_NOT_PRESENT, "Context::create", std::move(detail)};
   }
   queueFamily_ = family;
@@ -322,7 +317,7 @@ Expected<uint32_t> Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFl
 }
 
 Expected<DeviceMemory> Context::allocateMemory(const VkMemoryRequirements& requirements,
-                                              VkMemoryPropertyFlags properties) const {
+                                               VkMemoryPropertyFlags properties) const {
   auto type = findMemoryType(requirements.memoryTypeBits, properties);
   if (!type) return type.error();
   VkMemoryAllocateInfo alloc{};

@@ -21,13 +21,10 @@ VkFormatFeatureFlags optimalFeatures(const Context& ctx, VkFormat format) {
 VkFormat stagingFormat(VkFormat target) {
   switch (target) {
     case VK_FORMAT_R8G8B8A8_UNORM:
-    case VK_FORMAT_R8G8B8A8_SRGB:
-      return VK_FORMAT_R8G8B8A8_UNORM;
+    case VK_FORMAT_R8G8B8A8_SRGB: return VK_FORMAT_R8G8B8A8_UNORM;
     case VK_FORMAT_B8G8R8A8_UNORM:
-    case VK_FORMAT_B8G8R8A8_SRGB:
-      return VK_FORMAT_B8G8R8A8_UNORM;
-    default:
-      return VK_FORMAT_UNDEFINED;
+    case VK_FORMAT_B8G8R8A8_SRGB: return VK_FORMAT_B8G8R8A8_UNORM;
+    default: return VK_FORMAT_UNDEFINED;
   }
 }
 
@@ -126,9 +123,9 @@ Expected<FrameBlit> FrameBlit::create(const Context& ctx, BlitPath path, VkForma
     }
     // SAMPLED is never used: vk::Image always makes a view, and a view needs
     // a usage beyond transfers.
-    auto image = Image::create(ctx, {sourceExtent.width, sourceExtent.height, staging,
-                                     VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                                         VK_IMAGE_USAGE_SAMPLED_BIT});
+    auto image = Image::create(
+        ctx, {sourceExtent.width, sourceExtent.height, staging,
+              VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
     if (!image) return image.error();
     blit.staging_ = std::move(image).value();
   }
@@ -153,10 +150,10 @@ Expected<void> FrameBlit::record(VkCommandBuffer cmd, Image& source, VkImage tar
   black.float32[3] = 1.0F;
   const VkImageSubresourceRange whole{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
   vkCmdClearColorImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &whole);
-  targetBarrier(cmd, target,
-                {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                 VK_ACCESS_TRANSFER_WRITE_BIT});
+  targetBarrier(
+      cmd, target,
+      {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+       VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT});
   if (path_ == BlitPath::Direct) {
     const VkImageBlit region = blitRegion(sourceExtent_, fitRect(sourceExtent_, targetExtent));
     vkCmdBlitImage(cmd, source.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
@@ -172,10 +169,10 @@ Expected<void> FrameBlit::record(VkCommandBuffer cmd, Image& source, VkImage tar
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
   }
   // Whatever comes next (presentation, a readback) waits for the writes.
-  targetBarrier(cmd, target,
-                {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, finalLayout, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                 VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT});
+  targetBarrier(
+      cmd, target,
+      {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, finalLayout, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+       VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT});
   return {};
 }
 

@@ -15,18 +15,15 @@ struct Access {
 // layout alone does not say which stage the next use is in.
 Access layoutAccess(VkImageLayout layout) {
   switch (layout) {
-    case VK_IMAGE_LAYOUT_UNDEFINED:
-      return {VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0};
+    case VK_IMAGE_LAYOUT_UNDEFINED: return {VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0};
     case VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL:
       return {VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
               VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT};
     case VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL:
       return {VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
-    case VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL:
-      return {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT};
-    case VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL:
-      return {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT};
+    case VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL: return {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT};
+    case VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL: return {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT};
     case VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL:
       return {VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
@@ -40,24 +37,18 @@ Access layoutAccess(VkImageLayout layout) {
 
 uint32_t formatTexelSize(VkFormat format) {
   switch (format) {
-    case VK_FORMAT_R8_UNORM:
-      return 1;
+    case VK_FORMAT_R8_UNORM: return 1;
     case VK_FORMAT_R8G8_UNORM:
-    case VK_FORMAT_R16_SFLOAT:
-      return 2;
+    case VK_FORMAT_R16_SFLOAT: return 2;
     case VK_FORMAT_R8G8B8A8_UNORM:
     case VK_FORMAT_B8G8R8A8_UNORM:
     case VK_FORMAT_A2B10G10R10_UNORM_PACK32:
     case VK_FORMAT_R16G16_SFLOAT:
     case VK_FORMAT_R32_SFLOAT:
-    case VK_FORMAT_D32_SFLOAT:
-      return 4;
-    case VK_FORMAT_R16G16B16A16_SFLOAT:
-      return 8;
-    case VK_FORMAT_R32G32B32A32_SFLOAT:
-      return 16;
-    default:
-      return 0;
+    case VK_FORMAT_D32_SFLOAT: return 4;
+    case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+    default: return 0;
   }
 }
 
@@ -108,7 +99,8 @@ Expected<Image> Image::create(const Context& ctx, const ImageDesc& desc) {
   auto memory = ctx.allocateMemory(requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   if (!memory) return memory.error();
   image.memory_ = std::move(*memory);
-  if (auto ok = check(vkBindImageMemory(ctx.device(), raw, image.memory_.get(), 0), "vkBindImageMemory"); !ok) return ok.error();
+  if (auto ok = check(vkBindImageMemory(ctx.device(), raw, image.memory_.get(), 0), "vkBindImageMemory"); !ok)
+    return ok.error();
 
   VkImageViewCreateInfo viewInfo{};
 

@@ -176,8 +176,7 @@ Expected<Pipeline> GraphicsPipelineBuilder::build(const Context& ctx) const {
       VkPipelineShaderStageCreateInfo{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
                                       VK_SHADER_STAGE_VERTEX_BIT, vertex_.module, vertex_.entry.c_str(), nullptr},
       VkPipelineShaderStageCreateInfo{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-                                      VK_SHADER_STAGE_FRAGMENT_BIT, fragment_.module, fragment_.entry.c_str(),
-                                      nullptr},
+                                      VK_SHADER_STAGE_FRAGMENT_BIT, fragment_.module, fragment_.entry.c_str(), nullptr},
   };
   const VkPipelineVertexInputStateCreateInfo vertexInput = vertexInputState(bindings_, attributes_);
   const VkPipelineInputAssemblyStateCreateInfo inputAssembly = inputAssemblyState(topology_);
@@ -230,8 +229,13 @@ Expected<Pipeline> createComputePipeline(const Context& ctx, VkShaderModule modu
   if (!layout) return layout.error();
   VkComputePipelineCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
-  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT,
-                module, entry, nullptr};
+  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                nullptr,
+                0,
+                VK_SHADER_STAGE_COMPUTE_BIT,
+                module,
+                entry,
+                nullptr};
   info.layout = layout->get();
   VkPipeline raw = VK_NULL_HANDLE;
   if (auto result = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &raw);
@@ -293,8 +297,8 @@ DescriptorWriter& DescriptorWriter::buffer(uint32_t binding, VkDescriptorType ty
   return *this;
 }
 
-DescriptorWriter& DescriptorWriter::image(uint32_t binding, VkDescriptorType type, VkImageView view,
-                                          VkSampler sampler, VkImageLayout layout) {
+DescriptorWriter& DescriptorWriter::image(uint32_t binding, VkDescriptorType type, VkImageView view, VkSampler sampler,
+                                          VkImageLayout layout) {
   writes_.push_back({binding, type, std::nullopt, VkDescriptorImageInfo{sampler, view, layout}});
   return *this;
 }

@@ -7,8 +7,7 @@ namespace spire::vk {
 const char* resultName(VkResult result) {
   switch (result) {
 #define SPIRE_VK_RESULT(name) \
-  case name:                  \
-    return #name;
+  case name: return #name;
     SPIRE_VK_RESULT(VK_SUCCESS)
     SPIRE_VK_RESULT(VK_NOT_READY)
     SPIRE_VK_RESULT(VK_TIMEOUT)
@@ -48,8 +47,7 @@ const char* resultName(VkResult result) {
     SPIRE_VK_RESULT(VK_OPERATION_NOT_DEFERRED_KHR)
     SPIRE_VK_RESULT(VK_ERROR_COMPRESSION_EXHAUSTED_EXT)
 #undef SPIRE_VK_RESULT
-    default:
-      break;
+    default: break;
   }
   // Unknown values (newer headers, bogus input) still get a readable name.
   thread_local std::string unknown;

@@ -158,7 +158,8 @@ TEST(AnyPipeline, EveryVariantOfFigure4CompilesWithMatchingInterfaces) {
   std::mt19937 rng(7);
   for (int i = 0; i < 60; ++i) {
     std::map<std::string, std::string> decisions;
-    for (const Choice& choice : choices) decisions[choice.key.substr(choice.key.find('.') + 1)] = choice.names[rng() % choice.names.size()];
+    for (const Choice& choice : choices)
+      decisions[choice.key.substr(choice.key.find('.') + 1)] = choice.names[rng() % choice.names.size()];
     const auto variant = c.library->buildVariant("Leather", decisions);
     ASSERT_TRUE(variant);
     checkedKernels(c, *variant);

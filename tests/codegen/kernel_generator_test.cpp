@@ -54,11 +54,12 @@ TEST(KernelGenerator, EveryVariantOfEveryExampleCompilesAndValidates) {
   size_t variants = 0;
   for (const std::string& shader : library.shaderNames()) {
     const graph::ChoiceSpace& space = *library.choiceSpace(shader);
-    variants += testing_util::forEachDecisionMap(space, [&](const std::vector<graph::DecisionRequest>& requests, size_t) {
-      const auto result = graph::buildVariant(space, requests);
-      ASSERT_TRUE(result.variant);
-      compileAndValidate(library, *result.variant);
-    });
+    variants +=
+        testing_util::forEachDecisionMap(space, [&](const std::vector<graph::DecisionRequest>& requests, size_t) {
+          const auto result = graph::buildVariant(space, requests);
+          ASSERT_TRUE(result.variant);
+          compileAndValidate(library, *result.variant);
+        });
   }
   EXPECT_GE(variants, 72u);
 }
@@ -88,7 +89,8 @@ TEST(KernelGenerator, BakedAlbedoIsWrittenByPrebakeAndSampledByFragment) {
 TEST(KernelGenerator, GlslReservedNamesAreRenamedAndReflectedBySourceName) {
   ShaderLibrary library;
   library.addSource("reserved.spire", R"(
-using ")" + std::string(SPIRE_SOURCE_DIR) + R"(/pipelines/engine.spire";
+using ")" + std::string(SPIRE_SOURCE_DIR) +
+                                          R"(/pipelines/engine.spire";
 struct input { float filter; };
 float sample(float texture) { return texture * 2.0; }
 shader S using EnginePipeline {
@@ -114,7 +116,8 @@ shader S using EnginePipeline {
 TEST(KernelGenerator, LocalDeclarationsKeepTheirShapeInGlsl) {
   ShaderLibrary library;
   library.addSource("locals.spire", R"(
-using ")" + std::string(SPIRE_SOURCE_DIR) + R"(/pipelines/engine.spire";
+using ")" + std::string(SPIRE_SOURCE_DIR) +
+                                        R"(/pipelines/engine.spire";
 shader S using EnginePipeline {
   @FrameUniform mat4 matMVP;
   vec4 projPos = matMVP * vec4(vert_pos, 1.0);
@@ -162,8 +165,7 @@ class PushConstantImport final : public Strategy {
       if (v.type->containsOpaque()) return Failure{"push constants cannot hold samplers"};
       members += "    " + site.consumer.declaration(v.type, v.glslName) + ";\n";
       const MemberLayout layout = layoutOf(v.type, BlockLayout::Std430);
-      reflection::KernelInput entry =
-          importEntry(site, v, reflection::InputKind::PushConstant, "pushConstantImport");
+      reflection::KernelInput entry = importEntry(site, v, reflection::InputKind::PushConstant, "pushConstantImport");
       entry.offset = offset = alignUp(offset, layout.alignment);
       offset += layout.size;
       site.consumer.reflectInput(std::move(entry));
@@ -207,8 +209,7 @@ shader S using Push {
   ASSERT_TRUE(library.compile()) << render(library);
   const auto variant = library.buildVariant("S", {});
   ASSERT_TRUE(variant);
-  const auto generated =
-      generateKernels(library.model(), library.sources(), *variant, registry, library.diagnostics());
+  const auto generated = generateKernels(library.model(), library.sources(), *variant, registry, library.diagnostics());
   ASSERT_TRUE(generated) << render(library);
   const Kernel* vertex = findKernel(generated->kernels, "Vertex");
   ASSERT_TRUE(vertex);
@@ -284,7 +285,8 @@ shader S using Buffers {
 TEST(KernelGenerator, StrategyLimitsAreErrors) {
   ShaderLibrary library;
   library.addSource("bad.spire", R"(
-using ")" + std::string(SPIRE_SOURCE_DIR) + R"(/pipelines/engine.spire";
+using ")" + std::string(SPIRE_SOURCE_DIR) +
+                                     R"(/pipelines/engine.spire";
 shader S using EnginePipeline {
   @FrameUniform mat4 matMVP;
   vec4 projPos = matMVP * vec4(vert_pos, 1.0);

@@ -95,9 +95,9 @@ std::string flattened(const std::string& glsl, const std::string& assigned) {
 TEST(LongChains, AreComputedInStepsThatKeepTheOrderOfOperations) {
   const int terms = 5 * static_cast<int>(GlslWriter::kChainSegment) + 5;
   const std::string mixed = chain(terms, "a", {"+", "*", "-", "/"});
-  const Generated generated = fragmentOf(
-      shaderWith("", "  float stepped = " + mixed + ";\n  float inline = a > 0.5 ? " + mixed +
-                         " : 0.0;\n  vec4 output = vec4(stepped, inline, 0.0, 1.0);\n"));
+  const Generated generated =
+      fragmentOf(shaderWith("", "  float stepped = " + mixed + ";\n  float inline = a > 0.5 ? " + mixed +
+                                    " : 0.0;\n  vec4 output = vec4(stepped, inline, 0.0, 1.0);\n"));
   ASSERT_FALSE(generated.fragment.empty()) << generated.diagnostics;
   // The chain's left spine holds its additive operators (the others bind
   // tighter): one temporary per full segment of them and one for the rest;
@@ -119,9 +119,9 @@ TEST(LongChains, OfAHundredThousandTermsCompileToValidSpirv) {
 }
 
 TEST(LongChains, TemporariesNeverTakeAUserName) {
-  const std::string function = "float f(float x) {\n  float spire_chain0 = x;\n  float r = " +
-                               chain(200, "spire_chain0", {"+"}) +
-                               ";\n  float spire_chain1 = r;\n  return spire_chain1 + spire_chain0;\n}\n";
+  const std::string function =
+      "float f(float x) {\n  float spire_chain0 = x;\n  float r = " + chain(200, "spire_chain0", {"+"}) +
+      ";\n  float spire_chain1 = r;\n  return spire_chain1 + spire_chain0;\n}\n";
   const Generated generated = fragmentOf(shaderWith(function, "  vec4 output = vec4(f(a));\n"));
   ASSERT_FALSE(generated.fragment.empty()) << generated.diagnostics;
   // Generated names are spire_-prefixed and user names with that prefix are

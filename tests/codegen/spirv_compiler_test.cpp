@@ -249,7 +249,7 @@ TEST(SpirvCompilerTest, ValidatorRejectsStructurallyInvalidModule) {
   ASSERT_TRUE(r.ok()) << r.log;
   std::vector<uint32_t> broken(r.words.begin(), r.words.begin() + 5);
   broken.push_back((50u << 16) | 17u);  // OpCapability claiming 50 words
-  broken.push_back(1u);                  // Shader
+  broken.push_back(1u);                 // Shader
   const std::optional<std::string> problem = validateSpirv(broken);
   ASSERT_TRUE(problem.has_value());
   EXPECT_FALSE(problem->empty());

@@ -109,7 +109,8 @@ TEST_F(BadInput, LongSumsCompileEndToEnd) {
     ASSERT_EQ(run.exitCode, kExitSuccess) << run.err.substr(0, 2000);
     EXPECT_EQ(run.err, "");
     EXPECT_NE(run.out.find("Sum.s = "), std::string::npos);
-    const std::string kernels = readText(fs::path(out) / "Sum/Vertex.glsl") + readText(fs::path(out) / "Sum/Fragment.glsl");
+    const std::string kernels =
+        readText(fs::path(out) / "Sum/Vertex.glsl") + readText(fs::path(out) / "Sum/Fragment.glsl");
     EXPECT_EQ(count(kernels, "vert_uv.x"), static_cast<size_t>(terms));
     EXPECT_EQ(count(kernels, " - a"), static_cast<size_t>(terms - 1));
     EXPECT_TRUE(fs::exists(fs::path(out) / "Sum/Fragment.spv"));
@@ -130,7 +131,8 @@ TEST_F(BadInput, ChainsDoNotDeepenTheStack) {
 // Real nesting is still limited.
 TEST_F(BadInput, DeepParenthesesAreNestingTooDeep) {
   const std::string nested = std::string(300, '(') + "vert_uv.x" + std::string(300, ')');
-  const std::string source = write("nested.spire", engineShader("  float s = " + nested + ";\n  vec4 output = vec4(s);\n"));
+  const std::string source =
+      write("nested.spire", engineShader("  float s = " + nested + ";\n  vec4 output = vec4(s);\n"));
   expectInputError(spirec({source}), "error[E2004]: nesting too deep");
 }
 
@@ -150,8 +152,8 @@ TEST_F(BadInput, AnEmptySourceIsAnError) {
   for (const std::string text : {"", "  \n\t\r\n", "// nothing yet\n/* still\n nothing */\n"}) {
     SCOPED_TRACE(text);
     const std::string source = write("empty.spire", text);
-    expectInputError(spirec({source, "--choices"}),
-                     source + ":1:1: error[E1104]: '" + source + "' declares nothing: it is empty or holds only comments");
+    expectInputError(spirec({source, "--choices"}), source + ":1:1: error[E1104]: '" + source +
+                                                        "' declares nothing: it is empty or holds only comments");
   }
 }
 
@@ -248,15 +250,19 @@ TEST_F(BadInput, WarningsAsErrors) {
 // for another shader, or with every decision skipped.
 TEST_F(BadInput, ADecisionFileThatDecidesNothingIsAnError) {
   const std::string couch = (fs::path(SPIRE_SOURCE_DIR) / "examples/couch.spire").string();
-  const std::string forTerrain = (fs::path(SPIRE_SOURCE_DIR) / "examples/decisions/terrain_baked_albedo.decisions").string();
+  const std::string forTerrain =
+      (fs::path(SPIRE_SOURCE_DIR) / "examples/decisions/terrain_baked_albedo.decisions").string();
   const SpirecRun other = spirec({couch, "--decisions", forTerrain, "-o", path("out"), "--emit=glsl"});
-  expectInputError(other, "error[E5002]: no decision in this file applies to shader 'Couch': its decisions are for 'Terrain'");
+  expectInputError(other,
+                   "error[E5002]: no decision in this file applies to shader 'Couch': its decisions are for 'Terrain'");
   EXPECT_NE(other.err.find("warning[W5001]: unknown shader 'Terrain'"), std::string::npos) << other.err;
   EXPECT_FALSE(fs::exists(path("out")));
-  const std::string skipped = write("skipped.decisions", "// stale\nTerrain.albedoo = Vertex\nTerrain.normal = Vertx\n");
+  const std::string skipped =
+      write("skipped.decisions", "// stale\nTerrain.albedoo = Vertex\nTerrain.normal = Vertx\n");
   const SpirecRun stale = spirec({terrain(), "--decisions", skipped});
-  expectInputError(stale, skipped + ":2:1: error[E5002]: no decision in this file applies to shader 'Terrain': "
-                                    "every decision for it is skipped");
+  expectInputError(stale, skipped +
+                              ":2:1: error[E5002]: no decision in this file applies to shader 'Terrain': "
+                              "every decision for it is skipped");
   // No decisions at all ask for the default variant.
   const std::string none = write("none.decisions", "// defaults everywhere\n\n");
   EXPECT_EQ(spirec({terrain(), "--decisions", none, "--dump-placement"}).exitCode, kExitSuccess);

@@ -50,29 +50,36 @@ std::vector<fs::path> filesIn(const fs::path& dir, const std::string& extension)
 std::vector<GoldenCase> goldenCases() {
   std::vector<GoldenCase> cases;
   for (const fs::path& source : filesIn("tests/golden/diagnostics", ".spire")) {
-    cases.push_back({"diagnostics_" + source.stem().string(), {source.string()},
-                     fs::path(source).replace_extension(".expected"), 1});
+    cases.push_back({"diagnostics_" + source.stem().string(),
+                     {source.string()},
+                     fs::path(source).replace_extension(".expected"),
+                     1});
   }
   for (const fs::path& example : filesIn("examples", ".spire")) {
-    cases.push_back({"choices_" + example.stem().string(), {example.string(), "--choices"},
-                     "tests/golden/choices" / example.stem().concat(".expected"), 0});
+    cases.push_back({"choices_" + example.stem().string(),
+                     {example.string(), "--choices"},
+                     "tests/golden/choices" / example.stem().concat(".expected"),
+                     0});
   }
   for (const std::string dir : {"examples/decisions", "tests/golden/decisions"}) {
     for (const fs::path& decisions : filesIn(dir, ".decisions")) {
       cases.push_back({"decisions_" + decisions.stem().string(),
                        {"examples/terrain.spire", "--decisions", decisions.string(), "--dump-placement"},
-                       "tests/golden/decisions" / decisions.stem().concat(".expected"), 0});
+                       "tests/golden/decisions" / decisions.stem().concat(".expected"),
+                       0});
     }
   }
   for (const fs::path& decisions : filesIn("examples/decisions/five_world", ".decisions")) {
     cases.push_back({"decisions_five_world_" + decisions.stem().string(),
                      {"examples/terrain_five_world.spire", "--decisions", decisions.string(), "--dump-placement"},
-                     "tests/golden/decisions/five_world" / decisions.stem().concat(".expected"), 0});
+                     "tests/golden/decisions/five_world" / decisions.stem().concat(".expected"),
+                     0});
   }
   for (const fs::path& decisions : filesIn("examples/decisions/couch", ".decisions")) {
     cases.push_back({"decisions_couch_" + decisions.stem().string(),
                      {"examples/couch.spire", "--decisions", decisions.string(), "--dump-placement"},
-                     "tests/golden/decisions/couch" / decisions.stem().concat(".expected"), 0});
+                     "tests/golden/decisions/couch" / decisions.stem().concat(".expected"),
+                     0});
   }
   return cases;
 }
@@ -92,8 +99,8 @@ TEST_P(Golden, MatchesExpectedOutput) {
   const GoldenCase& golden = GetParam();
   std::ostringstream out, err;
   const int exitCode = runSpirec(golden.args, out, err);
-  const std::string actual = "exit code: " + std::to_string(exitCode) + "\n--- stdout\n" + out.str() +
-                             "--- stderr\n" + err.str();
+  const std::string actual =
+      "exit code: " + std::to_string(exitCode) + "\n--- stdout\n" + out.str() + "--- stderr\n" + err.str();
   if (std::getenv("SPIRE_UPDATE_GOLDENS")) {
     fs::create_directories(golden.expected.parent_path());
     std::ofstream(golden.expected, std::ios::binary) << actual;
@@ -147,10 +154,10 @@ TEST_P(GoldenKernels, MatchExpectedFiles) {
   const fs::path out = fs::temp_directory_path() / ("spire_golden_" + golden.name);
   fs::remove_all(out);
   std::ostringstream stdoutText, stderrText;
-  ASSERT_EQ(runSpirec({golden.source.string(), "--decisions", golden.decisions.string(), "-o", out.string(),
-                       "--emit=glsl"},
-                      stdoutText, stderrText),
-            kExitSuccess)
+  ASSERT_EQ(
+      runSpirec({golden.source.string(), "--decisions", golden.decisions.string(), "-o", out.string(), "--emit=glsl"},
+                stdoutText, stderrText),
+      kExitSuccess)
       << stderrText.str();
   EXPECT_EQ(stderrText.str(), "");
   const fs::path producedDir = out / golden.shaderDirectory;
@@ -165,7 +172,8 @@ TEST_P(GoldenKernels, MatchExpectedFiles) {
     GTEST_SKIP() << "updated " << golden.expected;
   }
   std::vector<std::string> expected;
-  for (const auto& entry : fs::directory_iterator(golden.expected)) expected.push_back(entry.path().filename().string());
+  for (const auto& entry : fs::directory_iterator(golden.expected))
+    expected.push_back(entry.path().filename().string());
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(produced, expected);
   for (const std::string& name : expected) {

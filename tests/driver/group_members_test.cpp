@@ -67,7 +67,8 @@ Library compileLibrary(const std::string& source) {
 
 TEST(OptionalGroupMembers, AMemberFailingOnWorldAvailabilityIsLeftOutWithTheReason) {
   const Library l = compileLibrary(std::string("group Family { shader HQ; optional shader VertexShade; optional shader "
-                                               "Locked; }\nshader Material : Family") + kMaterialBody);
+                                               "Locked; }\nshader Material : Family") +
+                                   kMaterialBody);
   ASSERT_TRUE(l.ok) << l.rendered();
   EXPECT_EQ(l.library->shaderNames(), std::vector<std::string>{"Material<HQ>"});
   ASSERT_EQ(l.codes(), (std::vector<std::string>{"W4101", "W4101"})) << l.rendered();
@@ -93,11 +94,13 @@ TEST(OptionalGroupMembers, AMemberFailingOnWorldAvailabilityIsLeftOutWithTheReas
 
 TEST(OptionalGroupMembers, ARequiredMemberThatFailsStillFailsTheCompile) {
   const Library vertex = compileLibrary(std::string("group Family { shader VertexShade; optional shader HQ; optional "
-                                                    "shader Locked; }\nshader Material : Family") + kMaterialBody);
+                                                    "shader Locked; }\nshader Material : Family") +
+                                        kMaterialBody);
   EXPECT_FALSE(vertex.ok);
   EXPECT_EQ(vertex.codes(), (std::vector<std::string>{"E4015", "W4101"})) << vertex.rendered();
   const Library locked = compileLibrary(std::string("group Family { shader Locked; optional shader HQ; optional "
-                                                    "shader VertexShade; }\nshader Material : Family") + kMaterialBody);
+                                                    "shader VertexShade; }\nshader Material : Family") +
+                                        kMaterialBody);
   EXPECT_FALSE(locked.ok);
   EXPECT_EQ(locked.codes(), (std::vector<std::string>{"E4014", "W4101"})) << locked.rendered();
 }
@@ -108,8 +111,7 @@ TEST(OptionalGroupMembers, SpirecWarnsAndCompilesTheOtherMembers) {
   const fs::path source = dir / "groups.spire";
   std::ofstream(source) << kPipeline << kMembers
                         << "group Family { shader HQ; optional shader VertexShade; optional shader Locked; }\n"
-                        << "shader Material : Family"
-                        << kMaterialBody;
+                        << "shader Material : Family" << kMaterialBody;
   std::ostringstream out, err;
   EXPECT_EQ(runSpirec({source.string(), "-o", (dir / "out").string(), "--emit=glsl"}, out, err), kExitSuccess)
       << err.str();
@@ -177,7 +179,8 @@ TEST(SharedBaseChoices, WithoutAnAlternativeForAllOnlyTheCommentsAreWritten) {
 }
 
 TEST(SharedBaseChoices, ADecisionWithTheBaseKeyAppliesToEveryDerivedShader) {
-  const SpirecRun run = spirecOnSource(std::string(kPipeline) + kSharedBase, {"--decisions", "DECISIONS", "--dump-placement"});
+  const SpirecRun run =
+      spirecOnSource(std::string(kPipeline) + kSharedBase, {"--decisions", "DECISIONS", "--dump-placement"});
   ASSERT_EQ(run.exitCode, kExitSuccess) << run.err;
   EXPECT_EQ(run.err, "");
   const size_t vertexLit = run.out.find("// variant of VertexLit");

@@ -27,8 +27,13 @@ namespace fs = std::filesystem;
 const std::string kExamples = std::string(SPIRE_SOURCE_DIR) + "/examples/";
 
 std::vector<std::string> terrainArgs(const std::string& decisions, const fs::path& out) {
-  return {kExamples + "terrain.spire", "--decisions", kExamples + "decisions/" + decisions, "-o", out.string(),
-          "--emit", "both"};
+  return {kExamples + "terrain.spire",
+          "--decisions",
+          kExamples + "decisions/" + decisions,
+          "-o",
+          out.string(),
+          "--emit",
+          "both"};
 }
 
 int spirec(const std::vector<std::string>& args) {
@@ -54,7 +59,8 @@ int spirecWithFileSizeLimit(const std::vector<std::string>& args, rlim_t limit) 
 std::map<std::string, std::string> contentsOf(const fs::path& dir) {
   std::map<std::string, std::string> files;
   for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    if (entry.is_regular_file()) files[fs::relative(entry.path(), dir).string()] = *readWholeFile(entry.path().string());
+    if (entry.is_regular_file())
+      files[fs::relative(entry.path(), dir).string()] = *readWholeFile(entry.path().string());
   }
   return files;
 }

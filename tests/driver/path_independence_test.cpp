@@ -83,8 +83,8 @@ TEST(PathIndependence, KernelsAndReflectionDoNotDependOnTheWorkingDirectoryOrSpe
   ASSERT_FALSE(relative.files.empty());
   // From the examples folder, with an absolute path that takes a detour.
   const std::string roundabout = (kSource / "stdlib" / ".." / "examples" / "." / "terrain.spire").string();
-  const SpirecOutput absolute = spirecIn(kSource / "examples", {roundabout, "--decisions", (kSource / decisions).string()},
-                                kTemp / "b");
+  const SpirecOutput absolute =
+      spirecIn(kSource / "examples", {roundabout, "--decisions", (kSource / decisions).string()}, kTemp / "b");
   expectSameFiles(relative, absolute);
   // The kernels name the sources relative to the input's folder.
   const std::string& fragment = relative.files.at("Terrain/Fragment.glsl");
@@ -118,9 +118,11 @@ TEST(PathIndependence, IncludeDirectoriesNameTheirFilesRelativeToThemselves) {
                                                       "  vec4 projPos = matMVP * vec4(vert_pos, 1.0);\n"
                                                       "  vec4 output = vec4(vert_normal, 1.0);\n"
                                                       "}\n";
-  const SpirecOutput inProject = spirecIn(project, {"shaders/lit.spire", "-I", (kSource / "pipelines").string()}, kTemp / "a");
+  const SpirecOutput inProject =
+      spirecIn(project, {"shaders/lit.spire", "-I", (kSource / "pipelines").string()}, kTemp / "a");
   const std::string pipelinesFromShaders = fs::relative(kSource / "pipelines", project / "shaders").string();
-  const SpirecOutput inShaders = spirecIn(project / "shaders", {"./lit.spire", "-I", pipelinesFromShaders + "/"}, kTemp / "b");
+  const SpirecOutput inShaders =
+      spirecIn(project / "shaders", {"./lit.spire", "-I", pipelinesFromShaders + "/"}, kTemp / "b");
   expectSameFiles(inProject, inShaders);
   fs::remove_all(project);
 }

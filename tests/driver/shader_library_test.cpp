@@ -24,7 +24,8 @@ TEST_F(ShaderLibraryTest, ChoicesAsData) {
   const std::vector<Choice> choices = library.choices("Terrain");
   ASSERT_EQ(choices.size(), 4u);
   EXPECT_EQ(choices[3].key, "Terrain.lighting");
-  EXPECT_EQ(choices[3].names, (std::vector<std::string>{"Vertex:basic", "Fragment:basic", "Vertex:ggx", "Fragment:ggx"}));
+  EXPECT_EQ(choices[3].names,
+            (std::vector<std::string>{"Vertex:basic", "Fragment:basic", "Vertex:ggx", "Fragment:ggx"}));
   EXPECT_TRUE(library.choices("NoSuchShader").empty());
 }
 

@@ -143,7 +143,8 @@ TEST(Spirec, ChoicesFileIsWrittenWhole) {
 }
 
 TEST(Spirec, UnwritableChoicesPathFailsCleanly) {
-  const SpirecRun run = spirec({(sourceDir() / "examples/terrain.spire").string(), "--choices", "/nonexistent/dir/x.choices"});
+  const SpirecRun run =
+      spirec({(sourceDir() / "examples/terrain.spire").string(), "--choices", "/nonexistent/dir/x.choices"});
   EXPECT_EQ(run.exitCode, kExitInputError);
   EXPECT_NE(run.err.find("cannot write"), std::string::npos);
 }

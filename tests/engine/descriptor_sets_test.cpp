@@ -65,12 +65,8 @@ Json reflectionOf(const std::vector<TestKernel>& kernels) {
     for (const char* list : {"inputs", "outputs", "blocks"}) fillNames(entry[list]);
     kernelList.push_back(std::move(entry));
   }
-  return Json{{"format", "spire-reflection"},
-              {"version", reflection::kFormatVersion},
-              {"shader", "SetsTest"},
-              {"pipeline", "EnginePipeline"},
-              {"placement", Json::object()},
-              {"kernels", kernelList}};
+  return Json{{"format", "spire-reflection"}, {"version", reflection::kFormatVersion}, {"shader", "SetsTest"},
+              {"pipeline", "EnginePipeline"}, {"placement", Json::object()},           {"kernels", kernelList}};
 }
 
 // The kernels' SPIR-V, compiled with glslang; empty for one that does not compile.
@@ -249,7 +245,7 @@ TEST_F(RendererDescriptorSetsTest, VertexInSetZeroAndFragmentInSetOneDraw) {
 TEST_F(RendererDescriptorSetsTest, OneSetWithBindingsUniqueAcrossKernelsDraws) {
   TestKernel fragment = kFragmentSet1;
   const std::pair<std::string, std::string> renames[] = {{"set = 1, binding = 1", "set = 0, binding = 2"},
-                                                        {"set = 1, binding = 0", "set = 0, binding = 1"}};
+                                                         {"set = 1, binding = 0", "set = 0, binding = 1"}};
   for (const auto& [from, to] : renames) {
     fragment.glsl.replace(fragment.glsl.find(from), from.size(), to);
   }
@@ -337,12 +333,13 @@ void main() { color = texture(tint, vec2(0.5)) * scale; }
   sameType["blocks"][0]["members"][0]["component"] = "scale";
   sameType["outputs"] = Json::parse(R"([{"kind": "varying", "component": "color", "type": "vec4", "location": 0}])");
   sameType["inputs"].erase(1);
-  auto differentResource = programOf({kVertexSet0, {codegen::ShaderStage::Fragment, "Fragment", R"(#version 450
+  auto differentResource = programOf({kVertexSet0,
+                                      {codegen::ShaderStage::Fragment, "Fragment", R"(#version 450
 layout(set = 0, binding = 0, std140) uniform VertexBlock { vec4 scale; };
 layout(location = 0) out vec4 color;
 void main() { color = scale; }
 )",
-                                                     sameType.dump().substr(1, sameType.dump().size() - 2)}});
+                                       sameType.dump().substr(1, sameType.dump().size() - 2)}});
   ASSERT_TRUE(differentResource) << differentResource.error().message << differentResource.error().details;
   auto second = drawItem(*differentResource, formats);
   ASSERT_FALSE(second);

@@ -138,8 +138,8 @@ class RendererTest : public vk::testing::DeviceTest {
 };
 
 TEST_F(RendererTest, FlatPlaneHasExactlyItsMaterialColor) {
-  const auto rendered = render(planeScene("flat_plane.spire", "FlatPlane", R"({"color": [0.2, 0.4, 0.6, 1.0]})"),
-                               std::nullopt);
+  const auto rendered =
+      render(planeScene("flat_plane.spire", "FlatPlane", R"({"color": [0.2, 0.4, 0.6, 1.0]})"), std::nullopt);
   ASSERT_TRUE(rendered);
   const double fraction = coveredFraction(rendered->capture);
   EXPECT_GT(fraction, 0.3);
@@ -219,8 +219,8 @@ TEST_F(RendererTest, PrebakeTexMatchesFragmentWithinTexelTolerance) {
 // A renderer made from another shares its textures (it sees them before it
 // builds any) but bakes with its own options.
 TEST_F(RendererTest, ARendererWithOtherBakeOptionsSharesTheScenesTextures) {
-  const auto first = render(planeScene("tex_bake.spire", "TexBake", R"({"colorMap": "noise"})"),
-                            "tex_bake_prebake.decisions");
+  const auto first =
+      render(planeScene("tex_bake.spire", "TexBake", R"({"colorMap": "noise"})"), "tex_bake_prebake.decisions");
   ASSERT_TRUE(first);
   ASSERT_EQ(renderer_->textureCount(), 1U);
   TextureBakeOptions options;
@@ -332,7 +332,6 @@ TEST_F(RendererTest, NonFiniteOutputIsCountedNotAveraged) {
   EXPECT_EQ(error.psnr, 0.0);
 }
 
-
 // The tuner's in-memory decisions go through the compiler's one compile
 // path: attributes are checked against the catalogue, and decisions that do
 // not apply are reported back as skipped rather than refused.
@@ -400,7 +399,8 @@ TEST_F(RendererTest, BakedUnitVectorsSelectRgb10A2WithSignedRemap) {
   TextureBakeOptions options;
   options.defaultSize = 64;
   SceneRenderer renderer(ctx(), *scene_, *diags_, options);
-  const auto remapped = renderWith(renderer, {{"bentNormal", {{"Format", "RGB10_A2"}, {"Encoding", "signed"}}}}, nullptr);
+  const auto remapped =
+      renderWith(renderer, {{"bentNormal", {{"Format", "RGB10_A2"}, {"Encoding", "signed"}}}}, nullptr);
   const auto clamped = renderWith(renderer, {{"bentNormal", {{"Format", "RGBA8"}}}}, nullptr);
   ASSERT_TRUE(remapped && clamped);
   const double remappedError = compare(*reference, *remapped).rmse;

@@ -52,17 +52,17 @@ Rgba scalar(float value) { return {value, 0.0F, 0.0F, 1.0F}; }
 Rgba direction(float x, float y, float z) { return {x, y, z, 1.0F}; }
 
 enum class Outcome {
-  Finite,          // every covered pixel finite
-  InfEverywhere,   // every covered pixel Inf: the true value overflows a float, and the engine must count it
+  Finite,         // every covered pixel finite
+  InfEverywhere,  // every covered pixel Inf: the true value overflows a float, and the engine must count it
 };
 
 struct ProbeCase {
-  std::string_view function;  // the stdlib function under test
-  std::string_view extreme;   // what is extreme about the inputs
-  std::string_view shader;    // its probe in probes.spire
-  std::string_view material;  // the probe's bindings
+  std::string_view function;                 // the stdlib function under test
+  std::string_view extreme;                  // what is extreme about the inputs
+  std::string_view shader;                   // its probe in probes.spire
+  std::string_view material;                 // the probe's bindings
   std::optional<Rgba> value = std::nullopt;  // every covered pixel's value, where the exact result is known
-  float tolerance = 1e-4F;                    // relative, for `value`
+  float tolerance = 1e-4F;                   // relative, for `value`
   Outcome outcome = Outcome::Finite;
 };
 
@@ -82,6 +82,7 @@ constexpr float kSpecularPeakSmooth = 1.0F / (4.0F * kPi * 2e-3F * 2e-3F);
 constexpr float kSpecularPeakRough = 1.0F / (4.0F * kPi);
 
 const std::vector<ProbeCase>& probeCases() {
+  // clang-format off
   static const std::vector<ProbeCase> cases = {
       // safeNormalize
       {.function = "safeNormalize", .extreme = "v = (0, 0, 0): zero length gives the +Z fallback",
@@ -455,6 +456,7 @@ const std::vector<ProbeCase>& probeCases() {
       {.function = "scaleTangentNormal", .extreme = "strength = 1e-38", .shader = "ScaleTangentNormalProbe",
        .material = R"({"n": [0.6, 0, 0.8], "strength": 1e-38})", .value = direction(0, 0, 1)},
   };
+  // clang-format on
   return cases;
 }
 
@@ -469,10 +471,13 @@ struct ExampleCase {
   std::optional<Rgba> value = std::nullopt;  // every covered pixel's value, where known
 };
 
-const std::map<std::string, std::string> kTerrainMaterial = {
-    {"mixMap", R"("noise")"},       {"albedoMap1", R"("grass")"},    {"albedoMap2", R"("rock")"},
-    {"normalMap1", R"("normals")"}, {"normalMap2", R"("normals")"}, {"shininess", "32"},
-    {"roughness", "0.4"}};
+const std::map<std::string, std::string> kTerrainMaterial = {{"mixMap", R"("noise")"},
+                                                             {"albedoMap1", R"("grass")"},
+                                                             {"albedoMap2", R"("rock")"},
+                                                             {"normalMap1", R"("normals")"},
+                                                             {"normalMap2", R"("normals")"},
+                                                             {"shininess", "32"},
+                                                             {"roughness", "0.4"}};
 
 // The same JSON value bound to every one of `names`.
 std::map<std::string, std::string> sameValue(std::initializer_list<const char*> names, const std::string& value) {
@@ -502,7 +507,8 @@ const std::vector<ExampleCase>& terrainCases() {
   static const std::vector<ExampleCase> cases = withCameraAndLightCases({
       {.extreme = "the scene's own values", .material = {}},
       // Normal-mapped normals stay in the upper hemisphere, so no pixel is lit.
-      {.extreme = "light below the horizon: lightDir = (0, -1, 0)", .material = {{"lightDir", "[0, -1, 0]"}},
+      {.extreme = "light below the horizon: lightDir = (0, -1, 0)",
+       .material = {{"lightDir", "[0, -1, 0]"}},
        .value = Rgba{0, 0, 0, 0}},
       {.extreme = "shininess = 3e38, roughness = 0", .material = {{"shininess", "3e38"}, {"roughness", "0"}}},
       {.extreme = "shininess = 1e-38, roughness = 1e-38", .material = {{"shininess", "1e-38"}, {"roughness", "1e-38"}}},
@@ -615,11 +621,10 @@ void expectFiniteEverywhere(const Capture& capture, const std::optional<Rgba>& v
       bool ok = std::isfinite(got);
       if (ok && value) ok = std::abs(got - (*value)[c]) <= 1e-6F + tolerance * std::abs((*value)[c]);
       if (!ok) {
-        ADD_FAILURE() << pixelText(capture, i) << (value ? ", expected (" + std::to_string((*value)[0]) + ", " +
-                                                               std::to_string((*value)[1]) + ", " +
-                                                               std::to_string((*value)[2]) + ", " +
-                                                               std::to_string((*value)[3]) + ")"
-                                                         : std::string(", expected finite"));
+        ADD_FAILURE() << pixelText(capture, i)
+                      << (value ? ", expected (" + std::to_string((*value)[0]) + ", " + std::to_string((*value)[1]) +
+                                      ", " + std::to_string((*value)[2]) + ", " + std::to_string((*value)[3]) + ")"
+                                : std::string(", expected finite"));
         return;  // one pixel tells the story; the others would repeat it
       }
     }
@@ -747,16 +752,30 @@ INSTANTIATE_TEST_SUITE_P(Terrain, TerrainStabilityTest, ::testing::ValuesIn(terr
 // engine-supplied lightDir and cameraPos. Its parameters with a natural range
 // (amounts, roughness) are driven to both ends of it; sizes and densities to
 // zero and far beyond any sensible value.
-const std::map<std::string, std::string> kCouchMaterial = {
-    {"leatherColorMap", R"("rock")"}, {"grainNormalMap", R"("normals")"}, {"surfaceMaps", R"("surface")"},
-    {"ggxLut", R"("ggxLut")"},
-    {"leatherTint", "[1, 1, 1]"},     {"wornTint", "[0.62, 0.42, 0.27]"}, {"dirtColor", "[0.07, 0.05, 0.04]"},
-    {"threadColor", "[0.7, 0.62, 0.48]"}, {"studColor", "[0.95, 0.76, 0.42]"}, {"panelCount", "2"},
-    {"grainTiling", "8"},             {"grainStrength", "0.4"},       {"wearAmount", "0.4"},
-    {"dirtAmount", "0.5"},            {"seamWidth", "0.02"},          {"stitchDensity", "24"},
-    {"studSize", "0.08"},             {"leatherRoughness", "0.38"},   {"wornRoughness", "0.28"},
-    {"studRoughness", "0.3"},         {"occlusionStrength", "0.8"},   {"sheenColor", "[0.3, 0.24, 0.18]"},
-    {"skyColor", "[0.5, 0.55, 0.65]"}, {"groundColor", "[0.2, 0.17, 0.14]"}};
+const std::map<std::string, std::string> kCouchMaterial = {{"leatherColorMap", R"("rock")"},
+                                                           {"grainNormalMap", R"("normals")"},
+                                                           {"surfaceMaps", R"("surface")"},
+                                                           {"ggxLut", R"("ggxLut")"},
+                                                           {"leatherTint", "[1, 1, 1]"},
+                                                           {"wornTint", "[0.62, 0.42, 0.27]"},
+                                                           {"dirtColor", "[0.07, 0.05, 0.04]"},
+                                                           {"threadColor", "[0.7, 0.62, 0.48]"},
+                                                           {"studColor", "[0.95, 0.76, 0.42]"},
+                                                           {"panelCount", "2"},
+                                                           {"grainTiling", "8"},
+                                                           {"grainStrength", "0.4"},
+                                                           {"wearAmount", "0.4"},
+                                                           {"dirtAmount", "0.5"},
+                                                           {"seamWidth", "0.02"},
+                                                           {"stitchDensity", "24"},
+                                                           {"studSize", "0.08"},
+                                                           {"leatherRoughness", "0.38"},
+                                                           {"wornRoughness", "0.28"},
+                                                           {"studRoughness", "0.3"},
+                                                           {"occlusionStrength", "0.8"},
+                                                           {"sheenColor", "[0.3, 0.24, 0.18]"},
+                                                           {"skyColor", "[0.5, 0.55, 0.65]"},
+                                                           {"groundColor", "[0.2, 0.17, 0.14]"}};
 
 const std::vector<ExampleCase>& couchCases() {
   static const std::vector<ExampleCase> cases = withCameraAndLightCases({
@@ -773,8 +792,11 @@ const std::vector<ExampleCase>& couchCases() {
       {.extreme = "no panels, seams, stitches or studs",
        .material = sameValue({"panelCount", "seamWidth", "stitchDensity", "studSize", "grainTiling"}, "0")},
       {.extreme = "panels, stitches and grain repeats of 1e30, seams and studs of 1e-30",
-       .material = {{"panelCount", "1e30"}, {"stitchDensity", "1e30"}, {"grainTiling", "1e30"},
-                    {"seamWidth", "1e-30"}, {"studSize", "1e-30"}}},
+       .material = {{"panelCount", "1e30"},
+                    {"stitchDensity", "1e30"},
+                    {"grainTiling", "1e30"},
+                    {"seamWidth", "1e-30"},
+                    {"studSize", "1e-30"}}},
       {.extreme = "seams and studs of 3e38: the whole surface is seam",
        .material = sameValue({"seamWidth", "studSize"}, "3e38")},
       {.extreme = "grain strength 3e38", .material = {{"grainStrength", "3e38"}}},
@@ -830,8 +852,7 @@ TEST_F(StabilityTest, UsersDivisionByZeroIsCountedAndNamed) {
   ASSERT_TRUE(nan);
   EXPECT_EQ(hazardsOf(*nan).nanPixels, coveredPixels(*nan));
 
-  const fs::path outputDir =
-      fs::temp_directory_path() / ("spire_stability_user_divide_" + std::to_string(::getpid()));
+  const fs::path outputDir = fs::temp_directory_path() / ("spire_stability_user_divide_" + std::to_string(::getpid()));
   std::ostringstream out;
   std::ostringstream err;
   ASSERT_EQ(demo::runDemo({scenePath.string(), "--validation", "-o", outputDir.string()}, out, err), 0) << err.str();

@@ -315,9 +315,9 @@ TEST_F(DeviceTest, ClearsAndReadsBackEveryColorFormat) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(static_cast<int>(c.format));
-    auto image = Image::create(ctx(), {8, 8, c.format,
-                                       VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                                           VK_IMAGE_USAGE_SAMPLED_BIT});
+    auto image = Image::create(
+        ctx(), {8, 8, c.format,
+                VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
     ASSERT_TRUE(image.ok()) << image.error().message();
     ASSERT_EQ(formatTexelSize(c.format), c.firstTexel.size());
     auto readback = Buffer::create(ctx(), image->byteSize(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);

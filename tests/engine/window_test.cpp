@@ -149,8 +149,8 @@ class FrameBlitTest : public DeviceTest {
 
   // A 4x2 RGBA32F frame holding kTexels.
   vk::Image sourceImage() {
-    auto image = vk::Image::create(ctx(), {kSource.width, kSource.height, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                           kTransferUsage});
+    auto image =
+        vk::Image::create(ctx(), {kSource.width, kSource.height, VK_FORMAT_R32G32B32A32_SFLOAT, kTransferUsage});
     EXPECT_TRUE(image.ok());
     auto staging = vk::Buffer::create(ctx(), image->byteSize(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     EXPECT_TRUE(staging.ok());
@@ -164,8 +164,7 @@ class FrameBlitTest : public DeviceTest {
   // Blits the source frame into a `format` image of `extent` and reads it back.
   std::vector<uint8_t> blitInto(vk::BlitPath path, VkFormat format, VkExtent2D extent) {
     vk::Image source = sourceImage();
-    auto target = vk::Image::create(ctx(), {extent.width, extent.height, format,
-                                            kTransferUsage});
+    auto target = vk::Image::create(ctx(), {extent.width, extent.height, format, kTransferUsage});
     EXPECT_TRUE(target.ok());
     auto blit = vk::FrameBlit::create(ctx(), path, source.format(), source.extent(), format);
     EXPECT_TRUE(blit.ok()) << blit.error().message();
@@ -204,8 +203,8 @@ class FrameBlitTest : public DeviceTest {
 
   // Values whose x255 is an integer, plus out-of-range ones that clamp.
   static constexpr std::array<float, 32> kTexels = {
-      0.0F, 0.2F, 0.4F, 1.0F,  0.2F, 0.4F, 0.6F, 1.0F,  0.4F, 0.6F, 0.8F, 1.0F,  0.6F, 0.8F, 1.0F, 1.0F,
-      1.0F, 0.0F, 0.2F, 1.0F,  2.0F, -1.0F, 0.8F, 1.0F, 0.8F, 0.2F, 0.0F, 1.0F,  0.0F, 0.0F, 0.0F, 1.0F,
+      0.0F, 0.2F, 0.4F, 1.0F, 0.2F, 0.4F,  0.6F, 1.0F, 0.4F, 0.6F, 0.8F, 1.0F, 0.6F, 0.8F, 1.0F, 1.0F,
+      1.0F, 0.0F, 0.2F, 1.0F, 2.0F, -1.0F, 0.8F, 1.0F, 0.8F, 0.2F, 0.0F, 1.0F, 0.0F, 0.0F, 0.0F, 1.0F,
   };
 };
 
@@ -265,9 +264,12 @@ TEST_F(FrameBlitTest, RejectsWhatItCannotDo) {
   vk::Image source = sourceImage();
   auto target = vk::Image::create(ctx(), {8, 8, VK_FORMAT_R8G8B8A8_UNORM, kTransferUsage});
   ASSERT_TRUE(target.ok());
-  ASSERT_TRUE(ctx().submitAndWait([&](VkCommandBuffer cmd) {
-    EXPECT_FALSE(blit->record(cmd, source, target->handle(), {8, 8}, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL).ok());
-  }).ok());
+  ASSERT_TRUE(ctx()
+                  .submitAndWait([&](VkCommandBuffer cmd) {
+                    EXPECT_FALSE(
+                        blit->record(cmd, source, target->handle(), {8, 8}, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL).ok());
+                  })
+                  .ok());
   EXPECT_EQ(vk::chooseBlitPath(ctx(), VK_FORMAT_R8G8B8A8_UNORM), vk::BlitPath::Direct);
 }
 
@@ -313,8 +315,7 @@ TEST(Swapchain, PresentsAndRebuildsInAWindow) {
 #endif
   ASSERT_NE(ctx->surface(), VK_NULL_HANDLE);
   {
-    auto frame = vk::Image::create(*ctx, {32, 24, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                          kTransferUsage});
+    auto frame = vk::Image::create(*ctx, {32, 24, VK_FORMAT_R32G32B32A32_SFLOAT, kTransferUsage});
     ASSERT_TRUE(frame.ok());
     auto swapchain = vk::Swapchain::create(*ctx, window->framebufferExtent());
     ASSERT_TRUE(swapchain.ok()) << swapchain.error().message();

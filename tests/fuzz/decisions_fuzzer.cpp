@@ -39,8 +39,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace spire;
   ShaderLibrary& library = fuzz::exampleLibrary();
   SourceManager sources;
-  const FileId file =
-      fuzz::mirrorWith(library.sources(), sources, "fuzz.decisions", std::string(reinterpret_cast<const char*>(data), size));
+  const FileId file = fuzz::mirrorWith(library.sources(), sources, "fuzz.decisions",
+                                       std::string(reinterpret_cast<const char*>(data), size));
 
   DiagnosticList diags;
   const graph::DecisionFile decisions = graph::parseDecisionFile(sources, file, diags);

@@ -54,10 +54,8 @@ std::string ExpressionGenerator::arithmetic(ValueType type, const std::vector<Op
       const std::string b = sub(ValueType::Float);
       return fmt::format("({} * {})", a, b);
     }
-    case 2:
-      return fmt::format("sin({})", a);
-    case 3:
-      return fmt::format("clamp({}, 0.0, 1.0)", a);
+    case 2: return fmt::format("sin({})", a);
+    case 3: return fmt::format("clamp({}, 0.0, 1.0)", a);
     case 4: {
       const std::string b = sub(type);
       return fmt::format("mix({}, {}, 0.25)", a, b);

@@ -128,8 +128,7 @@ std::vector<std::string> checkInterfaces(const codegen::GeneratedShader& shader,
     overlaps(k.reflection, k.reflection.inputs, rf::InputKind::Varying, "inputs", problems);
     overlaps(k.reflection, k.reflection.outputs, rf::OutputKind::Varying, "outputs", problems);
     const auto world = pipeline.findWorld(k.world);
-    const bool repacked =
-        world && std::find(lockedWorlds.begin(), lockedWorlds.end(), *world) != lockedWorlds.end();
+    const bool repacked = world && std::find(lockedWorlds.begin(), lockedWorlds.end(), *world) != lockedWorlds.end();
     for (const rf::KernelInput& input : k.reflection.inputs) {
       checkInput(shader, pipeline, k.reflection, input, repacked, problems);
     }

@@ -30,18 +30,12 @@ std::vector<WorldKind> pickKinds(RandomSource& rng) {
 
 const char* kindPrefix(WorldKind kind) {
   switch (kind) {
-    case WorldKind::Uniform:
-      return "U";
-    case WorldKind::Mesh:
-      return "M";
-    case WorldKind::Compute:
-      return "C";
-    case WorldKind::Bake:
-      return "T";
-    case WorldKind::Vertex:
-      return "V";
-    case WorldKind::Fragment:
-      return "F";
+    case WorldKind::Uniform: return "U";
+    case WorldKind::Mesh: return "M";
+    case WorldKind::Compute: return "C";
+    case WorldKind::Bake: return "T";
+    case WorldKind::Vertex: return "V";
+    case WorldKind::Fragment: return "F";
   }
   return "W";
 }
@@ -80,8 +74,7 @@ std::string edgeStrategy(const PipelineSpec& p, int from, int to, bool forced, R
   const WorldKind b = p.worlds[static_cast<size_t>(to)].kind;
   const std::string uv = "textureImport(m0_uv)";
   switch (a) {
-    case WorldKind::Uniform:
-      return rng.chance(60) ? "uniformImport" : "";
+    case WorldKind::Uniform: return rng.chance(60) ? "uniformImport" : "";
     case WorldKind::Mesh:
       if (b == WorldKind::Compute)
         return forced || rng.chance(60) ? (rng.chance(3) ? "standardImport" : "bufferImport") : "";
@@ -96,10 +89,8 @@ std::string edgeStrategy(const PipelineSpec& p, int from, int to, bool forced, R
     case WorldKind::Bake:
       if (b == WorldKind::Fragment) return rng.chance(65) ? uv : "";
       return b == WorldKind::Bake || b == WorldKind::Vertex ? (rng.chance(12) ? uv : "") : "";
-    case WorldKind::Vertex:
-      return b == WorldKind::Fragment && (forced || rng.chance(25)) ? "standardImport" : "";
-    case WorldKind::Fragment:
-      return b == WorldKind::Fragment && rng.chance(30) ? uv : "";
+    case WorldKind::Vertex: return b == WorldKind::Fragment && (forced || rng.chance(25)) ? "standardImport" : "";
+    case WorldKind::Fragment: return b == WorldKind::Fragment && rng.chance(30) ? uv : "";
   }
   return "";
 }
@@ -153,23 +144,17 @@ void addMeshAttributes(PipelineSpec& p, RandomSource& rng) {
 
 const char* exportOf(WorldKind kind) {
   switch (kind) {
-    case WorldKind::Compute:
-      return "bufferExport";
-    case WorldKind::Vertex:
-      return "vertexExport";
-    default:
-      return "standardExport";
+    case WorldKind::Compute: return "bufferExport";
+    case WorldKind::Vertex: return "vertexExport";
+    default: return "standardExport";
   }
 }
 
 const char* stageOf(WorldKind kind) {
   switch (kind) {
-    case WorldKind::Compute:
-      return "compute";
-    case WorldKind::Vertex:
-      return "vertex";
-    default:
-      return "fragment";
+    case WorldKind::Compute: return "compute";
+    case WorldKind::Vertex: return "vertex";
+    default: return "fragment";
   }
 }
 

@@ -69,20 +69,13 @@ std::map<std::string, std::string> lockedKernelsOf(const codegen::GeneratedShade
 
 const char* verdictName(Verdict verdict) {
   switch (verdict) {
-    case Verdict::Accepted:
-      return "accepted";
-    case Verdict::Refused:
-      return "refused";
-    case Verdict::InternalError:
-      return "internal error";
-    case Verdict::InvalidKernel:
-      return "invalid kernel";
-    case Verdict::InterfaceMismatch:
-      return "interface mismatch";
-    case Verdict::OrderDependentRoute:
-      return "order-dependent route";
-    case Verdict::LockedKernelNotShared:
-      return "locked kernel not shared";
+    case Verdict::Accepted: return "accepted";
+    case Verdict::Refused: return "refused";
+    case Verdict::InternalError: return "internal error";
+    case Verdict::InvalidKernel: return "invalid kernel";
+    case Verdict::InterfaceMismatch: return "interface mismatch";
+    case Verdict::OrderDependentRoute: return "order-dependent route";
+    case Verdict::LockedKernelNotShared: return "locked kernel not shared";
   }
   return "?";
 }
@@ -156,11 +149,13 @@ VariantReport ProgramChecker::checkVariant(const graph::Variant& variant, Diagno
               {}, {}};
     }
   }
-  const std::vector<std::string> mismatches = checkInterfaces(*generated, variant.graph().pipeline(), variant.graph().shader().finalizedWorlds);
+  const std::vector<std::string> mismatches =
+      checkInterfaces(*generated, variant.graph().pipeline(), variant.graph().shader().finalizedWorlds);
   if (!mismatches.empty()) {
     std::string detail;
     for (const std::string& m : mismatches) detail += m + "\n";
-    return {"", Verdict::InterfaceMismatch, {}, detail + reflection::toJson(generated->reflection(variant)).dump(2), {}, {}};
+    return {"", Verdict::InterfaceMismatch, {}, detail + reflection::toJson(generated->reflection(variant)).dump(2), {},
+            {}};
   }
   return {"", Verdict::Accepted, {}, {}, routesOf(*generated, variant), lockedKernelsOf(*generated, variant)};
 }

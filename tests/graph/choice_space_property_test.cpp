@@ -24,8 +24,8 @@ void expectValid(const graph::Variant& v, const std::string& context) {
     for (sem::ComponentId dep : alt.definition->dependencies) {
       ASSERT_TRUE(v.choice(dep).has_value()) << context << ": dead dependency " << g.node(dep).component->name;
       ASSERT_TRUE(g.reaches(v.worldOf(dep), alt.world))
-          << context << ": " << g.node(dep).component->name << " is not available where "
-          << g.node(c).component->name << " is computed";
+          << context << ": " << g.node(dep).component->name << " is not available where " << g.node(c).component->name
+          << " is computed";
       if (v.worldOf(dep) != alt.world) {
         bool carried = false;
         for (const graph::Transfer& t : v.world(alt.world).inputs) carried = carried || t.component == dep;

@@ -38,7 +38,8 @@ shader S using EnginePipeline {
   mat4 m = mvp;
   vec4 projPos = m * vec4(vert_pos, 1.0);
   vec4 output = vec4(1.0);
-})", "S");
+})",
+                         "S");
   ASSERT_TRUE(c.graph) << c.rendered();
   graph::ChoiceSpace space(*c.graph);
   EXPECT_EQ(altNames(space, idOf(*c.graph, "projPos")), "Vertex");
@@ -127,7 +128,8 @@ TEST(ShaderGraph, ReportsUndefinableComponentsWithTheBlockingDependency) {
   @Fragment float late = light.x;
   float both = baked + late;
   @PrebakeTex float early = light.y;
-  vec4 output = vec4(both, early, 0.0, 1.0);)"), "S");
+  vec4 output = vec4(both, early, 0.0, 1.0);)"),
+                         "S");
   EXPECT_EQ(c.codes(), (std::vector<std::string>{"E4015"})) << c.rendered();
   EXPECT_NE(c.rendered().find("'light' is not available in world 'PrebakeTex'"), std::string::npos) << c.rendered();
 }
@@ -149,7 +151,8 @@ shader S using Split {
   @Right float b = seed * 3.0;
   float both = a + b;
   float result = b + both;
-})", "S");
+})",
+                         "S");
   ASSERT_EQ(c.codes(), (std::vector<std::string>{"E4014"})) << c.rendered();
   EXPECT_NE(c.rendered().find("'both' can be defined nowhere"), std::string::npos) << c.rendered();
   EXPECT_NE(c.rendered().find("'a' (Left) and 'b' (Right)"), std::string::npos) << c.rendered();
@@ -162,8 +165,8 @@ TEST(ShaderGraph, ReportsRequiredComponentLeftUndefined) {
 }
 
 TEST(ShaderGraph, InheritedChoicesCarryTheBasePrefixAndSkipLockedWorlds) {
-  auto c = compileShader({std::string(SPIRE_SOURCE_DIR) + "/examples/lod_library.spire"}, "",
-                         "TerrainLOD<BaseMaterialLQ>");
+  auto c =
+      compileShader({std::string(SPIRE_SOURCE_DIR) + "/examples/lod_library.spire"}, "", "TerrainLOD<BaseMaterialLQ>");
   ASSERT_TRUE(c.graph) << c.rendered();
   graph::ChoiceSpace space(*c.graph);
   EXPECT_EQ(graph::writeChoiceFile(space), "BaseMaterialLQ.nDotL = {Vertex,Fragment}\n");

@@ -35,7 +35,8 @@ TEST(DecisionFile, ParsesCommentsAttributesVariationsAndCrlf) {
 TEST(DecisionFile, MalformedLinesAreErrorsWithLocations) {
   SourceManager sources;
   DiagnosticList diags;
-  const auto file = parse(sources, diags, "Terrain.albedo PrebakeTex\nalbedo = Vertex\nTerrain.x = Vertex extra\n[Format RGBA8] T.c = V\n");
+  const auto file = parse(
+      sources, diags, "Terrain.albedo PrebakeTex\nalbedo = Vertex\nTerrain.x = Vertex extra\n[Format RGBA8] T.c = V\n");
   EXPECT_TRUE(file.lines.empty());
   ASSERT_EQ(diags.all().size(), 4u);
   for (const Diagnostic& d : diags.all()) EXPECT_EQ(d.code, DiagCode::E5001);
@@ -91,7 +92,8 @@ TEST(DecisionFile, ReadsEscapesInAttributeValues) {
 TEST(DecisionFile, AttributeValuesMustBeUtf8) {
   SourceManager sources;
   DiagnosticList diags;
-  const auto file = parse(sources, diags, "[Format: \"\xff\"] Terrain.albedo = PrebakeTex\n[Label: \"\xc3\xa9\"] T.c = V\n");
+  const auto file =
+      parse(sources, diags, "[Format: \"\xff\"] Terrain.albedo = PrebakeTex\n[Label: \"\xc3\xa9\"] T.c = V\n");
   ASSERT_EQ(file.lines.size(), 1u);
   EXPECT_EQ(file.lines[0].attributes[0].second, "\xc3\xa9");
   ASSERT_EQ(diags.all().size(), 1u);

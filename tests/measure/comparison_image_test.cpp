@@ -16,7 +16,8 @@ const Rgba8 kText(240, 240, 240, 255);
 
 Image solid(uint32_t width, uint32_t height, Rgba8 color) {
   Image image{width, height, {}};
-  for (uint32_t p = 0; p < width * height; ++p) image.rgba8.insert(image.rgba8.end(), {color.r, color.g, color.b, color.a});
+  for (uint32_t p = 0; p < width * height; ++p)
+    image.rgba8.insert(image.rgba8.end(), {color.r, color.g, color.b, color.a});
   return image;
 }
 

@@ -50,8 +50,11 @@ TEST(ReportTableTest, MarkdownTable) {
 }
 
 TEST(ReportTableTest, NonFiniteValuesAreSpelledOut) {
-  ReportRow row{"odd", kInfinity, -kInfinity, std::numeric_limits<double>::quiet_NaN(), kInfinity,
-                std::numeric_limits<double>::quiet_NaN(), -kInfinity, kInfinity, 0};
+  ReportRow row{"odd",      kInfinity,
+                -kInfinity, std::numeric_limits<double>::quiet_NaN(),
+                kInfinity,  std::numeric_limits<double>::quiet_NaN(),
+                -kInfinity, kInfinity,
+                0};
   EXPECT_EQ(lines(formatMarkdownTable({row}))[2], "| odd | inf | -inf | nan | inf | nan | -inf | inf | 0 |");
 }
 

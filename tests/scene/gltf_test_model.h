@@ -42,8 +42,7 @@ inline int appendBufferView(tinygltf::Model& model, const unsigned char* bytes, 
 }
 
 template <typename T>
-void appendView(tinygltf::Model& model, const std::vector<T>& values, int componentType, int type,
-                size_t count) {
+void appendView(tinygltf::Model& model, const std::vector<T>& values, int componentType, int type, size_t count) {
   tinygltf::Accessor accessor;
   accessor.bufferView =
       appendBufferView(model, reinterpret_cast<const unsigned char*>(values.data()), values.size() * sizeof(T));
@@ -92,8 +91,7 @@ inline tinygltf::Model makeQuadModel(const QuadOptions& options, const std::stri
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
       appendView(model, std::vector<uint32_t>{0, 1, 2, 0, 2, 3}, options.indexType, TINYGLTF_TYPE_SCALAR, 6);
       break;
-    default:
-      break;
+    default: break;
   }
   if (options.indexType != -1) primitive.indices = lastAccessor();
   model.buffers[0].data.shrink_to_fit();
@@ -173,8 +171,7 @@ inline Image makeTestPixels() {
   Image image;
   image.width = 3;
   image.height = 2;
-  image.rgba8 = {255, 0, 0, 255, 0, 255, 0, 200, 0, 0, 255, 100,
-                 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120};
+  image.rgba8 = {255, 0, 0, 255, 0, 255, 0, 200, 0, 0, 255, 100, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120};
   return image;
 }
 

@@ -77,27 +77,30 @@ TEST(JsonDocument, Numbers) {
   EXPECT_EQ(parseNumber("4e-320"), 4e-320);  // subnormal
   // Below the smallest subnormal: rounds to zero, like any IEEE parser.
   EXPECT_EQ(parseNumber("1e-400"), 0.0);
-  EXPECT_EQ(parseNumber("0.0000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
-                        "000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
-                        "000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
-                        "000000000000000000000000000000000000000000000000000000000000000000000000000000000000000001"),
-            0.0);
+  EXPECT_EQ(
+      parseNumber("0.0000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+                  "000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+                  "000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+                  "000000000000000000000000000000000000000000000000000000000000000000000000000000000000000001"),
+      0.0);
   EXPECT_EQ(parseNumber("0e999999999999999999"), 0.0);
 }
 
 TEST(JsonDocument, MalformedNumbers) {
   EXPECT_EQ(firstLineOfError("01"), "doc.json:1:1: error[E7001]: leading zeros are not allowed in a JSON number");
   EXPECT_EQ(firstLineOfError("[-]"), "doc.json:1:3: error[E7001]: expected a digit after '-', found ']'");
-  EXPECT_EQ(firstLineOfError("1."), "doc.json:1:3: error[E7001]: expected a digit after the decimal point, found the "
-                                    "end of the file");
+  EXPECT_EQ(firstLineOfError("1."),
+            "doc.json:1:3: error[E7001]: expected a digit after the decimal point, found the "
+            "end of the file");
   EXPECT_EQ(firstLineOfError("[1e+]"), "doc.json:1:5: error[E7001]: expected a digit in the exponent, found ']'");
   EXPECT_EQ(firstLineOfError("+1"), "doc.json:1:1: error[E7001]: expected a JSON value, found '+'");
   EXPECT_EQ(firstLineOfError(".5"), "doc.json:1:1: error[E7001]: expected a JSON value, found '.'");
   EXPECT_EQ(firstLineOfError("1e400"), "doc.json:1:1: error[E7001]: number 1e400 is too large for a double");
   EXPECT_EQ(firstLineOfError("-Infinity"), "doc.json:1:2: error[E7001]: expected a digit after '-', found 'Infinity'");
   EXPECT_EQ(firstLineOfError("NaN"), "doc.json:1:1: error[E7001]: expected a JSON value, found 'NaN'");
-  EXPECT_EQ(firstLineOfError("0x10"), "doc.json:1:2: error[E7001]: expected the end of the file after the top-level "
-                                      "value, found 'x10'");
+  EXPECT_EQ(firstLineOfError("0x10"),
+            "doc.json:1:2: error[E7001]: expected the end of the file after the top-level "
+            "value, found 'x10'");
 }
 
 TEST(JsonDocument, EveryEscape) {
@@ -112,21 +115,27 @@ TEST(JsonDocument, EveryEscape) {
 
 TEST(JsonDocument, MalformedStrings) {
   EXPECT_EQ(firstLineOfError(R"("\x")"), R"(doc.json:1:2: error[E7001]: invalid escape sequence '\x')");
-  EXPECT_EQ(firstLineOfError(R"("\u12G4")"), R"(doc.json:1:2: error[E7001]: expected four hexadecimal digits after '\u')");
-  EXPECT_EQ(firstLineOfError(R"("\u12")"), R"(doc.json:1:2: error[E7001]: expected four hexadecimal digits after '\u')");
-  EXPECT_EQ(firstLineOfError(R"(["ok", "\uD83D"])"),
-            R"(doc.json:1:9: error[E7001]: unpaired UTF-16 high surrogate '\uD83D' (a low surrogate '\uDC00'-'\uDFFF' must follow))");
-  EXPECT_EQ(firstLineOfError(R"("\uD83D\u0041")"),
-            R"(doc.json:1:2: error[E7001]: unpaired UTF-16 high surrogate '\uD83D' (a low surrogate '\uDC00'-'\uDFFF' must follow))");
+  EXPECT_EQ(firstLineOfError(R"("\u12G4")"),
+            R"(doc.json:1:2: error[E7001]: expected four hexadecimal digits after '\u')");
+  EXPECT_EQ(firstLineOfError(R"("\u12")"),
+            R"(doc.json:1:2: error[E7001]: expected four hexadecimal digits after '\u')");
+  EXPECT_EQ(
+      firstLineOfError(R"(["ok", "\uD83D"])"),
+      R"(doc.json:1:9: error[E7001]: unpaired UTF-16 high surrogate '\uD83D' (a low surrogate '\uDC00'-'\uDFFF' must follow))");
+  EXPECT_EQ(
+      firstLineOfError(R"("\uD83D\u0041")"),
+      R"(doc.json:1:2: error[E7001]: unpaired UTF-16 high surrogate '\uD83D' (a low surrogate '\uDC00'-'\uDFFF' must follow))");
   EXPECT_EQ(firstLineOfError(R"("\uDE00")"),
             R"(doc.json:1:2: error[E7001]: unpaired UTF-16 low surrogate '\uDE00' (it must follow a high surrogate))");
   EXPECT_EQ(firstLineOfError("\"tab\there\""),
             "doc.json:1:5: error[E7001]: control character U+0009 must be escaped in a string");
-  EXPECT_EQ(firstLineOfError("{\"a\": \"open\n}"),
-            R"(doc.json:1:7: error[E7001]: unterminated string: a string cannot span lines (write '\n' for a line break))");
+  EXPECT_EQ(
+      firstLineOfError("{\"a\": \"open\n}"),
+      R"(doc.json:1:7: error[E7001]: unterminated string: a string cannot span lines (write '\n' for a line break))");
   EXPECT_EQ(firstLineOfError("\"open"), "doc.json:1:1: error[E7001]: unterminated string: the file ends inside it");
-  EXPECT_EQ(firstLineOfError("\"ends with \\"), "doc.json:1:12: error[E7001]: unterminated string: the file ends "
-                                                "inside it");
+  EXPECT_EQ(firstLineOfError("\"ends with \\"),
+            "doc.json:1:12: error[E7001]: unterminated string: the file ends "
+            "inside it");
 }
 
 TEST(JsonDocument, ObjectMembersKeepFileOrderAndRanges) {
@@ -151,40 +160,57 @@ TEST(JsonDocument, ObjectMembersKeepFileOrderAndRanges) {
 TEST(JsonDocument, SyntaxErrorsAtExactPositions) {
   EXPECT_EQ(firstLineOfError("{\n  \"a\": 1\n  \"b\": 2\n}"),
             "doc.json:3:3: error[E7001]: expected ',' or '}' after an object member, found '\"'");
-  EXPECT_EQ(firstLineOfError("[1 2]"), "doc.json:1:4: error[E7001]: expected ',' or ']' after an array element, found '2'");
+  EXPECT_EQ(firstLineOfError("[1 2]"),
+            "doc.json:1:4: error[E7001]: expected ',' or ']' after an array element, found '2'");
   EXPECT_EQ(firstLineOfError("{\"a\" 1}"), "doc.json:1:6: error[E7001]: expected ':' after an object key, found '1'");
-  EXPECT_EQ(firstLineOfError("{a: 1}"), "doc.json:1:2: error[E7001]: expected a string key in double quotes, found 'a'");
-  EXPECT_EQ(firstLineOfError("{'a': 1}"), "doc.json:1:2: error[E7001]: expected a string key in double quotes, found "
-                                          "''' (JSON strings use double quotes)");
-  EXPECT_EQ(firstLineOfError("{\"a\": 1,\n}"), "doc.json:1:8: error[E7001]: trailing comma before '}' is not allowed in JSON");
-  EXPECT_EQ(firstLineOfError("[1, 2, ]"), "doc.json:1:6: error[E7001]: trailing comma before ']' is not allowed in JSON");
+  EXPECT_EQ(firstLineOfError("{a: 1}"),
+            "doc.json:1:2: error[E7001]: expected a string key in double quotes, found 'a'");
+  EXPECT_EQ(firstLineOfError("{'a': 1}"),
+            "doc.json:1:2: error[E7001]: expected a string key in double quotes, found "
+            "''' (JSON strings use double quotes)");
+  EXPECT_EQ(firstLineOfError("{\"a\": 1,\n}"),
+            "doc.json:1:8: error[E7001]: trailing comma before '}' is not allowed in JSON");
+  EXPECT_EQ(firstLineOfError("[1, 2, ]"),
+            "doc.json:1:6: error[E7001]: trailing comma before ']' is not allowed in JSON");
   EXPECT_EQ(firstLineOfError("[1,,2]"), "doc.json:1:4: error[E7001]: expected a JSON value, found ','");
-  EXPECT_EQ(firstLineOfError("{\"a\": 1 // one\n}"), "doc.json:1:9: error[E7001]: expected ',' or '}' after an object "
-                                                     "member, found '/' (JSON does not allow comments)");
-  EXPECT_EQ(firstLineOfError("[1, /* two */ 2]"), "doc.json:1:5: error[E7001]: expected a JSON value, found '/' (JSON "
-                                                  "does not allow comments)");
-  EXPECT_EQ(firstLineOfError("{\"a\": [1, 2}"), "doc.json:1:12: error[E7001]: expected ',' or ']' after an array "
-                                                "element, found '}'");
-  EXPECT_EQ(firstLineOfError("{\"a\": 1"), "doc.json:1:8: error[E7001]: expected ',' or '}' after an object member, "
-                                           "found the end of the file");
+  EXPECT_EQ(firstLineOfError("{\"a\": 1 // one\n}"),
+            "doc.json:1:9: error[E7001]: expected ',' or '}' after an object "
+            "member, found '/' (JSON does not allow comments)");
+  EXPECT_EQ(firstLineOfError("[1, /* two */ 2]"),
+            "doc.json:1:5: error[E7001]: expected a JSON value, found '/' (JSON "
+            "does not allow comments)");
+  EXPECT_EQ(firstLineOfError("{\"a\": [1, 2}"),
+            "doc.json:1:12: error[E7001]: expected ',' or ']' after an array "
+            "element, found '}'");
+  EXPECT_EQ(firstLineOfError("{\"a\": 1"),
+            "doc.json:1:8: error[E7001]: expected ',' or '}' after an object member, "
+            "found the end of the file");
   EXPECT_EQ(firstLineOfError("[True]"), "doc.json:1:2: error[E7001]: expected a JSON value, found 'True'");
-  EXPECT_EQ(firstLineOfError("{} {}"), "doc.json:1:4: error[E7001]: expected the end of the file after the top-level "
-                                       "value, found '{'");
+  EXPECT_EQ(firstLineOfError("{} {}"),
+            "doc.json:1:4: error[E7001]: expected the end of the file after the top-level "
+            "value, found '{'");
 }
 
 TEST(JsonDocument, GarbageAndEncoding) {
   EXPECT_EQ(firstLineOfError(""), "doc.json:1:1: error[E7001]: expected a JSON value, found the end of the file");
-  EXPECT_EQ(firstLineOfError("  \n\t "), "doc.json:2:3: error[E7001]: expected a JSON value, found the end of the file");
-  EXPECT_EQ(firstLineOfError("\xEF\xBB\xBF{}"), "doc.json:1:1: error[E7001]: the file starts with a byte order mark, "
-                                                "which JSON does not allow; save it as UTF-8 without a BOM");
+  EXPECT_EQ(firstLineOfError("  \n\t "),
+            "doc.json:2:3: error[E7001]: expected a JSON value, found the end of the file");
+  EXPECT_EQ(firstLineOfError("\xEF\xBB\xBF{}"),
+            "doc.json:1:1: error[E7001]: the file starts with a byte order mark, "
+            "which JSON does not allow; save it as UTF-8 without a BOM");
   EXPECT_EQ(firstLineOfError("[\"a\xFF\"]"), "doc.json:1:4: error[E7001]: the file is not valid UTF-8 text");
-  EXPECT_EQ(firstLineOfError("[1, \x01]"), "doc.json:1:5: error[E7001]: expected a JSON value, found control character "
-                                           "U+0001");
-  EXPECT_EQ(firstLineOfError(std::string("[1,\0 2]", 7)), "doc.json:1:4: error[E7001]: expected a JSON value, found "
-                                                          "control character U+0000");
-  EXPECT_EQ(firstLineOfError("[\xC2\xA0 1]"), "doc.json:1:2: error[E7001]: expected a JSON value, found U+00A0 '\xC2\xA0'");
-  EXPECT_EQ(firstLineOfError("\x7F" "ELF\x02\x01"), "doc.json:1:1: error[E7001]: expected a JSON value, found control "
-                                                    "character U+007F");
+  EXPECT_EQ(firstLineOfError("[1, \x01]"),
+            "doc.json:1:5: error[E7001]: expected a JSON value, found control character "
+            "U+0001");
+  EXPECT_EQ(firstLineOfError(std::string("[1,\0 2]", 7)),
+            "doc.json:1:4: error[E7001]: expected a JSON value, found "
+            "control character U+0000");
+  EXPECT_EQ(firstLineOfError("[\xC2\xA0 1]"),
+            "doc.json:1:2: error[E7001]: expected a JSON value, found U+00A0 '\xC2\xA0'");
+  EXPECT_EQ(firstLineOfError("\x7F"
+                             "ELF\x02\x01"),
+            "doc.json:1:1: error[E7001]: expected a JSON value, found control "
+            "character U+007F");
 }
 
 TEST(JsonDocument, NestingIsCapped) {

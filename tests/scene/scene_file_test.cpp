@@ -208,8 +208,8 @@ TEST(SceneFile, TransformScalesThenRotatesXYZThenTranslates) {
   EXPECT_NEAR(moved.y, 0.0F, 1e-6F);
   EXPECT_NEAR(moved.z, -1.0F, 1e-6F);  // (2, 0, 0) turned to (0, 0, -2), then moved by +1 in z
 
-  const auto xThenY = parseScene(withInstance(
-      R"({"mesh": "ground", "kernels": "k", "transform": {"rotate": [90, 90, 0], "scale": [1, 2, 3]}})"));
+  const auto xThenY = parseScene(
+      withInstance(R"({"mesh": "ground", "kernels": "k", "transform": {"rotate": [90, 90, 0], "scale": [1, 2, 3]}})"));
   ASSERT_TRUE(xThenY->scene) << xThenY->rendered;
   // (0, 1, 0) scaled to (0, 2, 0); X by 90 gives (0, 0, 2); then Y by 90 gives (2, 0, 0).
   const glm::vec4 up = xThenY->scene->instances[0].transform * glm::vec4(0.0F, 1.0F, 0.0F, 1.0F);
@@ -276,8 +276,7 @@ TEST(SceneFile, PackTakesNamedChannelsOfOtherTextures) {
               DiagCode::E7004,
               "channel 't.x' must be a texture name, a dot and one of r, g, b or a, such as \"wear.r\"");
   expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["t"]}, "t": {"type": "solid"}})"),
-              DiagCode::E7004,
-              "channel 't' must be a texture name, a dot and one of r, g, b or a, such as \"wear.r\"");
+              DiagCode::E7004, "channel 't' must be a texture name, a dot and one of r, g, b or a, such as \"wear.r\"");
   expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["tt.r"]}, "t": {"type": "solid"}})"),
               DiagCode::E7006, "unknown texture 'tt'; did you mean 't'?");
   expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["n.r"]},
@@ -332,8 +331,8 @@ TEST(SceneFile, WrongTypesE7003) {
   expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "material": {"gloss": []}})"), DiagCode::E7003,
               "the material value of 'gloss' must be a texture name, a number or an array of 1 to 16 numbers, found an "
               "empty array");
-  expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "material": {"m": [[1, 0], 2]}})"),
-              DiagCode::E7003, "each element of the material value of 'm' must be a number, found an array of 2 elements");
+  expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "material": {"m": [[1, 0], 2]}})"), DiagCode::E7003,
+              "each element of the material value of 'm' must be a number, found an array of 2 elements");
   expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "transform": {"scale": "big"}})"), DiagCode::E7003,
               "'scale' must be a number or an array of 3 numbers [x, y, z], found a string");
   expectError(scene(R"("includePaths": "lib")"), DiagCode::E7003, "'includePaths' must be an array, found a string");
@@ -362,20 +361,22 @@ TEST(SceneFile, OutOfRangeE7004) {
               "'seed' must be between 0 and 4294967295, found 4294967296");
   expectError(scene(R"("camera": {"fovY": 180, "views": [{"position": [0, 2, 5]}]})", false), DiagCode::E7004,
               "'fovY' must be greater than 0 and less than 180, found 180");
-  expectError(scene(R"("camera": {"near": 1, "far": 0.5, "views": [{"position": [0, 2, 5]}]})", false),
-              DiagCode::E7004, "'far' must be greater than 'near' (1), found 0.5");
+  expectError(scene(R"("camera": {"near": 1, "far": 0.5, "views": [{"position": [0, 2, 5]}]})", false), DiagCode::E7004,
+              "'far' must be greater than 'near' (1), found 0.5");
   expectError(scene(R"("camera": {"views": [{"position": [1, 2, 3], "target": [1, 2, 3]}]})", false), DiagCode::E7004,
               "a view's 'position' and 'target' must differ");
   expectError(scene(R"("camera": {"views": [{"position": [0, 5, 0]}]})", false), DiagCode::E7004,
               "this view looks along the camera's 'up' vector, so its orientation is undefined");
   expectError(scene(R"("camera": {"views": []})", false), DiagCode::E7004, "'views' must contain at least one view");
-  expectError(scene(R"("light": {"direction": [0, 0, 0]})"), DiagCode::E7004, "'direction' must not be the zero vector");
+  expectError(scene(R"("light": {"direction": [0, 0, 0]})"), DiagCode::E7004,
+              "'direction' must not be the zero vector");
   expectError(scene(R"("instances": [])", true, true, false), DiagCode::E7004,
               "'instances' must contain at least one instance");
-  expectError(scene(R"("textures": {"": {"type": "solid"}})"), DiagCode::E7004, "names in 'textures' must not be empty");
+  expectError(scene(R"("textures": {"": {"type": "solid"}})"), DiagCode::E7004,
+              "names in 'textures' must not be empty");
   expectError(withInstance(R"({"mesh": "ground", "kernels": ""})"), DiagCode::E7004, "'kernels' must not be empty");
-  expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "transform": {"scale": [1, 0, 1]}})"),
-              DiagCode::E7004, "each element of 'scale' must be greater than 0, found 0");
+  expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "transform": {"scale": [1, 0, 1]}})"), DiagCode::E7004,
+              "each element of 'scale' must be greater than 0, found 0");
   expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "transform": {"translate": [1e39, 0, 0]}})"),
               DiagCode::E7004, "each element of 'translate' must be within the range of a float, found 1e39");
 }
@@ -399,19 +400,20 @@ TEST(SceneFile, MissingFieldsE7005) {
               "an instance with a 'shader' needs the 'source' that defines it");
   expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "decisions": "x.decisions"})"), DiagCode::E7005,
               "'decisions' apply to a 'source' and 'shader', which this instance does not have");
-  expectError(scene(R"("variants": [{"name": "v"}])"), DiagCode::E7005, "a variant needs 'decisions' (a decision file)");
+  expectError(scene(R"("variants": [{"name": "v"}])"), DiagCode::E7005,
+              "a variant needs 'decisions' (a decision file)");
 }
 
 TEST(SceneFile, UnknownNamesE7006) {
   expectError(withInstance(R"({"mesh": "grund", "kernels": "k"})"), DiagCode::E7006,
               "unknown mesh 'grund'; did you mean 'ground'?");
-  expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "material": {"albedo": "stones"}})"),
-              DiagCode::E7006, "unknown texture 'stones'; did you mean 'stone'?");
+  expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "material": {"albedo": "stones"}})"), DiagCode::E7006,
+              "unknown texture 'stones'; did you mean 'stone'?");
   const auto loaded = parseScene(scene(R"("instances": [{"mesh": "g", "kernels": "k"}])", true, true, false));
   ASSERT_EQ(loaded->diags.all().size(), 1u) << loaded->rendered;
   EXPECT_EQ(loaded->diags.all()[0].message, "unknown mesh 'g'");
-  const auto noTextures = parseScene(scene(R"("instances": [{"mesh": "ground", "kernels": "k", "material": {"a": "brick"}}])",
-                                           true, true, false));
+  const auto noTextures = parseScene(
+      scene(R"("instances": [{"mesh": "ground", "kernels": "k", "material": {"a": "brick"}}])", true, true, false));
   ASSERT_EQ(noTextures->diags.all().size(), 1u) << noTextures->rendered;
   EXPECT_EQ(noTextures->diags.all()[0].message, "unknown texture 'brick'");
   ASSERT_EQ(noTextures->diags.all()[0].notes.size(), 1u);
@@ -419,16 +421,18 @@ TEST(SceneFile, UnknownNamesE7006) {
 }
 
 TEST(SceneFile, InstancesMayNameMeshesDefinedLater) {
-  const auto loaded = parseScene(R"({"instances": [{"mesh": "late", "kernels": "k"}], )"
-                                 R"("camera": {"views": [{"position": [0, 2, 5]}]}, "meshes": {"late": {"type": "plane"}}})");
+  const auto loaded =
+      parseScene(R"({"instances": [{"mesh": "late", "kernels": "k"}], )"
+                 R"("camera": {"views": [{"position": [0, 2, 5]}]}, "meshes": {"late": {"type": "plane"}}})");
   EXPECT_TRUE(loaded->scene.has_value()) << loaded->rendered;
 }
 
 TEST(SceneFile, DuplicateNamesE7007) {
   expectError(scene(R"("meshes": {"ground": {"type": "plane"}, "ground": {"type": "sphere"}})", true, false),
               DiagCode::E7007, "duplicate key 'ground'");
-  expectError(scene(R"("variants": [{"name": "a", "decisions": "a.decisions"}, {"name": "a", "decisions": "b.decisions"}])"),
-              DiagCode::E7007, "duplicate variant name 'a'");
+  expectError(
+      scene(R"("variants": [{"name": "a", "decisions": "a.decisions"}, {"name": "a", "decisions": "b.decisions"}])"),
+      DiagCode::E7007, "duplicate variant name 'a'");
 }
 
 TEST(SceneFile, ReportsEveryErrorOfAFileInFileOrder) {

@@ -257,7 +257,8 @@ TEST(Analyzer, RecursionIsRejected) {
 float f(float x);
 float g(float x) { return f(x); }
 float f(float x) { return g(x); }
-)", false);
+)",
+                             false);
   EXPECT_EQ(c.codes(), std::vector<std::string>{"E3017"}) << c.rendered();
 }
 
@@ -279,13 +280,18 @@ TEST(Analyzer, PipelineErrors) {
             std::vector<std::string>{"E4002"});
   EXPECT_EQ(compile(R"(pipeline Q { world W : "GLSL" export vertexExport; })", false).codes(),
             std::vector<std::string>{"E4003"});
-  EXPECT_EQ(compile(R"(pipeline Q { @U float k; abstract world U; world W : "GLSL" export vertexExport(k); })", false).codes(),
+  EXPECT_EQ(compile(R"(pipeline Q { @U float k; abstract world U; world W : "GLSL" export vertexExport(k); })", false)
+                .codes(),
             std::vector<std::string>{"E4003"});
   EXPECT_EQ(compile(R"(pipeline Q { abstract world U; world W : "GLSL" export standardExport;
-                      import U->W using uniformImport; import U->W using uniformImport; })", false).codes(),
+                      import U->W using uniformImport; import U->W using uniformImport; })",
+                    false)
+                .codes(),
             std::vector<std::string>{"E3003"});
   EXPECT_EQ(compile(R"(pipeline Q { abstract world U; world W : "GLSL" export standardExport;
-                      import W->U using standardImport; })", false).codes(),
+                      import W->U using standardImport; })",
+                    false)
+                .codes(),
             std::vector<std::string>{"E4010"});
 }
 

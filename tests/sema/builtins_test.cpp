@@ -208,8 +208,8 @@ TEST_F(BuiltinTableTest, IntegerAndPacking) {
 }
 
 TEST_F(BuiltinTableTest, Derivatives) {
-  for (std::string_view name : {"dFdx", "dFdy", "dFdxFine", "dFdyFine", "dFdxCoarse", "dFdyCoarse", "fwidth",
-                                "fwidthFine", "fwidthCoarse"}) {
+  for (std::string_view name :
+       {"dFdx", "dFdy", "dFdxFine", "dFdyFine", "dFdxCoarse", "dFdyCoarse", "fwidth", "fwidthFine", "fwidthCoarse"}) {
     EXPECT_EQ(result(name, {"vec3"}), "vec3") << name;
     EXPECT_EQ(result(name, {"float"}), "float") << name;
   }

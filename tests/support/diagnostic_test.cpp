@@ -11,8 +11,7 @@ TEST(Diagnostics, RendersLocationSourceLineAndCaret) {
   SourceManager sm;
   const FileId f = sm.addFile("t.spire", "float x = mixFactr;\n");
   DiagnosticList list;
-  list.report(DiagCode::E3001, {f, 10, 18}, "undeclared identifier 'mixFactr'")
-      .note({f, 6, 7}, "declared here");
+  list.report(DiagCode::E3001, {f, 10, 18}, "undeclared identifier 'mixFactr'").note({f, 6, 7}, "declared here");
   EXPECT_EQ(renderDiagnostics(sm, list, DiagnosticFormat::Text),
             "t.spire:1:11: error[E3001]: undeclared identifier 'mixFactr'\n"
             " 1 | float x = mixFactr;\n"
@@ -48,27 +47,32 @@ std::string snippetOf(const std::string& line, uint32_t begin, uint32_t length) 
 TEST(Diagnostics, LongLinesAreQuotedAroundTheCaret) {
   std::string line;
   for (int i = 0; i < 1000; ++i) line += static_cast<char>('a' + i % 26);
-  EXPECT_EQ(snippetOf(line, 500, 3),
-            " 2 | ..." + line.substr(460, 120) + "...\n"
-            "   |    " + std::string(40, ' ') + "^~~\n");
-  EXPECT_EQ(snippetOf(line, 2, 1),
-            " 2 | " + line.substr(0, 120) + "...\n"
-            "   |   ^\n");
-  EXPECT_EQ(snippetOf(line, 995, 500),
-            " 2 | ..." + line.substr(880) + "\n"
-            "   |    " + std::string(115, ' ') + "^~~~~\n");
-  EXPECT_EQ(snippetOf(line, 100, 900),
-            " 2 | ..." + line.substr(60, 120) + "...\n"
-            "   |    " + std::string(40, ' ') + "^" + std::string(79, '~') + "\n");
+  EXPECT_EQ(snippetOf(line, 500, 3), " 2 | ..." + line.substr(460, 120) +
+                                         "...\n"
+                                         "   |    " +
+                                         std::string(40, ' ') + "^~~\n");
+  EXPECT_EQ(snippetOf(line, 2, 1), " 2 | " + line.substr(0, 120) +
+                                       "...\n"
+                                       "   |   ^\n");
+  EXPECT_EQ(snippetOf(line, 995, 500), " 2 | ..." + line.substr(880) +
+                                           "\n"
+                                           "   |    " +
+                                           std::string(115, ' ') + "^~~~~\n");
+  EXPECT_EQ(snippetOf(line, 100, 900), " 2 | ..." + line.substr(60, 120) +
+                                           "...\n"
+                                           "   |    " +
+                                           std::string(40, ' ') + "^" + std::string(79, '~') + "\n");
   // Up to 120 columns the whole line is quoted, whatever its size in bytes.
   std::string wide;
   for (int i = 0; i < 120; ++i) wide += "\xC3\xA9";  // é
   EXPECT_EQ(snippetOf(wide, 20, 2), " 2 | " + wide + "\n   |           ^\n");
   // Cutting never splits a character; tabs before the caret are kept.
   const std::string mixed = wide + "\t" + wide + "x";
-  EXPECT_EQ(snippetOf(mixed, 2 * 120 + 1 + 2 * 20, 2),
-            " 2 | ..." + wide.substr(0, 2 * 19) + "\t" + wide.substr(0, 2 * 100) + "...\n"
-            "   |    " + std::string(19, ' ') + "\t" + std::string(20, ' ') + "^\n");
+  EXPECT_EQ(snippetOf(mixed, 2 * 120 + 1 + 2 * 20, 2), " 2 | ..." + wide.substr(0, 2 * 19) + "\t" +
+                                                           wide.substr(0, 2 * 100) +
+                                                           "...\n"
+                                                           "   |    " +
+                                                           std::string(19, ' ') + "\t" + std::string(20, ' ') + "^\n");
 }
 
 TEST(Diagnostics, ErrorLimitStopsCollection) {

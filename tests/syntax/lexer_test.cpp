@@ -41,22 +41,24 @@ TEST(Lexer, EmptyInputIsJustEndOfFile) {
 }
 
 TEST(Lexer, IdentifiersKeywordsAndTypeNames) {
-  const auto lexed = lex("pipeline world import export abstract shader group optional finalizes using "
-                         "struct if else for while do break continue return discard true false in out inout const "
-                         "float vec3 mat4 sampler2D _x a1 output worlds");
+  const auto lexed =
+      lex("pipeline world import export abstract shader group optional finalizes using "
+          "struct if else for while do break continue return discard true false in out inout const "
+          "float vec3 mat4 sampler2D _x a1 output worlds");
   const std::vector<K> expected = {
-      K::KwPipeline, K::KwWorld,  K::KwImport,     K::KwExport,     K::KwAbstract,   K::KwShader,     K::KwGroup,
-      K::KwOptional, K::KwFinalizes, K::KwUsing,   K::KwStruct,     K::KwIf,         K::KwElse,       K::KwFor,
-      K::KwWhile,    K::KwDo,     K::KwBreak,      K::KwContinue,   K::KwReturn,     K::KwDiscard,    K::KwTrue,
-      K::KwFalse,    K::KwIn,     K::KwOut,        K::KwInout,      K::KwConst,      K::Identifier,   K::Identifier,
-      K::Identifier, K::Identifier, K::Identifier, K::Identifier,   K::Identifier,   K::Identifier,   K::EndOfFile};
+      K::KwPipeline, K::KwWorld,     K::KwImport,   K::KwExport,   K::KwAbstract, K::KwShader,   K::KwGroup,
+      K::KwOptional, K::KwFinalizes, K::KwUsing,    K::KwStruct,   K::KwIf,       K::KwElse,     K::KwFor,
+      K::KwWhile,    K::KwDo,        K::KwBreak,    K::KwContinue, K::KwReturn,   K::KwDiscard,  K::KwTrue,
+      K::KwFalse,    K::KwIn,        K::KwOut,      K::KwInout,    K::KwConst,    K::Identifier, K::Identifier,
+      K::Identifier, K::Identifier,  K::Identifier, K::Identifier, K::Identifier, K::Identifier, K::EndOfFile};
   EXPECT_EQ(lexed->kinds(), expected);
   EXPECT_TRUE(lexed->diags.all().empty());
 }
 
 TEST(Lexer, EveryOperatorAndPunctuator) {
-  const auto lexed = lex("( ) [ ] { } ; , . : ? @ -> + - * / % ++ -- << >> < > <= >= == != & ^ | && ^^ || ! ~ "
-                         "= *= /= %= += -= <<= >>= &= ^= |=");
+  const auto lexed =
+      lex("( ) [ ] { } ; , . : ? @ -> + - * / % ++ -- << >> < > <= >= == != & ^ | && ^^ || ! ~ "
+          "= *= /= %= += -= <<= >>= &= ^= |=");
   std::vector<K> expected;
   for (auto k = static_cast<int>(K::LParen); k <= static_cast<int>(K::PipeAssign); ++k) {
     expected.push_back(static_cast<K>(k));
@@ -71,8 +73,7 @@ TEST(Lexer, EveryOperatorAndPunctuator) {
 TEST(Lexer, LongestMatchWins) {
   EXPECT_EQ(lex("a<<=b>>=c")->kinds(),
             (std::vector<K>{K::Identifier, K::ShlAssign, K::Identifier, K::ShrAssign, K::Identifier, K::EndOfFile}));
-  EXPECT_EQ(lex("x+++y")->kinds(),
-            (std::vector<K>{K::Identifier, K::PlusPlus, K::Plus, K::Identifier, K::EndOfFile}));
+  EXPECT_EQ(lex("x+++y")->kinds(), (std::vector<K>{K::Identifier, K::PlusPlus, K::Plus, K::Identifier, K::EndOfFile}));
   EXPECT_EQ(lex("A->B")->kinds(), (std::vector<K>{K::Identifier, K::Arrow, K::Identifier, K::EndOfFile}));
   EXPECT_EQ(lex("a^^b^c")->kinds(),
             (std::vector<K>{K::Identifier, K::CaretCaret, K::Identifier, K::Caret, K::Identifier, K::EndOfFile}));
@@ -83,8 +84,8 @@ TEST(Lexer, LongestMatchWins) {
 TEST(Lexer, IntegerLiterals) {
   const auto lexed = lex("0 42 0x1F 0XffU 017 10u 4294967295 0xFFFFFFFF");
   EXPECT_TRUE(lexed->diags.all().empty());
-  const std::vector<std::pair<uint64_t, bool>> expected = {{0, false},  {42, false},         {31, false},
-                                                           {255, true}, {15, false},         {10, true},
+  const std::vector<std::pair<uint64_t, bool>> expected = {{0, false},           {42, false},         {31, false},
+                                                           {255, true},          {15, false},         {10, true},
                                                            {4294967295u, false}, {0xFFFFFFFFu, false}};
   ASSERT_EQ(lexed->tokens.size(), expected.size() + 1);
   for (size_t i = 0; i < expected.size(); ++i) {
@@ -108,17 +109,16 @@ TEST(Lexer, FloatLiterals) {
 
 TEST(Lexer, MalformedNumbersAreOneErrorEach) {
   const auto lexed = lex("1.0lf 1e 0x 09 1abc 2f 1.5u 3.0LF x");
-  EXPECT_EQ(lexed->diagnostics(),
-            (std::vector<std::string>{
-                "E1004 1:1 double-precision literals are not supported; drop the 'lf' suffix",
-                "E1004 1:7 exponent has no digits",
-                "E1004 1:10 hexadecimal literal has no digits",
-                "E1004 1:13 invalid digit '9' in octal literal",
-                "E1004 1:16 invalid suffix 'abc' on integer literal",
-                "E1004 1:21 invalid suffix 'f' on integer literal",
-                "E1004 1:24 invalid suffix 'u' on floating-point literal",
-                "E1004 1:29 double-precision literals are not supported; drop the 'lf' suffix",
-            }));
+  EXPECT_EQ(lexed->diagnostics(), (std::vector<std::string>{
+                                      "E1004 1:1 double-precision literals are not supported; drop the 'lf' suffix",
+                                      "E1004 1:7 exponent has no digits",
+                                      "E1004 1:10 hexadecimal literal has no digits",
+                                      "E1004 1:13 invalid digit '9' in octal literal",
+                                      "E1004 1:16 invalid suffix 'abc' on integer literal",
+                                      "E1004 1:21 invalid suffix 'f' on integer literal",
+                                      "E1004 1:24 invalid suffix 'u' on floating-point literal",
+                                      "E1004 1:29 double-precision literals are not supported; drop the 'lf' suffix",
+                                  }));
   ASSERT_EQ(lexed->tokens.size(), 10u);
   for (size_t i = 0; i < 8; ++i) EXPECT_TRUE(lexed->tokens[i].malformed) << lexed->tokens[i].text;
   EXPECT_EQ(lexed->tokens[8].kind, K::Identifier);
@@ -127,14 +127,13 @@ TEST(Lexer, MalformedNumbersAreOneErrorEach) {
 
 TEST(Lexer, OutOfRangeLiterals) {
   const auto lexed = lex("4294967296 0x100000000 99999999999999999999999 1e39 1e400 3.4e38");
-  EXPECT_EQ(lexed->diagnostics(),
-            (std::vector<std::string>{
-                "E1005 1:1 integer literal '4294967296' does not fit in 32 bits",
-                "E1005 1:12 integer literal '0x100000000' does not fit in 32 bits",
-                "E1005 1:24 integer literal '99999999999999999999999' does not fit in 32 bits",
-                "E1005 1:48 floating-point literal '1e39' is out of range for 'float'",
-                "E1005 1:53 floating-point literal '1e400' is out of range for 'float'",
-            }));
+  EXPECT_EQ(lexed->diagnostics(), (std::vector<std::string>{
+                                      "E1005 1:1 integer literal '4294967296' does not fit in 32 bits",
+                                      "E1005 1:12 integer literal '0x100000000' does not fit in 32 bits",
+                                      "E1005 1:24 integer literal '99999999999999999999999' does not fit in 32 bits",
+                                      "E1005 1:48 floating-point literal '1e39' is out of range for 'float'",
+                                      "E1005 1:53 floating-point literal '1e400' is out of range for 'float'",
+                                  }));
   EXPECT_FALSE(lexed->tokens[5].malformed);
 }
 

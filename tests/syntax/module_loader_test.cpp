@@ -86,10 +86,9 @@ TEST(ModuleLoader, LogicalNamesAreRelativeToTheInputsFolderOrTheIncludeDirectory
   EXPECT_TRUE(loader.loadFile("src/main.spire", l.program));
   EXPECT_TRUE(loader.loadFile("src/./../src/other.spire", l.program));
   EXPECT_EQ(l.diagnostics(), Lines{});
-  EXPECT_EQ(l.modulePaths(),
-            (Lines{"shared/s.spire", "inc/sub/util.spire", "inc/std.spire", "src/main.spire", "src/./../src/other.spire"}));
-  EXPECT_EQ(l.logicalNames(),
-            (Lines{"../shared/s.spire", "sub/util.spire", "std.spire", "main.spire", "other.spire"}));
+  EXPECT_EQ(l.modulePaths(), (Lines{"shared/s.spire", "inc/sub/util.spire", "inc/std.spire", "src/main.spire",
+                                    "src/./../src/other.spire"}));
+  EXPECT_EQ(l.logicalNames(), (Lines{"../shared/s.spire", "sub/util.spire", "std.spire", "main.spire", "other.spire"}));
 }
 
 TEST(ModuleLoader, EachFileLoadsOnceWhateverThePathSpelling) {

@@ -95,8 +95,7 @@ TEST(ParserRecovery, ANewDeclarationEndsAnUnclosedBody) {
 
 TEST(ParserRecovery, AFunctionHeaderEndsAnUnclosedBlock) {
   const auto parsed = test::parse("void f() {\n  int x;\n\nfloat g(float x) {\n  return x;\n}\n");
-  EXPECT_EQ(parsed->diagnostics(),
-            (Lines{"E2001 2:9 expected '}' at end of block", "  note 1:10 to match this '{'"}));
+  EXPECT_EQ(parsed->diagnostics(), (Lines{"E2001 2:9 expected '}' at end of block", "  note 1:10 to match this '{'"}));
   EXPECT_EQ(parsed->module->decls.size(), 2u);
 }
 
@@ -204,10 +203,12 @@ TEST(ParserRecovery, NestingLimitIsConfigurable) {
 // printing it again gives source without syntax errors.
 TEST(ParserRecovery, RandomTokenSoupTerminatesWithAPrintableTree) {
   const std::vector<std::string> vocabulary = {
-      "shader", "pipeline", "group", "struct", "world", "import", "abstract", "export", "using", "optional",
-      "finalizes", "if", "else", "for", "while", "do", "return", "break", "discard", "const", "in", "out",
-      "float", "vec4", "x", "y", "S", "P", "W", "1", "2.0", "\"s\"", "(", ")", "[", "]", "{", "}", ";", ",",
-      ".", ":", "?", "@", "->", "+", "-", "*", "=", "+=", "++", "<", "&&", "!", "$"};
+      "shader",    "pipeline", "group", "struct", "world", "import", "abstract", "export", "using",   "optional",
+      "finalizes", "if",       "else",  "for",    "while", "do",     "return",   "break",  "discard", "const",
+      "in",        "out",      "float", "vec4",   "x",     "y",      "S",        "P",      "W",       "1",
+      "2.0",       "\"s\"",    "(",     ")",      "[",     "]",      "{",        "}",      ";",       ",",
+      ".",         ":",        "?",     "@",      "->",    "+",      "-",        "*",      "=",       "+=",
+      "++",        "<",        "&&",    "!",      "$"};
   std::mt19937 random(20160724);
   for (int round = 0; round < 300; ++round) {
     std::string source;

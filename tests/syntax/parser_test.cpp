@@ -73,7 +73,8 @@ TEST(Parser, FunctionsAndParameters) {
 }
 
 TEST(Parser, PipelineDeclaration) {
-  EXPECT_EQ(dumpDecls(R"(pipeline P {
+  EXPECT_EQ(
+      dumpDecls(R"(pipeline P {
       abstract world U;
       [Doc: "gpu"] world V : "GLSL" export vertexExport(projPos);
       world F : "GLSL";
@@ -83,15 +84,15 @@ TEST(Parser, PipelineDeclaration) {
       @U vec3 pos;
       abstract export @F vec4 output;
     })"),
-            "  (pipeline P\n"
-            "    (world U abstract)\n"
-            "    (world V (attribute Doc \"gpu\") (language \"GLSL\") (export (strategy vertexExport (name projPos))))\n"
-            "    (world F (language \"GLSL\"))\n"
-            "    (world X (export (strategy bufferExport)))\n"
-            "    (import U V (strategy uniformImport))\n"
-            "    (import V F (attribute Cached) (strategy textureImport (name uv) (int 2 \"2\")))\n"
-            "    (component pos (world U) (type vec3))\n"
-            "    (component output abstract export (world F) (type vec4)))");
+      "  (pipeline P\n"
+      "    (world U abstract)\n"
+      "    (world V (attribute Doc \"gpu\") (language \"GLSL\") (export (strategy vertexExport (name projPos))))\n"
+      "    (world F (language \"GLSL\"))\n"
+      "    (world X (export (strategy bufferExport)))\n"
+      "    (import U V (strategy uniformImport))\n"
+      "    (import V F (attribute Cached) (strategy textureImport (name uv) (int 2 \"2\")))\n"
+      "    (component pos (world U) (type vec3))\n"
+      "    (component output abstract export (world F) (type vec4)))");
 }
 
 TEST(Parser, PipelineRanges) {
@@ -170,7 +171,8 @@ TEST(Parser, SplitComponentsGetTheirOwnTypeCopiesAndRanges) {
 }
 
 TEST(Parser, Statements) {
-  EXPECT_EQ(dumpDecls(R"(void f() {
+  EXPECT_EQ(
+      dumpDecls(R"(void f() {
       const float a = 1.0, b[2];
       x = 1;
       ;
@@ -184,37 +186,37 @@ TEST(Parser, Statements) {
       return;
       return x, y;
     })"),
-            "  (function f (type void)\n"
-            "    (block\n"
-            "      (var const (type float) (declarator a (init (float 1 \"1.0\"))) (declarator b (dims (int 2 \"2\"))))\n"
-            "      (expr (assign = (name x) (int 1 \"1\")))\n"
-            "      (empty)\n"
-            "      (block)\n"
-            "      (if (name p)\n"
-            "        (expr (assign = (name x) (int 1 \"1\")))\n"
-            "        (else\n"
-            "          (if (name q)\n"
-            "            (block)\n"
-            "            (else\n"
-            "              (discard)))))\n"
-            "      (for\n"
-            "        (init\n"
-            "          (var (type int) (declarator i (init (int 0 \"0\")))))\n"
-            "        (condition (binary < (name i) (int 3 \"3\")))\n"
-            "        (step (unary pre++ (name i)))\n"
-            "        (continue))\n"
-            "      (for\n"
-            "        (init\n"
-            "          (expr (binary , (assign = (name i) (int 0 \"0\")) (assign = (name j) (int 1 \"1\")))))\n"
-            "        (break))\n"
-            "      (for\n"
-            "        (block))\n"
-            "      (while (name p)\n"
-            "        (expr (unary post++ (name x))))\n"
-            "      (do-while (binary > (name x) (int 0 \"0\"))\n"
-            "        (expr (unary post-- (name x))))\n"
-            "      (return)\n"
-            "      (return (binary , (name x) (name y)))))");
+      "  (function f (type void)\n"
+      "    (block\n"
+      "      (var const (type float) (declarator a (init (float 1 \"1.0\"))) (declarator b (dims (int 2 \"2\"))))\n"
+      "      (expr (assign = (name x) (int 1 \"1\")))\n"
+      "      (empty)\n"
+      "      (block)\n"
+      "      (if (name p)\n"
+      "        (expr (assign = (name x) (int 1 \"1\")))\n"
+      "        (else\n"
+      "          (if (name q)\n"
+      "            (block)\n"
+      "            (else\n"
+      "              (discard)))))\n"
+      "      (for\n"
+      "        (init\n"
+      "          (var (type int) (declarator i (init (int 0 \"0\")))))\n"
+      "        (condition (binary < (name i) (int 3 \"3\")))\n"
+      "        (step (unary pre++ (name i)))\n"
+      "        (continue))\n"
+      "      (for\n"
+      "        (init\n"
+      "          (expr (binary , (assign = (name i) (int 0 \"0\")) (assign = (name j) (int 1 \"1\")))))\n"
+      "        (break))\n"
+      "      (for\n"
+      "        (block))\n"
+      "      (while (name p)\n"
+      "        (expr (unary post++ (name x))))\n"
+      "      (do-while (binary > (name x) (int 0 \"0\"))\n"
+      "        (expr (unary post-- (name x))))\n"
+      "      (return)\n"
+      "      (return (binary , (name x) (name y)))))");
 }
 
 TEST(Parser, DanglingElseBindsToTheNearestIf) {
@@ -274,12 +276,9 @@ TEST(Parser, Associativity) {
   EXPECT_EQ(dumpOf("a < b < c"), "(binary < (binary < (name a) (name b)) (name c))");
   EXPECT_EQ(dumpOf("a, b, c"), "(binary , (binary , (name a) (name b)) (name c))");
   EXPECT_EQ(dumpOf("a = b += c"), "(assign = (name a) (assign += (name b) (name c)))");
-  EXPECT_EQ(dumpOf("a ? b : c ? d : e"),
-            "(ternary (name a) (name b) (ternary (name c) (name d) (name e)))");
-  EXPECT_EQ(dumpOf("a ? b, c : d = e"),
-            "(ternary (name a) (binary , (name b) (name c)) (assign = (name d) (name e)))");
-  EXPECT_EQ(dumpOf("a.b.c[1][2]"),
-            "(index (index (member (member (name a) b) c) (int 1 \"1\")) (int 2 \"2\"))");
+  EXPECT_EQ(dumpOf("a ? b : c ? d : e"), "(ternary (name a) (name b) (ternary (name c) (name d) (name e)))");
+  EXPECT_EQ(dumpOf("a ? b, c : d = e"), "(ternary (name a) (binary , (name b) (name c)) (assign = (name d) (name e)))");
+  EXPECT_EQ(dumpOf("a.b.c[1][2]"), "(index (index (member (member (name a) b) c) (int 1 \"1\")) (int 2 \"2\"))");
 }
 
 TEST(Parser, EveryAssignmentOperator) {
@@ -300,7 +299,8 @@ TEST(Parser, CallsAndConstructors) {
 }
 
 TEST(Parser, Literals) {
-  EXPECT_EQ(dumpOf("0x1Fu + 017 + 2"), "(binary + (binary + (int 31 \"0x1Fu\" unsigned) (int 15 \"017\")) (int 2 \"2\"))");
+  EXPECT_EQ(dumpOf("0x1Fu + 017 + 2"),
+            "(binary + (binary + (int 31 \"0x1Fu\" unsigned) (int 15 \"017\")) (int 2 \"2\"))");
   EXPECT_EQ(dumpOf(".5 + 2.f + 1e-3"),
             "(binary + (binary + (float 0.5 \".5\") (float 2 \"2.f\")) (float 0.001 \"1e-3\"))");
   EXPECT_EQ(dumpOf("true != false"), "(binary != (bool true) (bool false))");

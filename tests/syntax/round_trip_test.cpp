@@ -65,11 +65,14 @@ TEST(RoundTrip, LongOperatorChains) {
     sum += i % 5 == 0 ? " - (a + b) * c" : i % 3 == 0 ? " / d" : " + a";
     size += "+1";
   }
-  expectRoundTrip("void f() { x = " + sum + "; y = (" + sum + ", a) << b; }\n"
-                  "struct S { float[" + size + "] a, b; };",
+  expectRoundTrip("void f() { x = " + sum + "; y = (" + sum +
+                      ", a) << b; }\n"
+                      "struct S { float[" +
+                      size + "] a, b; };",
                   "long chains");
-  EXPECT_EQ(test::dumpOf("(a - b) * c - d / (e + f)"),
-            "(binary - (binary * (binary - (name a) (name b)) (name c)) (binary / (name d) (binary + (name e) (name f))))");
+  EXPECT_EQ(
+      test::dumpOf("(a - b) * c - d / (e + f)"),
+      "(binary - (binary * (binary - (name a) (name b)) (name c)) (binary / (name d) (binary + (name e) (name f))))");
 }
 
 // The examples of docs/language.md must be valid, too.

@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -241,9 +241,18 @@ TEST_F(TuneRun, SelectsLayoutsForTextureBakesOnly) {
 TEST_F(TuneRun, WritesEveryOutputAndResumes) {
   const fs::path dir = fs::temp_directory_path() / ("spire_tune_run_" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  const std::vector<std::string> args{"examples/scenes/terrain.json", "--shader", "Terrain", "--components",
-                                      "albedo,lighting", "--jobs", "1", "--bake-size", "64", "--validation",
-                                      "-o", dir.string()};
+  const std::vector<std::string> args{"examples/scenes/terrain.json",
+                                      "--shader",
+                                      "Terrain",
+                                      "--components",
+                                      "albedo,lighting",
+                                      "--jobs",
+                                      "1",
+                                      "--bake-size",
+                                      "64",
+                                      "--validation",
+                                      "-o",
+                                      dir.string()};
   std::ostringstream out;
   std::ostringstream err;
   const auto cacheDir = environment("MESA_SHADER_CACHE_DIR");
@@ -352,8 +361,8 @@ TEST_F(TuneRun, ShaderCacheModesCleanUpAfterThemselves) {
   for (const char* mode : {"run", "off", "inherit"}) {
     std::ostringstream out;
     std::ostringstream err;
-    EXPECT_EQ(runTune({"tests/data/engine/stability/user_divide.json", "--shader", "UserDivide", "--shader-cache",
-                       mode, "--validation", "-o", (dir / mode).string()},
+    EXPECT_EQ(runTune({"tests/data/engine/stability/user_divide.json", "--shader", "UserDivide", "--shader-cache", mode,
+                       "--validation", "-o", (dir / mode).string()},
                       out, err),
               0)
         << mode << ": " << err.str();
@@ -368,8 +377,10 @@ TEST_F(TuneRun, ShaderCacheModesCleanUpAfterThemselves) {
                     out, err),
             2);
   EXPECT_NE(err.str().find("--shader-cache"), std::string::npos) << err.str();
-  if (tmpdir) ::setenv("TMPDIR", tmpdir->c_str(), 1);
-  else ::unsetenv("TMPDIR");
+  if (tmpdir)
+    ::setenv("TMPDIR", tmpdir->c_str(), 1);
+  else
+    ::unsetenv("TMPDIR");
   fs::remove_all(dir);
 }
 

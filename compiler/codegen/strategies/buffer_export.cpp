@@ -16,7 +16,7 @@ class BufferExport final : public Strategy {
     KernelBuilder& kernel = site.producer;
     if (kernel.stage() != ShaderStage::Compute) {
       return Failure{fmt::format("bufferExport writes per invocation and needs world '{}' to be a compute kernel",
-                         kernel.world())};
+                                 kernel.world())};
     }
     if (site.values.empty()) return {};
     std::vector<KernelValue> members = site.values;
@@ -27,8 +27,8 @@ class BufferExport final : public Strategy {
                                 block.recordsName));
     for (size_t i = 0; i < site.values.size(); ++i) {
       const KernelValue& v = site.values[i];
-      kernel.addStore(fmt::format("{}[gl_GlobalInvocationID.x].{} = {};", block.recordsName, members[i].glslName,
-                                  v.glslName));
+      kernel.addStore(
+          fmt::format("{}[gl_GlobalInvocationID.x].{} = {};", block.recordsName, members[i].glslName, v.glslName));
       reflection::KernelOutput entry = exportEntry(v, reflection::OutputKind::BufferMember, "bufferExport");
       entry.slot = slotAt(kernel, block.binding);
       entry.block = block.blockName;
@@ -39,8 +39,8 @@ class BufferExport final : public Strategy {
   }
 
  private:
-  sem::StrategySignature signature_ = makeSignature("bufferExport", sem::StrategyRole::Export, {},
-                                                    "std430 storage buffer written per invocation");
+  sem::StrategySignature signature_ =
+      makeSignature("bufferExport", sem::StrategyRole::Export, {}, "std430 storage buffer written per invocation");
 };
 
 }  // namespace

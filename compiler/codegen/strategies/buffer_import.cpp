@@ -18,9 +18,10 @@ class BufferImport final : public Strategy {
       case ShaderStage::Vertex: index = "gl_VertexIndex"; break;
       case ShaderStage::Compute: index = "gl_GlobalInvocationID.x"; break;
       case ShaderStage::Fragment:
-        return Failure{fmt::format("bufferImport reads one record per vertex or invocation and cannot feed the fragment "
-                           "world '{}'",
-                           kernel.world())};
+        return Failure{
+            fmt::format("bufferImport reads one record per vertex or invocation and cannot feed the fragment "
+                        "world '{}'",
+                        kernel.world())};
     }
     const std::string& from = site.pipeline.worlds[site.import.from].name;
     // The record is the producer's whole record, so its layout matches what

@@ -14,9 +14,10 @@ class StandardImport final : public Strategy {
   Expected<void, Failure> emitImport(ImportSite& site) const override {
     KernelBuilder& kernel = site.consumer;
     if (kernel.stage() == ShaderStage::Compute) {
-      return Failure{fmt::format("standardImport cannot feed world '{}': a compute kernel has no 'in' variables; use "
-                         "bufferImport",
-                         kernel.world())};
+      return Failure{
+          fmt::format("standardImport cannot feed world '{}': a compute kernel has no 'in' variables; use "
+                      "bufferImport",
+                      kernel.world())};
     }
     for (const KernelValue& v : site.values) {
       if (auto checked = checkVarying(v, "standardImport"); !checked) return checked;

@@ -76,8 +76,8 @@ BlockDeclaration declareBlock(KernelBuilder& kernel, const std::string& hint, co
     offset = alignUp(offset, m.alignment);
     block.offsets.push_back(offset);
     members += fmt::format("    {};\n", kernel.declaration(v.type, v.glslName));
-    reflected.members.push_back({v.sourceName, v.glslName, reflectedType(v.type), offset, m.size, m.arrayStride,
-                                 m.matrixStride});
+    reflected.members.push_back(
+        {v.sourceName, v.glslName, reflectedType(v.type), offset, m.size, m.arrayStride, m.matrixStride});
     offset += m.size;
     alignment = std::max(alignment, m.alignment);
   }
@@ -93,9 +93,9 @@ BlockDeclaration declareBlock(KernelBuilder& kernel, const std::string& hint, co
     block.recordType = kernel.names().generate(hint + "_record");
     block.recordsName = kernel.names().generate(hint + "_records");
     kernel.declare(fmt::format("struct {} {{\n{}}};", block.recordType, members));
-    kernel.declare(fmt::format("layout(set = {}, binding = {}, {}) {} {} {{\n    {} {}[];\n}};",
-                               kernel.descriptorSet(), block.binding, layoutName, qualifier, block.blockName,
-                               block.recordType, block.recordsName));
+    kernel.declare(fmt::format("layout(set = {}, binding = {}, {}) {} {} {{\n    {} {}[];\n}};", kernel.descriptorSet(),
+                               block.binding, layoutName, qualifier, block.blockName, block.recordType,
+                               block.recordsName));
     reflected.recordStride = alignUp(offset, layout == BlockLayout::Std140 ? std::max(alignment, 16u) : alignment);
   } else {
     kernel.declare(fmt::format("layout(set = {}, binding = {}, {}) {} {} {{\n{}}};", kernel.descriptorSet(),
@@ -115,9 +115,10 @@ Expected<void, Failure> checkVarying(const KernelValue& value, std::string_view 
   const sem::Type* base = value.type;
   while (base->isArray()) base = base->element;
   if (base->isNumericShape() && base->scalar != sem::ScalarKind::Bool) return {};
-  return Failure{fmt::format("{} cannot carry '{}' of type '{}' between stages (only numeric scalars, vectors, matrices "
-                     "and arrays of them)",
-                     strategy, value.sourceName, value.type->name())};
+  return Failure{
+      fmt::format("{} cannot carry '{}' of type '{}' between stages (only numeric scalars, vectors, matrices "
+                  "and arrays of them)",
+                  strategy, value.sourceName, value.type->name())};
 }
 
 }  // namespace spire::codegen
@@ -131,8 +132,8 @@ Expected<bool, Failure> checkEncoding(const KernelValue& value) {
     // or the decisions were read.
     if (name != "Encoding" || text != "signed") continue;
     if (!(value.type->isScalar() || value.type->isVector()) || value.type->scalar != sem::ScalarKind::Float) {
-      return Failure{fmt::format("Encoding \"signed\" needs a float scalar or vector, not '{}' of type '{}'", value.sourceName,
-                         value.type->name())};
+      return Failure{fmt::format("Encoding \"signed\" needs a float scalar or vector, not '{}' of type '{}'",
+                                 value.sourceName, value.type->name())};
     }
     isSigned = true;
   }
@@ -145,9 +146,10 @@ Expected<void, Failure> emitOutVariables(ExportSite& site, std::string_view stra
     const KernelValue& v = site.values[i];
     if (auto checked = checkVarying(v, strategy); !checked) return checked;
     if (kernel.stage() == ShaderStage::Fragment && (v.type->isMatrix() || v.type->isArray())) {
-      return Failure{fmt::format("{} cannot write '{}' of type '{}' from fragment world '{}': fragment outputs are scalars "
-                         "and vectors",
-                         strategy, v.sourceName, v.type->name(), kernel.world())};
+      return Failure{
+          fmt::format("{} cannot write '{}' of type '{}' from fragment world '{}': fragment outputs are scalars "
+                      "and vectors",
+                      strategy, v.sourceName, v.type->name(), kernel.world())};
     }
     const std::string out = kernel.names().generate("out_" + v.glslName);
     const bool flat = kernel.stage() == ShaderStage::Vertex && needsFlat(v.type);
@@ -156,7 +158,7 @@ Expected<void, Failure> emitOutVariables(ExportSite& site, std::string_view stra
     const auto encodeSigned = checkEncoding(v);
     if (!encodeSigned) return encodeSigned.error();
     kernel.addStore(*encodeSigned ? fmt::format("{} = {} * 0.5 + 0.5;", out, v.glslName)
-                                 : fmt::format("{} = {};", out, v.glslName));
+                                  : fmt::format("{} = {};", out, v.glslName));
     reflection::KernelOutput entry = exportEntry(v, reflection::OutputKind::Varying, strategy);
     entry.glslName = out;
     entry.location = site.locations[i];

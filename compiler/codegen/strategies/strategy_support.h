@@ -10,9 +10,8 @@
 namespace spire::codegen {
 
 // A signature built in place, for Strategy::signature() implementations.
-sem::StrategySignature makeSignature(std::string name, sem::StrategyRole role,
-                                     std::vector<sem::StrategyParam> params, std::string summary,
-                                     sem::ValueTransfer transfer = sem::ValueTransfer::Exact,
+sem::StrategySignature makeSignature(std::string name, sem::StrategyRole role, std::vector<sem::StrategyParam> params,
+                                     std::string summary, sem::ValueTransfer transfer = sem::ValueTransfer::Exact,
                                      bool usesLocations = false, bool carriesOpaque = false);
 
 // The reflected form of a value's type.
@@ -31,8 +30,8 @@ reflection::DescriptorSlot slotAt(const KernelBuilder& kernel, uint32_t binding)
 // record struct and the block holds a runtime array `records` of it.
 struct BlockDeclaration {
   std::string blockName;
-  std::string recordType;     // buffers only
-  std::string recordsName;    // buffers only
+  std::string recordType;   // buffers only
+  std::string recordsName;  // buffers only
   uint32_t binding = 0;
   std::vector<uint32_t> offsets;  // per value
 };

@@ -18,7 +18,7 @@ class TextureImport final : public Strategy {
       const sem::Type* t = v.type;
       if (!(t->isScalar() || t->isVector()) || t->scalar != sem::ScalarKind::Float) {
         return Failure{fmt::format("textureImport can only carry float scalars and vectors, not '{}' of type '{}'",
-                           v.sourceName, t->name())};
+                                   v.sourceName, t->name())};
       }
       static constexpr std::string_view kSwizzles[] = {"", ".x", ".xy", ".xyz", ""};
       const std::string sampler = kernel.names().generate("tex_" + v.glslName);
@@ -30,7 +30,7 @@ class TextureImport final : public Strategy {
       if (!encodedSigned) return encodedSigned.error();
       const std::string fetch = fmt::format("texture({}, {}){}", sampler, uv, kSwizzles[t->rows]);
       kernel.addFetch(*encodedSigned ? fmt::format("{} = {} * 2.0 - 1.0;", v.glslName, fetch)
-                                    : fmt::format("{} = {};", v.glslName, fetch));
+                                     : fmt::format("{} = {};", v.glslName, fetch));
       reflection::KernelInput entry = importEntry(site, v, reflection::InputKind::Texture, "textureImport");
       entry.slot = slotAt(kernel, binding);
       entry.sampler = sampler;
@@ -42,9 +42,9 @@ class TextureImport final : public Strategy {
   }
 
  private:
-  sem::StrategySignature signature_ = makeSignature("textureImport", sem::StrategyRole::Import, {{"uv", "vec2"}},
-                                                    "one sampler per component, fetched at uv",
-                                                    sem::ValueTransfer::Resampled);
+  sem::StrategySignature signature_ =
+      makeSignature("textureImport", sem::StrategyRole::Import, {{"uv", "vec2"}},
+                    "one sampler per component, fetched at uv", sem::ValueTransfer::Resampled);
 };
 
 }  // namespace

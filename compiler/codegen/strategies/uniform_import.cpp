@@ -30,7 +30,8 @@ class UniformImport final : public Strategy {
     if (plain.empty()) return {};
     const BlockDeclaration block = declareBlock(kernel, from, plain, BlockLayout::Std140, "uniform", "uniformImport");
     for (size_t i = 0; i < plain.size(); ++i) {
-      reflection::KernelInput entry = importEntry(site, plain[i], reflection::InputKind::UniformMember, "uniformImport");
+      reflection::KernelInput entry =
+          importEntry(site, plain[i], reflection::InputKind::UniformMember, "uniformImport");
       entry.slot = slotAt(kernel, block.binding);
       entry.block = block.blockName;
       entry.offset = block.offsets[i];

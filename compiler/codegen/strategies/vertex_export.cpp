@@ -23,9 +23,9 @@ class VertexExport final : public Strategy {
   }
 
  private:
-  sem::StrategySignature signature_ = makeSignature("vertexExport", sem::StrategyRole::Export, {{"position", "vec4"}},
-                                                    "'out' variables plus gl_Position",
-                                                    sem::ValueTransfer::Exact, true);
+  sem::StrategySignature signature_ =
+      makeSignature("vertexExport", sem::StrategyRole::Export, {{"position", "vec4"}},
+                    "'out' variables plus gl_Position", sem::ValueTransfer::Exact, true);
 };
 
 }  // namespace
