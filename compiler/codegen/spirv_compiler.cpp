@@ -95,8 +95,8 @@ SpirvResult compileGlslToSpirv(ShaderStage stage, std::string_view glsl, std::st
   return result;
 }
 
-std::optional<std::string> validateSpirv(const std::vector<uint32_t>& words) {
-  if (words.empty()) return std::string("empty SPIR-V module");
+Expected<void, Failure> validateSpirv(const std::vector<uint32_t>& words) {
+  if (words.empty()) return Failure{"empty SPIR-V module"};
 
   std::string message;
   spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_2);
@@ -118,9 +118,9 @@ std::optional<std::string> validateSpirv(const std::vector<uint32_t>& words) {
         message += "): ";
         message += text == nullptr ? "" : text;
       });
-  if (tools.Validate(words.data(), words.size())) return std::nullopt;
+  if (tools.Validate(words.data(), words.size())) return {};
   if (message.empty()) message = "invalid SPIR-V module";
-  return message;
+  return Failure{message};
 }
 
 }  // namespace spire::codegen

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "reflection/reflection.h"
+#include "support/expected.h"
 
 namespace spire::codegen {
 
@@ -33,9 +34,8 @@ struct SpirvResult {
 // happens once, on first use, and is never torn down.
 SpirvResult compileGlslToSpirv(ShaderStage stage, std::string_view glsl, std::string_view sourceName);
 
-// Validates SPIR-V for the Vulkan 1.2 environment with SPIRV-Tools. Returns
-// std::nullopt when the module is valid, otherwise the validator's message.
-// Thread-safe.
-std::optional<std::string> validateSpirv(const std::vector<uint32_t>& words);
+// Validates SPIR-V for the Vulkan 1.2 environment with SPIRV-Tools; an error
+// with the validator's message when the module is invalid. Thread-safe.
+Expected<void, Failure> validateSpirv(const std::vector<uint32_t>& words);
 
 }  // namespace spire::codegen

@@ -47,8 +47,8 @@ bool compileKernel(const codegen::Kernel& generated, const sem::Shader& shader, 
                    const std::string& directory, CompiledKernel& kernel, DiagnosticList& diags) {
   const codegen::SpirvResult spirv =
       codegen::compileGlslToSpirv(generated.stage, generated.glsl, generated.reflection.glslFile);
-  const std::optional<std::string> invalid = spirv.ok() ? codegen::validateSpirv(spirv.words) : std::nullopt;
-  if (spirv.ok() && !invalid) {
+  const Expected<void, Failure> valid = spirv.ok() ? codegen::validateSpirv(spirv.words) : Failure{spirv.log};
+  if (valid) {
     kernel.spirv = spirv.words;
     return true;
   }
@@ -56,7 +56,7 @@ bool compileKernel(const codegen::Kernel& generated, const sem::Shader& shader, 
       .report(DiagCode::E6002, shader.decl->nameRange,
               fmt::format("internal error: the generated {} kernel of '{}' was rejected; this is a spirec bug",
                           generated.world, shader.name))
-      .note({}, spirv.ok() ? *invalid : spirv.log)
+      .note({}, valid.error().message)
       .note({}, saveRejected(generated, options.saveRejectedTo, directory));
   return false;
 }

@@ -363,8 +363,8 @@ const Type* BodyChecker::checkConstructorCall(const ast::CallExpr& e, const Type
     }
     return target;
   }
-  if (auto problem = checkConstructor(target, args)) {
-    diags_.report(DiagCode::E3010, e.range, *problem);
+  if (auto constructible = checkConstructor(target, args); !constructible) {
+    diags_.report(DiagCode::E3010, e.range, constructible.error().message);
     return model_.types().error();
   }
   return target;

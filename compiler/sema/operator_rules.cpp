@@ -125,43 +125,46 @@ const Type* unaryResultType(ast::UnaryOp op, const Type* operand) {
   return nullptr;
 }
 
-std::optional<std::string> checkConstructor(const Type* target, const std::vector<const Type*>& args) {
+Expected<void, Failure> checkConstructor(const Type* target, const std::vector<const Type*>& args) {
   if (target->isVoid() || target->isSampler()) {
-    return fmt::format("values of type '{}' cannot be constructed", target->name());
+    return Failure{fmt::format("values of type '{}' cannot be constructed", target->name())};
   }
-  if (args.empty()) return fmt::format("constructor for '{}' needs at least one argument", target->name());
+  if (args.empty()) return Failure{fmt::format("constructor for '{}' needs at least one argument", target->name())};
   for (const Type* arg : args) {
     if (!arg->isNumericShape()) {
-      return fmt::format("cannot construct '{}' from a value of type '{}'", target->name(), arg->name());
+      return Failure{fmt::format("cannot construct '{}' from a value of type '{}'", target->name(), arg->name())};
     }
   }
   if (target->isScalar()) {
-    if (args.size() != 1) return fmt::format("constructor for '{}' takes exactly one argument", target->name());
-    return std::nullopt;
+    if (args.size() != 1)
+      return Failure{fmt::format("constructor for '{}' takes exactly one argument", target->name())};
+    return {};
   }
   const uint32_t needed = constructorComponents(target);
   // A single scalar fills a vector or sets a matrix diagonal; a single matrix
   // initializes a matrix from its overlapping part.
-  if (args.size() == 1 && (args[0]->isScalar() || (target->isMatrix() && args[0]->isMatrix()))) return std::nullopt;
+  if (args.size() == 1 && (args[0]->isScalar() || (target->isMatrix() && args[0]->isMatrix()))) return {};
   if (target->isMatrix()) {
     for (const Type* arg : args) {
-      if (arg->isMatrix()) return std::string("a matrix argument must be the only argument of a matrix constructor");
+      if (arg->isMatrix()) return Failure{"a matrix argument must be the only argument of a matrix constructor"};
     }
   }
   uint32_t supplied = 0;
   for (size_t i = 0; i < args.size(); ++i) {
     if (supplied >= needed) {
-      return fmt::format("too many arguments for '{}': argument {} is unused", target->name(), i + 1);
+      return Failure{fmt::format("too many arguments for '{}': argument {} is unused", target->name(), i + 1)};
     }
     supplied += constructorComponents(args[i]);
   }
   if (supplied < needed) {
-    return fmt::format("too few components for '{}': {} supplied, {} needed", target->name(), supplied, needed);
+    return Failure{
+        fmt::format("too few components for '{}': {} supplied, {} needed", target->name(), supplied, needed)};
   }
   if (target->isMatrix() && supplied != needed) {
-    return fmt::format("too many components for '{}': {} supplied, {} needed", target->name(), supplied, needed);
+    return Failure{
+        fmt::format("too many components for '{}': {} supplied, {} needed", target->name(), supplied, needed)};
   }
-  return std::nullopt;
+  return {};
 }
 
 ast::BinaryOp compoundOperator(ast::AssignOp op) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sema/type.h"
+#include "support/expected.h"
 #include "syntax/ast.h"
 
 namespace spire::sem {
@@ -22,9 +23,9 @@ const Type* unaryResultType(ast::UnaryOp op, const Type* operand);
 // The type both branches of `?:` (or both sides of `==`) convert to, or null.
 const Type* commonType(const Type* a, const Type* b);
 
-// Checks a built-in type constructor `target(args...)`; on failure returns a
-// message explaining why ("too few components ...").
-std::optional<std::string> checkConstructor(const Type* target, const std::vector<const Type*>& args);
+// Checks a built-in type constructor `target(args...)`; an error explaining
+// why it is not one ("too few components ...").
+Expected<void, Failure> checkConstructor(const Type* target, const std::vector<const Type*>& args);
 
 // The binary operator a compound assignment applies (`+=` -> `+`).
 ast::BinaryOp compoundOperator(ast::AssignOp op);

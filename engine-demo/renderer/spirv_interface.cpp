@@ -69,15 +69,17 @@ SpirvInterface reflectedInterface(const reflection::Kernel& kernel) {
   return out;
 }
 
-std::optional<std::string> compareLocations(const std::set<uint32_t>& spirv, const std::set<uint32_t>& reflected,
-                                            std::string_view what) {
+spire::Expected<void, Failure> compareLocations(const std::set<uint32_t>& spirv, const std::set<uint32_t>& reflected,
+                                                std::string_view what) {
   for (uint32_t l : spirv) {
-    if (!reflected.contains(l)) return fmt::format("it has an {} at location {} that the reflection lacks", what, l);
+    if (!reflected.contains(l))
+      return Failure{fmt::format("it has an {} at location {} that the reflection lacks", what, l)};
   }
   for (uint32_t l : reflected) {
-    if (!spirv.contains(l)) return fmt::format("the reflection has an {} at location {} that it lacks", what, l);
+    if (!spirv.contains(l))
+      return Failure{fmt::format("the reflection has an {} at location {} that it lacks", what, l)};
   }
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace
@@ -106,30 +108,30 @@ std::optional<SpirvInterface> readSpirvInterface(const std::vector<uint32_t>& wo
   return out;
 }
 
-std::optional<std::string> checkInterface(const std::vector<uint32_t>& words, const reflection::Kernel& kernel) {
+spire::Expected<void, Failure> checkInterface(const std::vector<uint32_t>& words, const reflection::Kernel& kernel) {
   const auto spirv = readSpirvInterface(words);
-  if (!spirv) return std::string("it is not a SPIR-V module");
+  if (!spirv) return Failure{"it is not a SPIR-V module"};
   const SpirvInterface reflected = reflectedInterface(kernel);
-  if (auto problem = compareLocations(spirv->inputLocations, reflected.inputLocations, "input")) return problem;
-  if (auto problem = compareLocations(spirv->outputLocations, reflected.outputLocations, "output")) return problem;
+  if (auto same = compareLocations(spirv->inputLocations, reflected.inputLocations, "input"); !same) return same;
+  if (auto same = compareLocations(spirv->outputLocations, reflected.outputLocations, "output"); !same) return same;
   for (const auto& [slot, kind] : spirv->descriptors) {
     const auto it = reflected.descriptors.find(slot);
     if (it == reflected.descriptors.end()) {
-      return fmt::format("it binds {} at set {}, binding {} that the reflection lacks", className(kind), slot.set,
-                         slot.binding);
+      return Failure{fmt::format("it binds {} at set {}, binding {} that the reflection lacks", className(kind),
+                                 slot.set, slot.binding)};
     }
     if (it->second != kind) {
-      return fmt::format("at set {}, binding {} it binds {}, the reflection {}", slot.set, slot.binding,
-                         className(kind), className(it->second));
+      return Failure{fmt::format("at set {}, binding {} it binds {}, the reflection {}", slot.set, slot.binding,
+                                 className(kind), className(it->second))};
     }
   }
   for (const auto& [slot, kind] : reflected.descriptors) {
     if (!spirv->descriptors.contains(slot)) {
-      return fmt::format("the reflection binds {} at set {}, binding {} that it lacks", className(kind), slot.set,
-                         slot.binding);
+      return Failure{fmt::format("the reflection binds {} at set {}, binding {} that it lacks", className(kind),
+                                 slot.set, slot.binding)};
     }
   }
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace spire::engine

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "reflection/reflection.h"
+#include "support/expected.h"
 
 namespace spire::engine {
 
@@ -27,8 +28,8 @@ struct SpirvInterface {
 // The interface of `words`, or nullopt when they are not a SPIR-V module.
 std::optional<SpirvInterface> readSpirvInterface(const std::vector<uint32_t>& words);
 
-// Compares a kernel's SPIR-V with its reflection; the first difference, or
-// nullopt when they agree.
-std::optional<std::string> checkInterface(const std::vector<uint32_t>& words, const reflection::Kernel& kernel);
+// Compares a kernel's SPIR-V with its reflection; an error naming the first
+// difference.
+spire::Expected<void, Failure> checkInterface(const std::vector<uint32_t>& words, const reflection::Kernel& kernel);
 
 }  // namespace spire::engine

@@ -35,14 +35,14 @@ std::string VariantProgram::fingerprint() const {
 namespace {
 
 // Input kinds a strategy may reflect that this engine has no way to supply.
-std::optional<std::string> unsupportedInput(const reflection::Kernel& kernel) {
+spire::Expected<void, Failure> supportedInputs(const reflection::Kernel& kernel) {
   for (const reflection::KernelInput& input : kernel.inputs) {
     if (input.kind == reflection::InputKind::PushConstant) {
-      return fmt::format("kernel '{}' reads '{}' as a push constant ({}), which this engine does not supply",
-                         kernel.world, input.component, input.strategy);
+      return Failure{fmt::format("kernel '{}' reads '{}' as a push constant ({}), which this engine does not supply",
+                                 kernel.world, input.component, input.strategy)};
     }
   }
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace
@@ -54,14 +54,15 @@ Expected<VariantProgram> makeProgram(const reflection::Variant& reflection,
   program.pipeline = reflection.pipeline;
   program.placement = reflection.placement;
   for (const reflection::Kernel& kernel : reflection.kernels) {
-    if (auto unsupported = unsupportedInput(kernel)) return Error{*unsupported, {}};
+    if (auto supported = supportedInputs(kernel); !supported) return Error(supported.error());
     const auto words = spirv.find(kernel.world);
     if (words == spirv.end() || words->second.empty()) {
       return Error{fmt::format("no SPIR-V for kernel '{}'", kernel.world), {}};
     }
     KernelProgram& added = program.kernels.emplace_back(KernelProgram{kernel, words->second});
-    if (auto mismatch = checkInterface(added.spirv, added)) {
-      return Error{fmt::format("the SPIR-V of kernel '{}' does not match its reflection: {}", kernel.world, *mismatch),
+    if (auto matching = checkInterface(added.spirv, added); !matching) {
+      return Error{fmt::format("the SPIR-V of kernel '{}' does not match its reflection: {}", kernel.world,
+                               matching.error().message),
                    {}};
     }
   }

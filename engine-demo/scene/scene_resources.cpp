@@ -36,13 +36,13 @@ Rgba8 toColor8(const glm::vec4& color) {
 
 std::string meshPrefix(const MeshDesc& desc) { return "mesh '" + desc.name + "': "; }
 
-std::optional<std::string> checkGrid(const MeshDesc& desc, uint64_t vertices) {
-  if (!std::isfinite(desc.size) || desc.size <= 0.0F) return "size must be a positive finite number";
+Expected<void> checkGrid(const MeshDesc& desc, uint64_t vertices) {
+  if (!std::isfinite(desc.size) || desc.size <= 0.0F) return Failure{"size must be a positive finite number"};
   if (vertices > kMaxGeneratedVertices) {
-    return "resolution " + std::to_string(desc.resolution) + " gives more than " +
-           std::to_string(kMaxGeneratedVertices) + " vertices";
+    return Failure{"resolution " + std::to_string(desc.resolution) + " gives more than " +
+                   std::to_string(kMaxGeneratedVertices) + " vertices"};
   }
-  return std::nullopt;
+  return {};
 }
 
 // All primitives of the file in one mesh, their indices rebased onto the
@@ -66,17 +66,17 @@ Expected<Mesh> mergeGltf(const MeshDesc& desc) {
   return merged;
 }
 
-std::optional<std::string> checkProcedural(const TextureDesc& desc) {
+Expected<void> checkProcedural(const TextureDesc& desc) {
   if (desc.size == 0 || desc.size > kMaxTextureSize) {
-    return "size " + std::to_string(desc.size) + " is outside [1, " + std::to_string(kMaxTextureSize) + "]";
+    return Failure{"size " + std::to_string(desc.size) + " is outside [1, " + std::to_string(kMaxTextureSize) + "]"};
   }
   if (desc.kind == TextureKind::Noise && desc.octaves > kMaxOctaves) {
-    return "octaves " + std::to_string(desc.octaves) + " is more than " + std::to_string(kMaxOctaves);
+    return Failure{"octaves " + std::to_string(desc.octaves) + " is more than " + std::to_string(kMaxOctaves)};
   }
   if (desc.kind == TextureKind::NormalMap && !std::isfinite(desc.strength)) {
-    return std::string("strength must be a finite number");
+    return Failure{std::string("strength must be a finite number")};
   }
-  return std::nullopt;
+  return {};
 }
 
 Image colorizeNoise(Image noise, const glm::vec4& color, const glm::vec4& color2) {
@@ -96,12 +96,12 @@ Expected<Mesh> buildMesh(const MeshDesc& desc) {
   uint64_t gridVertices = (uint64_t{desc.resolution} + 1) * (uint64_t{desc.resolution} + 1);
   switch (desc.kind) {
     case MeshKind::Terrain:
-      if (auto error = checkGrid(desc, gridVertices)) return Error{meshPrefix(desc) + *error};
+      if (auto grid = checkGrid(desc, gridVertices); !grid) return Error{meshPrefix(desc) + grid.error().message};
       if (!std::isfinite(desc.height)) return Error{meshPrefix(desc) + "height must be a finite number"};
       mesh = makeTerrain(desc.size, desc.resolution, desc.height, desc.seed);
       break;
     case MeshKind::Plane:
-      if (auto error = checkGrid(desc, gridVertices)) return Error{meshPrefix(desc) + *error};
+      if (auto grid = checkGrid(desc, gridVertices); !grid) return Error{meshPrefix(desc) + grid.error().message};
       mesh = makePlane(desc.size, desc.resolution);
       break;
     case MeshKind::Sphere: {
@@ -162,7 +162,9 @@ Expected<Image> packChannels(const TextureDesc& desc, const SceneFile& scene) {
 
 Expected<Image> buildTexture(const TextureDesc& desc, const SceneFile& scene) {
   if (desc.kind != TextureKind::File && desc.kind != TextureKind::Gltf && desc.kind != TextureKind::Pack) {
-    if (auto error = checkProcedural(desc)) return Error{"texture '" + desc.name + "': " + *error};
+    if (auto checked = checkProcedural(desc); !checked) {
+      return Error{"texture '" + desc.name + "': " + checked.error().message};
+    }
   }
   switch (desc.kind) {
     case TextureKind::File: return loadImage(desc.file);

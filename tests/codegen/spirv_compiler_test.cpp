@@ -104,8 +104,8 @@ void expectValidModule(const SpirvResult& r) {
   ASSERT_GE(r.words.size(), 5u);
   EXPECT_EQ(r.words[0], kSpirvMagic);
   EXPECT_EQ(r.words[1], kSpirv15);
-  const std::optional<std::string> problem = validateSpirv(r.words);
-  EXPECT_FALSE(problem.has_value()) << *problem;
+  const auto problem = validateSpirv(r.words);
+  EXPECT_TRUE(problem) << problem.error().message;
 }
 
 TEST(SpirvCompilerTest, StageNames) {
@@ -226,21 +226,21 @@ TEST(SpirvCompilerTest, ValidatorRejectsTruncatedModule) {
   const SpirvResult r = compileGlslToSpirv(ShaderStage::Compute, kComputeShader, "terrain.comp");
   ASSERT_TRUE(r.ok()) << r.log;
   std::vector<uint32_t> truncated(r.words.begin(), r.words.begin() + static_cast<std::ptrdiff_t>(r.words.size() / 2));
-  const std::optional<std::string> problem = validateSpirv(truncated);
-  ASSERT_TRUE(problem.has_value());
-  EXPECT_FALSE(problem->empty());
+  const auto problem = validateSpirv(truncated);
+  ASSERT_FALSE(problem);
+  EXPECT_FALSE(problem.error().message.empty());
 }
 
 TEST(SpirvCompilerTest, ValidatorRejectsGarbage) {
-  const std::optional<std::string> problem = validateSpirv({0xdeadbeefu, 1u, 2u, 3u, 4u, 5u});
-  ASSERT_TRUE(problem.has_value());
-  EXPECT_TRUE(contains(*problem, "error"));
+  const auto problem = validateSpirv({0xdeadbeefu, 1u, 2u, 3u, 4u, 5u});
+  ASSERT_FALSE(problem);
+  EXPECT_TRUE(contains(problem.error().message, "error"));
 }
 
 TEST(SpirvCompilerTest, ValidatorRejectsEmptyModule) {
-  const std::optional<std::string> problem = validateSpirv({});
-  ASSERT_TRUE(problem.has_value());
-  EXPECT_FALSE(problem->empty());
+  const auto problem = validateSpirv({});
+  ASSERT_FALSE(problem);
+  EXPECT_FALSE(problem.error().message.empty());
 }
 
 TEST(SpirvCompilerTest, ValidatorRejectsStructurallyInvalidModule) {
@@ -250,9 +250,9 @@ TEST(SpirvCompilerTest, ValidatorRejectsStructurallyInvalidModule) {
   std::vector<uint32_t> broken(r.words.begin(), r.words.begin() + 5);
   broken.push_back((50u << 16) | 17u);  // OpCapability claiming 50 words
   broken.push_back(1u);                 // Shader
-  const std::optional<std::string> problem = validateSpirv(broken);
-  ASSERT_TRUE(problem.has_value());
-  EXPECT_FALSE(problem->empty());
+  const auto problem = validateSpirv(broken);
+  ASSERT_FALSE(problem);
+  EXPECT_FALSE(problem.error().message.empty());
 }
 
 }  // namespace

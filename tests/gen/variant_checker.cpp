@@ -168,8 +168,8 @@ std::optional<std::string> ProgramChecker::kernelProblem(const codegen::Kernel& 
   std::optional<std::string> problem;
   if (!spirv.ok())
     problem = "glslang: " + spirv.log;
-  else if (auto invalid = codegen::validateSpirv(spirv.words))
-    problem = "spirv-val: " + *invalid;
+  else if (auto valid = codegen::validateSpirv(spirv.words); !valid)
+    problem = "spirv-val: " + valid.error().message;
   kernelCache_.emplace(key, problem);
   return problem;
 }

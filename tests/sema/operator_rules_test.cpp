@@ -69,19 +69,19 @@ TEST_F(OperatorRules, Unary) {
 }
 
 TEST_F(OperatorRules, Constructors) {
-  EXPECT_EQ(checkConstructor(v4, {v3, f}), std::nullopt);
-  EXPECT_EQ(checkConstructor(v4, {f}), std::nullopt);
-  EXPECT_EQ(checkConstructor(v3, {v4}), std::nullopt);  // truncation is allowed
-  EXPECT_NE(checkConstructor(v4, {v3}), std::nullopt);
-  EXPECT_NE(checkConstructor(v2, {v2, f}), std::nullopt);
-  EXPECT_EQ(checkConstructor(m4, {f}), std::nullopt);
-  EXPECT_EQ(checkConstructor(t.matrix(3, 3), {m4}), std::nullopt);
-  EXPECT_EQ(checkConstructor(m2x3, {v3, v3}), std::nullopt);
-  EXPECT_NE(checkConstructor(m2x3, {v3, v2}), std::nullopt);
-  EXPECT_NE(checkConstructor(m4, {m4, f}), std::nullopt);
-  EXPECT_EQ(checkConstructor(i, {v3}), std::nullopt);
-  EXPECT_NE(checkConstructor(i, {f, f}), std::nullopt);
-  EXPECT_NE(checkConstructor(t.sampler(SamplerKind::Sampler2D), {i}), std::nullopt);
+  EXPECT_TRUE(checkConstructor(v4, {v3, f}));
+  EXPECT_TRUE(checkConstructor(v4, {f}));
+  EXPECT_TRUE(checkConstructor(v3, {v4}));  // truncation is allowed
+  EXPECT_FALSE(checkConstructor(v4, {v3}));
+  EXPECT_FALSE(checkConstructor(v2, {v2, f}));
+  EXPECT_TRUE(checkConstructor(m4, {f}));
+  EXPECT_TRUE(checkConstructor(t.matrix(3, 3), {m4}));
+  EXPECT_TRUE(checkConstructor(m2x3, {v3, v3}));
+  EXPECT_FALSE(checkConstructor(m2x3, {v3, v2}));
+  EXPECT_FALSE(checkConstructor(m4, {m4, f}));
+  EXPECT_TRUE(checkConstructor(i, {v3}));
+  EXPECT_FALSE(checkConstructor(i, {f, f}));
+  EXPECT_FALSE(checkConstructor(t.sampler(SamplerKind::Sampler2D), {i}));
 }
 
 TEST_F(OperatorRules, TypeNames) {
