@@ -17,11 +17,16 @@ namespace spire::codegen {
 namespace {
 
 // The world's [Stage]; sema's attribute check has refused any other value.
-std::optional<ShaderStage> stageFromAttribute(const ast::WorldDecl& decl) {
+std::optional<std::string> attributeValue(const ast::WorldDecl& decl, std::string_view name) {
   for (const ast::Attribute& a : decl.attributes) {
-    if (a.name == "Stage" && a.value) return reflection::parseStage(*a.value);
+    if (a.name == name && a.value) return a.value;
   }
   return std::nullopt;
+}
+
+std::optional<ShaderStage> stageFromAttribute(const ast::WorldDecl& decl) {
+  const auto stage = attributeValue(decl, "Stage");
+  return stage ? reflection::parseStage(*stage) : std::nullopt;
 }
 
 // One kernel's components, the names it gave them and the functions they
@@ -439,6 +444,9 @@ reflection::Variant GeneratedShader::reflection(const graph::Variant& variant) c
   reflection::Variant result;
   result.shader = shader;
   result.pipeline = g.pipeline().name;
+  for (const sem::World& world : g.pipeline().worlds) {
+    result.worlds.push_back({world.name, attributeValue(*world.decl, "Role").value_or("")});
+  }
   for (sem::ComponentId c : variant.live()) {
     const graph::ComponentNode& node = g.node(c);
     if (!node.isInput) result.placement.emplace_back(node.component->name, g.altName(node, *variant.choice(c)));

@@ -150,9 +150,18 @@ struct Kernel {
   bool operator==(const Kernel&) const = default;
 };
 
+// A world of the variant's pipeline and the engine role its [Role]
+// attribute names ("" without one: the engine may know the world by name).
+struct World {
+  std::string name;
+  std::string role;
+  bool operator==(const World&) const = default;
+};
+
 struct Variant {
   std::string shader;
   std::string pipeline;
+  std::vector<World> worlds;  // every world of the pipeline, in declaration order
   // Every live, non-input component -> "World" or "World:variation": the
   // variant as a decision file would state it.
   std::vector<std::pair<std::string, std::string>> placement;

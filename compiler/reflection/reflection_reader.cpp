@@ -200,6 +200,9 @@ Expected<Variant, std::string> readVariant(const Json& document) {
   Variant variant;
   variant.shader = document.at("shader").get<std::string>();
   variant.pipeline = document.at("pipeline").get<std::string>();
+  for (const Json& w : document.at("worlds")) {
+    variant.worlds.push_back({w.at("name").get<std::string>(), w.at("role").get<std::string>()});
+  }
   for (const auto& [component, world] : document.at("placement").items()) {
     variant.placement.emplace_back(component, world.get<std::string>());
   }

@@ -160,6 +160,7 @@ Json toJson(const Variant& variant) {
   root["version"] = kFormatVersion;
   root["shader"] = variant.shader;
   root["pipeline"] = variant.pipeline;
+  root["worlds"] = arrayOf(variant.worlds, [](const World& w) { return Json{{"name", w.name}, {"role", w.role}}; });
   Json placement = Json::object();
   for (const auto& [component, world] : variant.placement) placement[component] = world;
   root["placement"] = std::move(placement);

@@ -32,6 +32,13 @@ const std::vector<AttributeSpec>& catalog() {
        {},
        {},
        "vertex"},
+      {"Role",
+       {AttributeSite::World},
+       "what the engine runs the world as (its engine role); the engine checks the name",
+       {},
+       {},
+       {},
+       "fragment"},
       {"Priority", {AttributeSite::Import}, "breaks ties between equally faithful routes", {}, -1000, 1000, "1"},
       {"Format",
        {AttributeSite::Component, AttributeSite::Decision},
@@ -59,6 +66,7 @@ const std::vector<AttributeSpec>& catalog() {
 }
 
 std::string allowedValues(const AttributeSpec& spec) {
+  if (spec.values.empty() && !spec.minimum) return "a name";
   if (spec.values.empty()) return fmt::format("an integer from {} to {} as a string", *spec.minimum, *spec.maximum);
   std::string text;
   for (std::string_view v : spec.values) text += fmt::format("{}\"{}\"", text.empty() ? "" : ", ", v);
@@ -66,6 +74,7 @@ std::string allowedValues(const AttributeSpec& spec) {
 }
 
 bool valueAllowed(const AttributeSpec& spec, std::string_view value) {
+  if (spec.values.empty() && !spec.minimum) return !value.empty();
   if (!spec.values.empty()) return std::find(spec.values.begin(), spec.values.end(), value) != spec.values.end();
   long number = 0;
   const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), number);

@@ -23,7 +23,8 @@ struct AttributeSpec {
   std::string_view name;
   std::vector<AttributeSite> sites;
   std::string_view meaning;
-  // Allowed values; empty with `minimum`/`maximum` set: an integer range.
+  // Allowed values; empty with `minimum`/`maximum` set: an integer range;
+  // empty without them: any non-empty name, which its consumer checks.
   std::vector<std::string_view> values;
   std::optional<long> minimum;
   std::optional<long> maximum;

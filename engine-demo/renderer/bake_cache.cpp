@@ -17,9 +17,9 @@ std::string bakeKey(const KernelProgram& kernel, const std::string& meshKey, con
     for (const auto& [name, value] : output.hints) key += fmt::format("|{}[{}={}]", output.component, name, value);
   }
   for (const KernelInput& input : kernel.inputs) {
-    const WorldPass* pass = findWorldPass(input.from);
+    const WorldPass* pass = kernel.sourcePass(input);
     if (!pass) continue;
-    if (const auto it = upstream.find(pass->role); it != upstream.end()) {
+    if (const auto it = upstream.find(pass->kind); it != upstream.end()) {
       key += fmt::format("|{}<-[{}]", input.component, it->second);
     } else if (const auto value = material.find(input.component); value != material.end()) {
       key += fmt::format("|{}={}", input.component, value->second.identity);
@@ -53,10 +53,10 @@ Expected<BakedInputs> BakeCache::bake(const vk::Context& ctx, ModuleCache& modul
   sources.material = &material;
   std::map<WorldRole, std::string> upstream;
   for (const WorldPass& pass : worldPassTable()) {
-    const KernelProgram* kernel = program.kernel(pass.world);
+    const KernelProgram* kernel = program.kernelWithRole(pass.kind);
     if (!kernel) continue;
     const std::string key = bakeKey(*kernel, meshKey, material, upstream);
-    switch (pass.role) {
+    switch (pass.kind) {
       case WorldRole::UniformBake: {
         auto result = cached(uniform_, milliseconds_, key, baked, kernel->world, [&](BakeTiming& timing) {
           return runUniformBake(ctx, modules, *kernel, sources, timing);
@@ -82,7 +82,7 @@ Expected<BakedInputs> BakeCache::bake(const vk::Context& ctx, ModuleCache& modul
       }
       default: continue;
     }
-    upstream[pass.role] = key;
+    upstream[pass.kind] = key;
   }
   return baked;
 }

@@ -31,10 +31,10 @@ Error missing(const KernelProgram& kernel, const KernelInput& input, std::string
                {}};
 }
 
-WorldRole roleOf(const KernelInput& input) {
-  const WorldPass* pass = findWorldPass(input.from);
+WorldRole roleOf(const KernelProgram& kernel, const KernelInput& input) {
+  const WorldPass* pass = kernel.sourcePass(input);
   // resolveMaterial rejected unknown worlds before any kernel is bound.
-  return pass ? pass->role : WorldRole::MaterialParameters;
+  return pass ? pass->kind : WorldRole::MaterialParameters;
 }
 
 class KernelBinder {
@@ -77,7 +77,7 @@ class KernelBinder {
         return missing(kernel_, input, "its block member or type is not in the reflection");
       }
       const MaterialValue* bound = materialValue(input.component);
-      const WorldRole role = roleOf(input);
+      const WorldRole role = roleOf(kernel_, input);
       if (role == WorldRole::FrameParameters && !bound) {
         bound_.frameWrites.push_back({*buffer, *member, input.component});
         continue;
@@ -140,7 +140,7 @@ class KernelBinder {
       return missing(kernel_, input, "its record member or type is not in the reflection");
     }
     const std::span<std::byte> memory = bytesOf(buffer);
-    const WorldRole role = roleOf(input);
+    const WorldRole role = roleOf(kernel_, input);
     if (role == WorldRole::MeshAttributes) {
       const MeshAttribute* attribute = findMeshAttribute(input.component);
       if (!attribute) return missing(kernel_, input, "the engine supplies no such mesh attribute");

@@ -46,11 +46,12 @@ class MaterialResolver {
   SourceRange shaderRange() const { return instance_.kernels ? instance_.kernelsRange : instance_.shaderRange; }
 
   void checkKernelWorld(const KernelProgram& kernel) {
-    const WorldPass* pass = findWorldPass(kernel.world);
+    const WorldPass* pass = kernel.pass;
     if (!pass || !pass->stage) {
       diags_.reportOnce(DiagCode::E7104, shaderRange(),
-                        fmt::format("'{}' has a kernel for world '{}', which this engine does not implement",
-                                    program_.shader, kernel.world));
+                        fmt::format("'{}' has a kernel for world '{}', which this engine does not run: give the "
+                                    "world a [Role: \"...\"] attribute naming one of its kernel roles ({})",
+                                    program_.shader, kernel.world, roleList(/*kernelsOnly=*/true)));
     } else if (*pass->stage != kernel.stage) {
       diags_.reportOnce(
           DiagCode::E7104, shaderRange(),
@@ -60,15 +61,16 @@ class MaterialResolver {
   }
 
   void checkInput(const KernelProgram& kernel, const KernelInput& input) {
-    const WorldPass* pass = findWorldPass(input.from);
+    const WorldPass* pass = kernel.sourcePass(input);
     if (!pass) {
       used_.insert(input.component);  // the binding is fine; the world is the problem
       diags_.reportOnce(DiagCode::E7104, shaderRange(),
-                        fmt::format("'{}' imports '{}' from world '{}', which this engine does not implement",
-                                    program_.shader, input.component, input.from));
+                        fmt::format("'{}' imports '{}' from world '{}', which this engine does not know: give the "
+                                    "world a [Role: \"...\"] attribute naming one of its roles ({})",
+                                    program_.shader, input.component, input.from, roleList()));
       return;
     }
-    switch (pass->role) {
+    switch (pass->kind) {
       case WorldRole::MaterialParameters: bindMaterial(input, /*engineValue=*/false); break;
       case WorldRole::FrameParameters: bindMaterial(input, /*engineValue=*/true); break;
       case WorldRole::MeshAttributes: checkMeshAttribute(kernel, input); break;

@@ -19,11 +19,14 @@ const KernelProgram* VariantProgram::kernel(std::string_view world) const {
 }
 
 const KernelProgram* VariantProgram::kernelWithRole(WorldRole role) const {
-  const auto it = std::find_if(kernels.begin(), kernels.end(), [&](const KernelProgram& k) {
-    const WorldPass* pass = findWorldPass(k.world);
-    return pass && pass->role == role;
-  });
+  const auto it = std::find_if(kernels.begin(), kernels.end(),
+                               [&](const KernelProgram& k) { return k.pass && k.pass->kind == role; });
   return it == kernels.end() ? nullptr : &*it;
+}
+
+const WorldPass* KernelProgram::sourcePass(const KernelInput& input) const {
+  const auto index = static_cast<size_t>(&input - inputs.data());
+  return index < inputPasses.size() ? inputPasses[index] : nullptr;
 }
 
 std::string VariantProgram::fingerprint() const {
@@ -45,6 +48,13 @@ spire::Expected<void, Failure> supportedInputs(const reflection::Kernel& kernel)
   return {};
 }
 
+// The pass of `world`: its [Role]'s, else the one its name is usual for
+// (reflection written by hand, as tests do, may list no worlds).
+const WorldPass* passOf(const WorldPasses& passes, std::string_view world) {
+  const auto it = passes.find(world);
+  return it != passes.end() ? it->second : findWorldPass(world);
+}
+
 }  // namespace
 
 Expected<VariantProgram> makeProgram(const reflection::Variant& reflection,
@@ -53,13 +63,17 @@ Expected<VariantProgram> makeProgram(const reflection::Variant& reflection,
   program.shader = reflection.shader;
   program.pipeline = reflection.pipeline;
   program.placement = reflection.placement;
+  const auto passes = resolveWorldPasses(reflection.worlds);
+  if (!passes) return Error(passes.error());
   for (const reflection::Kernel& kernel : reflection.kernels) {
     if (auto supported = supportedInputs(kernel); !supported) return Error(supported.error());
     const auto words = spirv.find(kernel.world);
     if (words == spirv.end() || words->second.empty()) {
       return Error{fmt::format("no SPIR-V for kernel '{}'", kernel.world), {}};
     }
-    KernelProgram& added = program.kernels.emplace_back(KernelProgram{kernel, words->second});
+    KernelProgram& added = program.kernels.emplace_back(KernelProgram{kernel, words->second, nullptr, {}});
+    added.pass = passOf(*passes, kernel.world);
+    for (const KernelInput& input : kernel.inputs) added.inputPasses.push_back(passOf(*passes, input.from));
     if (auto matching = checkInterface(added.spirv, added); !matching) {
       return Error{fmt::format("the SPIR-V of kernel '{}' does not match its reflection: {}", kernel.world,
                                matching.error().message),

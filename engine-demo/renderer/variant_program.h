@@ -31,9 +31,15 @@ using reflection::KernelOutput;
 using reflection::OutputKind;
 using reflection::ValueType;
 
-// A kernel's reflection and its SPIR-V.
+// A kernel's reflection and its SPIR-V, with what the engine runs its world
+// as and what supplies each of its inputs (world_roles.h).
 struct KernelProgram : reflection::Kernel {
   std::vector<uint32_t> spirv;
+  const WorldPass* pass = nullptr;            // nullptr: a world this engine does not know
+  std::vector<const WorldPass*> inputPasses;  // parallel to `inputs`: the pass of each input's world
+
+  // The pass of the world `input` (one of `inputs`) comes from, or nullptr.
+  const WorldPass* sourcePass(const KernelInput& input) const;
 };
 
 struct VariantProgram {
@@ -45,16 +51,17 @@ struct VariantProgram {
   std::vector<std::pair<std::string, std::string>> placement;
 
   const KernelProgram* kernel(std::string_view world) const;
-  // The kernel of the world this engine runs as `role` (worldPassTable()),
-  // or nullptr.
+  // The kernel of the world this engine runs as `role` (its [Role], or its
+  // name), or nullptr.
   const KernelProgram* kernelWithRole(WorldRole role) const;
   // Hashes of every kernel, joined: equal for variants with identical code.
   std::string fingerprint() const;
 };
 
 // A program from reflection and each kernel's SPIR-V by world. Every
-// kernel's words must be there, and its interface must be the one the
-// reflection states (spirv_interface.h).
+// kernel's words must be there, its interface must be the one the
+// reflection states (spirv_interface.h), and every world's [Role] one this
+// engine implements.
 Expected<VariantProgram> makeProgram(const reflection::Variant& reflection,
                                      const std::map<std::string, std::vector<uint32_t>>& spirv);
 

@@ -1,14 +1,21 @@
 // What this engine does with each world of a pipeline (paper section 4.1: the
-// engine gives the worlds their meaning). One table, so that a new pipeline
-// (multi-rate screen-space shading, object-space shading) adds rows here and
-// a pass, instead of conditions spread across the renderer.
+// engine gives the worlds their meaning). A world says which role it plays
+// with a [Role: "..."] attribute on its declaration; a world without one is
+// known by its name when that is the role's usual world name (the worlds of
+// pipelines/). One table, so that a new pipeline (multi-rate screen-space
+// shading, object-space shading) adds rows here and a pass, instead of
+// conditions spread across the renderer.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "codegen/spirv_compiler.h"
+#include "reflection/reflection.h"
+#include "support/expected.h"
 
 namespace spire::engine {
 
@@ -26,8 +33,9 @@ enum class WorldRole {
 };
 
 struct WorldPass {
-  std::string_view world;
-  WorldRole role;
+  std::string_view role;        // the [Role] value that names it
+  std::string_view usualWorld;  // the world that has this role without saying so
+  WorldRole kind;
   // The stage a concrete world's kernel must have; nullopt for abstract worlds.
   std::optional<codegen::ShaderStage> stage;
   std::string_view description;
@@ -36,6 +44,18 @@ struct WorldPass {
 // Rows in the order the engine runs them: bakes before the frame, and
 // uniform bakes first because vertex and texture bakes may read them.
 std::span<const WorldPass> worldPassTable();
+const WorldPass* findRole(std::string_view role);
+// The pass of a world without a [Role], by its name; nullptr when none.
 const WorldPass* findWorldPass(std::string_view world);
+// "mesh (mesh vertex attributes), frame (...), ...": for messages; only the
+// roles of worlds with kernels when `kernelsOnly`.
+std::string roleList(bool kernelsOnly = false);
+
+// Every world of a pipeline -> its pass, from the worlds' [Role] attributes
+// (reflection::Variant::worlds). Worlds without a role or a usual name are
+// absent. An error names a world whose role this engine does not implement,
+// or two worlds that claim one concrete role.
+using WorldPasses = std::map<std::string, const WorldPass*, std::less<>>;
+spire::Expected<WorldPasses, Failure> resolveWorldPasses(const std::vector<reflection::World>& worlds);
 
 }  // namespace spire::engine

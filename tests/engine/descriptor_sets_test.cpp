@@ -65,8 +65,10 @@ Json reflectionOf(const std::vector<TestKernel>& kernels) {
     for (const char* list : {"inputs", "outputs", "blocks"}) fillNames(entry[list]);
     kernelList.push_back(std::move(entry));
   }
-  return Json{{"format", "spire-reflection"}, {"version", reflection::kFormatVersion}, {"shader", "SetsTest"},
-              {"pipeline", "EnginePipeline"}, {"placement", Json::object()},           {"kernels", kernelList}};
+  return Json{{"format", "spire-reflection"}, {"version", reflection::kFormatVersion},
+              {"shader", "SetsTest"},         {"pipeline", "EnginePipeline"},
+              {"worlds", Json::array()},      {"placement", Json::object()},
+              {"kernels", kernelList}};
 }
 
 // The kernels' SPIR-V, compiled with glslang; empty for one that does not compile.

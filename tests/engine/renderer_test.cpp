@@ -216,6 +216,46 @@ TEST_F(RendererTest, PrebakeTexMatchesFragmentWithinTexelTolerance) {
   }
 }
 
+// What a world is comes from its [Role], not its name: EnginePipeline with
+// every world renamed and reordered renders exactly what it renders, baked
+// and unbaked.
+TEST_F(RendererTest, RenamedWorldsRenderAsTheirRoles) {
+  const std::string original = planeScene("tex_bake.spire", "TexBake", R"({"colorMap": "noise"})");
+  const std::string renamed = planeScene("renamed_worlds.spire", "TexBakeRenamed", R"({"colorMap": "noise"})");
+  for (const auto& [ours, theirs] : {std::pair{"tex_bake_fragment.decisions", "renamed_worlds_fragment.decisions"},
+                                     std::pair{"tex_bake_prebake.decisions", "renamed_worlds_prebake.decisions"}}) {
+    SCOPED_TRACE(theirs);
+    const auto reference = render(original, fs::path(ours));
+    ASSERT_TRUE(reference);
+    const auto test = render(renamed, fs::path(theirs));
+    ASSERT_TRUE(test);
+    EXPECT_EQ(test->prepared.bakes.size(), reference->prepared.bakes.size());
+    if (!test->prepared.bakes.empty()) {
+      EXPECT_EQ(test->prepared.bakes[0].world, "TexelBake");
+    }
+    EXPECT_GT(coveredFraction(test->capture), 0.2);
+    EXPECT_EQ(compare(reference->capture, test->capture).maxError, 0.0);
+  }
+}
+
+TEST_F(RendererTest, AnUnknownRoleIsAnErrorListingTheRoles) {
+  sources_ = std::make_unique<SourceManager>();
+  diags_ = std::make_unique<DiagnosticList>();
+  scene_ = scene::parseSceneFile("test_scene.json",
+                                 planeScene("unknown_role.spire", "TexBakeRenamed", R"({"colorMap": "noise"})"),
+                                 kDataDir, *sources_, *diags_);
+  ASSERT_TRUE(scene_);
+  renderer_ = std::make_unique<SceneRenderer>(ctx(), *scene_, *diags_);
+  const auto programs = renderer_->compile(std::nullopt);
+  ASSERT_FALSE(programs);
+  const std::string& message = programs.error().message;
+  EXPECT_NE(message.find("world 'Pixel' has [Role: \"pixel\"], which this engine does not implement"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("prebakeTexture (rasterized in UV space at load into textures)"), std::string::npos)
+      << message;
+}
+
 // A renderer made from another shares its textures (it sees them before it
 // builds any) but bakes with its own options.
 TEST_F(RendererTest, ARendererWithOtherBakeOptionsSharesTheScenesTextures) {

@@ -73,6 +73,29 @@ TEST(WorldTable, NamesEveryWorldOfThePipelinesOnce) {
   EXPECT_EQ(findWorldPass("ScreenSpace"), nullptr);
   EXPECT_EQ(findWorldPass("PrebakeTex")->stage, codegen::ShaderStage::Fragment);
   EXPECT_FALSE(findWorldPass("MeshVertex")->stage);
+  for (const WorldPass& pass : worldPassTable()) EXPECT_EQ(findRole(pass.role), &pass) << pass.role;
+}
+
+TEST(WorldTable, RolesComeFromTheWorldsAttributes) {
+  const auto renamed = resolveWorldPasses({{"Geometry", "mesh"}, {"Pixel", "fragment"}, {"Vertex", ""}, {"Other", ""}});
+  ASSERT_TRUE(renamed) << renamed.error().message;
+  EXPECT_EQ(renamed->at("Pixel")->kind, WorldRole::FragmentStage);
+  EXPECT_EQ(renamed->at("Geometry")->kind, WorldRole::MeshAttributes);
+  EXPECT_EQ(renamed->at("Vertex")->kind, WorldRole::VertexStage);  // known by its name
+  EXPECT_FALSE(renamed->contains("Other"));
+
+  const auto unknown = resolveWorldPasses({{"Pixel", "pixel"}});
+  ASSERT_FALSE(unknown);
+  EXPECT_NE(unknown.error().message.find("world 'Pixel' has [Role: \"pixel\"], which this engine does not implement"),
+            std::string::npos)
+      << unknown.error().message;
+  EXPECT_NE(unknown.error().message.find("fragment (fragment shader of each frame's draw)"), std::string::npos);
+
+  const auto twice = resolveWorldPasses({{"Fragment", ""}, {"Pixel", "fragment"}});
+  ASSERT_FALSE(twice);
+  EXPECT_NE(twice.error().message.find("worlds 'Fragment' and 'Pixel' both have the role 'fragment'"),
+            std::string::npos)
+      << twice.error().message;
 }
 
 TEST(BakeFormats, HintNamesMapToFormats) {

@@ -15,6 +15,11 @@ namespace {
 
 TEST(AttributeCatalog, KnownAttributesTakeTheirValuesInTheirPlaces) {
   EXPECT_FALSE(checkAttribute(AttributeSite::World, "Stage", "compute"));
+  // [Role] takes any name; the engine, which knows its roles, checks it.
+  EXPECT_FALSE(checkAttribute(AttributeSite::World, "Role", "someEnginesRole"));
+  EXPECT_TRUE(checkAttribute(AttributeSite::World, "Role", std::nullopt));
+  EXPECT_TRUE(checkAttribute(AttributeSite::World, "Role", ""));
+  EXPECT_TRUE(checkAttribute(AttributeSite::Component, "Role", "fragment"));
   EXPECT_FALSE(checkAttribute(AttributeSite::Import, "Priority", "-1000"));
   EXPECT_FALSE(checkAttribute(AttributeSite::Decision, "TextureSize", "8192"));
   for (std::string_view format : textureFormatNames()) {
