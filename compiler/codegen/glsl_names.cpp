@@ -72,7 +72,7 @@ std::string acceptableSpelling(std::string_view source) {
 
 }  // namespace
 
-std::string NameTable::unique(std::string base, std::string_view source) {
+std::string NameTable::unique(const std::string& base, std::string_view source) {
   std::string candidate = base;
   for (int n = 2; taken_.count(candidate); ++n) candidate = base + std::to_string(n);
   taken_.insert(candidate);

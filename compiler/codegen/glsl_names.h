@@ -32,7 +32,7 @@ class NameTable {
   bool isTaken(std::string_view name) const { return taken_.count(name) != 0; }
 
  private:
-  std::string unique(std::string base, std::string_view source);
+  std::string unique(const std::string& base, std::string_view source);
   std::set<std::string, std::less<>> taken_;
   // Names that differ from what the user wrote (renamed or generated): a
   // local with such a name would hide the entity it stands for.

@@ -103,7 +103,7 @@ std::string GlslWriter::conditionalExpr(const ast::Expr& e, Precedence minPreced
 // parenthesization of ast::writeChain). Right operands of `&&`, `||` and
 // `^^` are evaluated only under a condition.
 std::string GlslWriter::chainText(const std::vector<const ast::BinaryExpr*>& spine, size_t begin, size_t end,
-                                  std::string head, Precedence context) {
+                                  const std::string& head, Precedence context) {
   std::string opens;
   std::string text;
   for (size_t i = begin; i < end; ++i) {
@@ -134,11 +134,11 @@ std::string GlslWriter::binary(const ast::BinaryExpr& e, Precedence minPrecedenc
               "variable first",
               spine.size(), kMaxInlineChain)};
     }
-    return chainText(spine, 0, spine.size(), std::move(head), minPrecedence);
+    return chainText(spine, 0, spine.size(), head, minPrecedence);
   }
   for (size_t begin = 0; begin < spine.size(); begin += kChainSegment) {
     const size_t end = std::min(begin + kChainSegment, spine.size());
-    std::string text = chainText(spine, begin, end, std::move(head), Precedence::Assignment);
+    std::string text = chainText(spine, begin, end, head, Precedence::Assignment);
     head = temporaryName();
     hoisted_->push_back(declare(model_.info(*spine[end - 1]).type, head) + " = " + text + ";");
   }
@@ -147,7 +147,7 @@ std::string GlslWriter::binary(const ast::BinaryExpr& e, Precedence minPrecedenc
 
 std::string GlslWriter::expr(const ast::Expr& e, Precedence minPrecedence) {
   const sem::ExprInfo& info = model_.info(e);
-  auto wrap = [&](Precedence precedence, std::string text) {
+  auto wrap = [&](Precedence precedence, const std::string& text) {
     return precedence < minPrecedence ? "(" + text + ")" : text;
   };
   switch (e.kind) {

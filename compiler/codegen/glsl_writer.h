@@ -93,8 +93,8 @@ class GlslWriter {
   std::string forInit(const ast::Stmt& s);
   void mapLine(GlslOutput& out, const SourceRange& range);
   std::string binary(const ast::BinaryExpr& e, ast::Precedence minPrecedence);
-  std::string chainText(const std::vector<const ast::BinaryExpr*>& spine, size_t begin, size_t end, std::string head,
-                        ast::Precedence context);
+  std::string chainText(const std::vector<const ast::BinaryExpr*>& spine, size_t begin, size_t end,
+                        const std::string& head, ast::Precedence context);
   std::string temporaryName();
   // `e` where it is evaluated only under a condition (a branch of `?:`, the
   // right of `&&`, `||` or `^^`): never hoisted, since that would evaluate it

@@ -38,7 +38,7 @@ InterfaceAllocation::InterfaceAllocation(const graph::Variant& variant) {
   const sem::Pipeline& pipeline = g.pipeline();
   const uint32_t n = static_cast<uint32_t>(pipeline.worlds.size());
   // Side w is world w's outputs, side n + w its location-based inputs.
-  std::vector<std::set<Key>> keys(2 * n);
+  std::vector<std::set<Key>> keys(size_t{2} * n);
   for (sem::WorldId w = 0; w < n; ++w) {
     for (const graph::Transfer& t : variant.world(w).outputs) keys[w].insert({w, t.component});
     for (const graph::Transfer& t : variant.world(w).inputs) {
@@ -49,7 +49,7 @@ InterfaceAllocation::InterfaceAllocation(const graph::Variant& variant) {
   for (const graph::Sink& sink : g.sinks()) {
     if (g.node(sink.component).component->isExport) keys[sink.world].insert({sink.world, sink.component});
   }
-  Sides sides(2 * n);
+  Sides sides(size_t{2} * n);
   for (const sem::Import& import : pipeline.imports) {
     importFrom_.push_back(import.from);
     importTo_.push_back(import.to);
@@ -65,7 +65,7 @@ InterfaceAllocation::InterfaceAllocation(const graph::Variant& variant) {
   std::map<uint32_t, std::set<Key>> clusters;
   for (uint32_t side = 0; side < 2 * n; ++side) clusters[sides.find(side)].insert(keys[side].begin(), keys[side].end());
   for (const auto& [root, members] : clusters) number(variant, root, {members.begin(), members.end()});
-  sideRoot_.resize(2 * n);
+  sideRoot_.resize(size_t{2} * n);
   for (uint32_t side = 0; side < 2 * n; ++side) sideRoot_[side] = sides.find(side);
 
   outputs_.resize(n);

@@ -360,7 +360,7 @@ void checkSomeDecisionApplies(const DecisionFile& decisions, const std::vector<c
               return appliesTo(line.prefix, space->graph().shader());
             });
   }
-  const auto quoted = [](std::vector<std::string_view> names) {
+  const auto quoted = [](const std::vector<std::string_view>& names) {
     std::string text;
     for (std::string_view name : names) text += fmt::format("{}'{}'", text.empty() ? "" : ", ", name);
     return text;

@@ -445,7 +445,7 @@ const Type* BodyChecker::checkMember(const ast::MemberExpr& e, ExprInfo& info) {
   if (object->isScalar() || object->isVector()) {
     static constexpr std::string_view kSets[] = {"xyzw", "rgba", "stpq"};
     const uint32_t size = object->rows;
-    bool valid = e.member.size() >= 1 && e.member.size() <= 4;
+    bool valid = !e.member.empty() && e.member.size() <= 4;
     bool inRange = true;
     if (valid) {
       valid = false;

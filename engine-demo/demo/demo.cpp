@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <optional>
 #include <ostream>
@@ -16,6 +17,7 @@
 #include "renderer/scene_renderer.h"
 #include "renderer/view_error.h"
 #include "scene/texture.h"
+#include "support/atomic_directory.h"
 #include "support/file_io.h"
 #include "tool/tool_run.h"
 #include "vk/context.h"
@@ -39,6 +41,7 @@ struct Options {
   bool listDevices = false;
   bool validation = false;
   bool window = false;
+  bool keepAlpha = false;
 };
 
 struct VariantRun {
@@ -52,6 +55,13 @@ struct VariantResult {
   std::vector<engine::BakeRecord> bakes;
   std::vector<engine::Capture> views;
   scene::Image image;  // view 0, 8 bits
+};
+
+// A variant that could not be compiled or prepared, and why.
+struct FailedVariant {
+  std::string name;
+  std::string decisions;  // the decision file, or "" for the scene as it is
+  std::string reason;
 };
 
 // The frames of one run: the warm-up first, then the measured ones.
@@ -94,6 +104,8 @@ void defineOptions(CLI::App& app, Options& options) {
   app.add_option("--bake-size", options.bakeSize, "PrebakeTex texture size without a TextureSize hint")
       ->check(CLI::Range(1, 8192))
       ->type_name("N");
+  app.add_flag("--keep-alpha", options.keepAlpha,
+               "Write variant images with the alpha the shader wrote (default: opaque, as image viewers expect)");
   app.add_flag("--list-devices", options.listDevices, "List the Vulkan devices and exit");
   app.add_flag("--validation", options.validation,
                "Enable VK_LAYER_KHRONOS_validation; any message makes the run fail");
@@ -146,22 +158,54 @@ std::optional<int> openDevice(const Options& options, engine::ToolRun& run, std:
   return std::nullopt;
 }
 
-// Compiles and prepares (bakes) every variant before any is measured.
+// Reports why `variant` failed, naming it and its decision file, and keeps
+// the reason for report.md.
+void reportFailure(engine::ToolRun& run, const VariantRun& variant, const engine::Error& error,
+                   std::vector<FailedVariant>& failed) {
+  const std::string decisions = variant.decisions ? variant.decisions->string() : std::string();
+  engine::Error named = error;
+  // The scene as it is needs no name: its errors are the scene's.
+  if (variant.decisions)
+    named.message = fmt::format("variant '{}' ({}) failed: {}", variant.name, decisions, error.message);
+  run.fail(named);
+  failed.push_back({variant.name, decisions, error.message});
+}
+
+// Compiles and prepares (bakes) every variant before any is measured. A
+// variant that fails is reported and left out; the others go on. Fails when
+// none is left.
 std::optional<int> prepareVariants(engine::ToolRun& run, const std::vector<VariantRun>& runs,
                                    std::vector<engine::PreparedScene>& prepared, std::vector<VariantResult>& results,
-                                   std::ostream& err) {
+                                   std::vector<FailedVariant>& failed, std::ostream& err) {
   engine::SceneRenderer& renderer = run.renderer();
   for (const VariantRun& variant : runs) {
     auto programs = renderer.compile(variant.decisions);
-    if (!programs) return run.fail(programs.error());
+    if (!programs) {
+      reportFailure(run, variant, programs.error(), failed);
+      continue;
+    }
     err << renderer.compilerWarnings();
     auto scenePrepared = renderer.prepare(*programs);
     run.reporter().flush();
-    if (!scenePrepared) return run.fail(scenePrepared.error());
+    if (!scenePrepared) {
+      reportFailure(run, variant, scenePrepared.error(), failed);
+      continue;
+    }
     results.push_back({variant.name, {}, scenePrepared->bakes, {}, {}});
     prepared.push_back(std::move(scenePrepared).value());
   }
+  if (results.empty()) {
+    return runs.size() == 1 ? kExitInputError
+                            : run.fail(fmt::format("nothing was rendered: all {} variants failed", runs.size()));
+  }
   return std::nullopt;
+}
+
+// RGBA8 with alpha 255: the shader's alpha is rarely meant as transparency,
+// and viewers show a translucent image washed out.
+scene::Image opaque(scene::Image image) {
+  for (size_t i = 3; i < image.rgba8.size(); i += 4) image.rgba8[i] = 255;
+  return image;
 }
 
 // Every variant is compiled, baked and warmed up before any is timed, and
@@ -186,8 +230,9 @@ std::optional<int> measureFrames(engine::ToolRun& run, const std::vector<engine:
 }
 
 // Renders every camera view of every variant and prints its timings.
-std::optional<int> captureViews(engine::ToolRun& run, const std::vector<engine::PreparedScene>& prepared,
-                                const FramePlan& plan, std::vector<VariantResult>& results, std::ostream& out) {
+std::optional<int> captureViews(const Options& options, engine::ToolRun& run,
+                                const std::vector<engine::PreparedScene>& prepared, const FramePlan& plan,
+                                std::vector<VariantResult>& results, std::ostream& out) {
   for (size_t v = 0; v < prepared.size(); ++v) {
     VariantResult& result = results[v];
     for (const scene::CameraView& view : run.scene().camera.views) {
@@ -196,6 +241,7 @@ std::optional<int> captureViews(engine::ToolRun& run, const std::vector<engine::
       result.views.push_back(std::move(capture).value());
     }
     result.image = measure::toRgba8(result.views.front().color);
+    if (!options.keepAlpha) result.image = opaque(std::move(result.image));
     out << fmt::format("{}: {:.3f} ms/frame (median of {}), first frame {:.1f} ms, bakes: {}\n", result.name,
                        result.stats.medianGpuMs, plan.measured, result.stats.firstFrameMs, bakeSummary(result.bakes));
   }
@@ -229,25 +275,28 @@ std::optional<int> reportRows(engine::ToolRun& run, const std::vector<VariantRes
   return std::nullopt;
 }
 
-// DIR/<variant>.png and DIR/comparison.png, captioned with speedup and RMSE.
-std::optional<int> writeImages(engine::ToolRun& run, const fs::path& dir, const std::vector<VariantResult>& results,
-                               const std::vector<measure::ReportRow>& rows) {
+// <variant>.png and comparison.png, captioned with speedup and RMSE.
+std::optional<int> encodeImages(engine::ToolRun& run, const std::vector<VariantResult>& results,
+                                const std::vector<measure::ReportRow>& rows, FileSet& files) {
   std::vector<measure::Panel> panels;
   for (size_t i = 0; i < results.size(); ++i) {
-    if (auto written = scene::writePng(dir / (results[i].name + ".png"), results[i].image); !written) {
-      return run.fail(written.error());
-    }
+    auto png = scene::encodePng(results[i].image);
+    if (!png) return run.fail(fmt::format("variant '{}': {}", results[i].name, png.error().message));
+    files.emplace_back(results[i].name + ".png", std::move(png).value());
     panels.push_back(
         {results[i].image, fmt::format("{} {:.2f}X RMSE {:.4f}", results[i].name, rows[i].speedup, rows[i].rmse)});
   }
   auto comparison = measure::makeComparisonImage(panels);
   if (!comparison) return run.fail(comparison.error());
-  if (auto written = scene::writePng(dir / "comparison.png", *comparison); !written) return run.fail(written.error());
+  auto png = scene::encodePng(*comparison);
+  if (!png) return run.fail(png.error());
+  files.emplace_back("comparison.png", std::move(png).value());
   return std::nullopt;
 }
 
 std::string reportText(const Options& options, const engine::ToolRun& run, const FramePlan& plan,
-                       const std::vector<VariantResult>& results, const std::vector<measure::ReportRow>& rows) {
+                       const std::vector<VariantResult>& results, const std::vector<measure::ReportRow>& rows,
+                       const std::vector<FailedVariant>& failed) {
   const scene::SceneFile& scene = run.scene();
   std::string report = fmt::format(
       "# spire-demo report\n\nScene `{}` on {}, {}x{}, {} measured frames after {} warm-up, error over {} camera "
@@ -257,19 +306,28 @@ std::string reportText(const Options& options, const engine::ToolRun& run, const
   for (const VariantResult& result : results) {
     report += fmt::format("| {} | {} |\n", result.name, bakeSummary(result.bakes));
   }
+  if (failed.empty()) return report;
+  report +=
+      "\n## Failed variants\n\nNot measured; the run exits with status 1.\n\n| variant | decisions | why |\n"
+      "| --- | --- | --- |\n";
+  for (const FailedVariant& f : failed) {
+    std::string reason = f.reason;
+    std::replace(reason.begin(), reason.end(), '\n', ' ');
+    std::replace(reason.begin(), reason.end(), '|', '/');
+    report += fmt::format("| {} | {} | {} |\n", f.name, f.decisions.empty() ? "(scene)" : f.decisions, reason);
+  }
   return report;
 }
 
-// The PNGs, comparison.png and report.md in the output directory.
+// The PNGs, comparison.png and report.md, written as a set: the output
+// directory then holds this run's files and nothing of an earlier run's.
 std::optional<int> writeOutputs(const Options& options, engine::ToolRun& run, const FramePlan& plan,
                                 const std::vector<VariantResult>& results, const std::vector<measure::ReportRow>& rows,
-                                std::ostream& out) {
-  std::error_code ec;
-  fs::create_directories(options.outputDir, ec);
-  if (ec) return run.fail(fmt::format("cannot create '{}': {}", options.outputDir, ec.message()));
-  if (const auto status = writeImages(run, options.outputDir, results, rows)) return status;
-  const std::string report = reportText(options, run, plan, results, rows);
-  if (auto written = writeFileAtomically((fs::path(options.outputDir) / "report.md").string(), report); !written) {
+                                const std::vector<FailedVariant>& failed, std::ostream& out) {
+  FileSet files;
+  if (const auto status = encodeImages(run, results, rows, files)) return status;
+  files.emplace_back("report.md", reportText(options, run, plan, results, rows, failed));
+  if (auto written = replaceDirectoryAtomically(options.outputDir, files); !written) {
     return run.fail(written.error().message);
   }
   std::string names;
@@ -280,16 +338,20 @@ std::optional<int> writeOutputs(const Options& options, engine::ToolRun& run, co
 
 // Measures the prepared variants and writes what the measurement found.
 int measureVariants(const Options& options, engine::ToolRun& run, const std::vector<engine::PreparedScene>& prepared,
-                    std::vector<VariantResult>& results, std::ostream& out, std::ostream& err) {
+                    std::vector<VariantResult>& results, const std::vector<FailedVariant>& failed, std::ostream& out,
+                    std::ostream& err) {
   const FramePlan plan{std::max<uint32_t>(1, options.warmup.value_or(run.scene().warmupFrames)),
                        std::max<uint32_t>(1, options.frames.value_or(run.scene().frames))};
   if (const auto status = measureFrames(run, prepared, plan, results)) return *status;
-  if (const auto status = captureViews(run, prepared, plan, results, out)) return *status;
+  if (const auto status = captureViews(options, run, prepared, plan, results, out)) return *status;
   std::vector<measure::ReportRow> rows;
   if (const auto status = reportRows(run, results, rows, err)) return *status;
   out << measure::formatTextTable(rows);
-  if (const auto status = writeOutputs(options, run, plan, results, rows, out)) return *status;
-  return kExitSuccess;
+  if (const auto status = writeOutputs(options, run, plan, results, rows, failed, out)) return *status;
+  if (failed.empty()) return kExitSuccess;
+  err << fmt::format("{}: error: {} of {} variants failed (see above and report.md); the others were measured\n", kTool,
+                     failed.size(), failed.size() + results.size());
+  return kExitInputError;
 }
 
 int showVariants(const Options& options, engine::ToolRun& run, GlfwWindow& window,
@@ -321,13 +383,15 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   run.startRenderer(options.bakeSize);
   std::vector<engine::PreparedScene> prepared;
   std::vector<VariantResult> results;
-  if (const auto status = prepareVariants(run, variantRuns(options, run.scene()), prepared, results, err)) {
+  std::vector<FailedVariant> failed;
+  if (const auto status = prepareVariants(run, variantRuns(options, run.scene()), prepared, results, failed, err)) {
     return *status;
   }
   if (window) return run.finish(showVariants(options, run, *window, prepared, results, out));
   // A failed measurement has said why; validation is reported on success.
-  const int status = measureVariants(options, run, prepared, results, out, err);
-  return status == kExitSuccess ? run.finish(status) : status;
+  const int status = measureVariants(options, run, prepared, results, failed, out, err);
+  // With failed variants the outputs are written; validation still counts.
+  return status == kExitSuccess || !failed.empty() ? run.finish(status) : status;
 }
 
 }  // namespace spire::demo

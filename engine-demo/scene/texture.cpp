@@ -135,11 +135,11 @@ Expected<Image> loadImage(const std::filesystem::path& path) {
   return image;
 }
 
-Expected<void> writePng(const std::filesystem::path& path, const Image& image) {
+Expected<std::string> encodePng(const Image& image) {
   if (image.width == 0 || image.height == 0 ||
       image.rgba8.size() != static_cast<size_t>(image.width) * image.height * 4) {
-    return Error{"cannot write PNG '" + path.string() + "': image is empty or its pixel data does not match " +
-                 std::to_string(image.width) + "x" + std::to_string(image.height) + " RGBA8"};
+    return Error{"the image is empty or its pixel data does not match " + std::to_string(image.width) + "x" +
+                 std::to_string(image.height) + " RGBA8"};
   }
   std::string encoded;
   const auto append = [](void* context, void* data, int size) {
@@ -148,10 +148,15 @@ Expected<void> writePng(const std::filesystem::path& path, const Image& image) {
   const int stride = static_cast<int>(image.width) * 4;
   if (stbi_write_png_to_func(append, &encoded, static_cast<int>(image.width), static_cast<int>(image.height), 4,
                              image.rgba8.data(), stride) == 0) {
-    return Error{"cannot write PNG '" + path.string() + "': the encoder failed"};
+    return Error{"the PNG encoder failed"};
   }
-  if (auto written = writeFileAtomically(path.string(), encoded); !written) return written;
-  return {};
+  return encoded;
+}
+
+Expected<void> writePng(const std::filesystem::path& path, const Image& image) {
+  auto encoded = encodePng(image);
+  if (!encoded) return Error{"cannot write PNG '" + path.string() + "': " + encoded.error().message};
+  return writeFileAtomically(path.string(), *encoded);
 }
 
 }  // namespace spire::scene

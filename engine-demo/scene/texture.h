@@ -57,6 +57,10 @@ Image makeGgxLut(uint32_t size);
 // Decodes a PNG or JPEG file to RGBA8 (other formats stb_image knows work too).
 Expected<Image> loadImage(const std::filesystem::path& path);
 
+// `image` as the bytes of a PNG file; an error for an empty image or pixel
+// data that does not match its size.
+Expected<std::string> encodePng(const Image& image);
+
 // Encodes `image` as PNG. The data goes to a temporary file beside `path` that
 // is renamed over it, so readers never see a half-written file.
 Expected<void> writePng(const std::filesystem::path& path, const Image& image);

@@ -2,6 +2,7 @@
 // that do not fit their shaders (tests/golden/demo/NAME.json against
 // NAME.expected, the exact stderr; SPIRE_UPDATE_GOLDENS=1 rewrites them), and
 // the main job's outputs on a small terrain scene.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -93,6 +94,41 @@ TEST_F(DemoTest, MainJobWritesImagesReportAndTheTrade) {
   EXPECT_NE(table.find("baked_albedo"), std::string::npos) << table;
   EXPECT_NE(table.find("PrebakeTex"), std::string::npos) << table;
   fs::remove_all(dir);
+}
+
+// A variant that fails is named with its decision file and left out; the
+// others are measured and written, as a set that replaces the earlier run's
+// files, with opaque images; the exit status says something failed.
+TEST_F(DemoTest, AFailingVariantIsReportedAndTheOthersAreWritten) {
+  const fs::path dir = outputDir();
+  fs::create_directories(dir);
+  std::ofstream(dir / "stale.png") << "an earlier run's";
+  const fs::path broken = fs::path(dir.string() + "_broken.decisions");
+  std::ofstream(broken) << "Terrain.albedo = NoSuchWorld\n";
+  std::ostringstream out;
+  std::ostringstream err;
+  EXPECT_EQ(runDemo({"examples/scenes/terrain.json", "--validation", "--frames", "1", "--warmup", "1", "--bake-size",
+                     "64", "--variant", "examples/decisions/terrain_full_quality.decisions", "--variant",
+                     broken.string(), "-o", dir.string()},
+                    out, err),
+            kExitInputError);
+  const std::string name = broken.stem().string();
+  EXPECT_NE(err.str().find(fmt::format("variant '{}' ({}) failed: ", name, broken.string())), std::string::npos)
+      << err.str();
+  EXPECT_NE(err.str().find("1 of 2 variants failed"), std::string::npos) << err.str();
+  EXPECT_FALSE(fs::exists(dir / "stale.png"));
+  EXPECT_FALSE(fs::exists(dir / (name + ".png")));
+  const auto image = scene::loadImage(dir / "terrain_full_quality.png");
+  ASSERT_TRUE(image) << image.error().message;
+  size_t translucent = 0;
+  for (size_t i = 3; i < image->rgba8.size(); i += 4) translucent += image->rgba8[i] != 255;
+  EXPECT_EQ(translucent, 0U);
+  EXPECT_TRUE(fs::exists(dir / "comparison.png"));
+  const std::string report = readFile(dir / "report.md");
+  EXPECT_NE(report.find("## Failed variants"), std::string::npos) << report;
+  EXPECT_NE(report.find("| " + name + " | " + broken.string() + " |"), std::string::npos) << report;
+  fs::remove_all(dir);
+  fs::remove(broken);
 }
 
 }  // namespace

@@ -19,9 +19,9 @@ namespace {
 
 using testing::addBufferViewImage;
 using testing::addPixelImage;
-using testing::encodePng;
 using testing::makeQuadModel;
 using testing::makeTestPixels;
+using testing::pngBytes;
 using testing::QuadOptions;
 using testing::TempDir;
 using testing::writeModel;
@@ -210,8 +210,8 @@ TEST(GltfImageTest, BufferViewImagesInGlbByIndex) {
   TempDir dir;
   tinygltf::Model model = makeQuadModel({}, "");
   Image second = makeChecker(4, 2, Rgba8(1, 2, 3, 4), Rgba8(250, 251, 252, 253));
-  addBufferViewImage(model, encodePng(makeTestPixels()));
-  addBufferViewImage(model, encodePng(second));
+  addBufferViewImage(model, pngBytes(makeTestPixels()));
+  addBufferViewImage(model, pngBytes(second));
   auto path = writeModel(model, dir.path() / "textured.glb", true);
   auto first = loadGltfImage(path, 0);
   ASSERT_TRUE(first) << first.error().message;
@@ -277,7 +277,7 @@ TEST(GltfImageTest, MissingFileNamesPathAndReason) {
 TEST(GltfImageTest, IndexPastTheImagesIsAnError) {
   TempDir dir;
   tinygltf::Model model = makeQuadModel({}, "");
-  addBufferViewImage(model, encodePng(makeTestPixels()));
+  addBufferViewImage(model, pngBytes(makeTestPixels()));
   auto path = writeModel(model, dir.path() / "textured.glb", true);
   auto image = loadGltfImage(path, 1);
   ASSERT_FALSE(image);

@@ -10,8 +10,6 @@
 
 #include <tiny_gltf.h>
 
-#include <stb/stb_image_write.h>
-
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -127,17 +125,12 @@ inline std::filesystem::path writeModel(const tinygltf::Model& model, const std:
   return path;
 }
 
-inline std::vector<unsigned char> encodePng(const Image& image) {
-  std::vector<unsigned char> png;
-  auto append = [](void* context, void* data, int size) {
-    auto* out = static_cast<std::vector<unsigned char>*>(context);
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    out->insert(out->end(), bytes, bytes + size);
-  };
-  EXPECT_NE(stbi_write_png_to_func(append, &png, static_cast<int>(image.width), static_cast<int>(image.height), 4,
-                                   image.rgba8.data(), 0),
-            0);
-  return png;
+// `image` as PNG bytes, by the library's own encoder.
+inline std::vector<unsigned char> pngBytes(const Image& image) {
+  const auto encoded = scene::encodePng(image);
+  EXPECT_TRUE(encoded) << encoded.error().message;
+  if (!encoded) return {};
+  return {encoded->begin(), encoded->end()};
 }
 
 // Adds `encoded` as an image stored in a bufferView of buffer 0 (the .glb way).

@@ -14,9 +14,9 @@ namespace spire::scene {
 namespace {
 
 using testing::addBufferViewImage;
-using testing::encodePng;
 using testing::makeQuadModel;
 using testing::makeTestPixels;
+using testing::pngBytes;
 using testing::TempDir;
 using testing::writeModel;
 
@@ -241,8 +241,8 @@ TEST(SceneResourcesTest, FileAndGltfTextures) {
   EXPECT_EQ(build(file).rgba8, makeTestPixels().rgba8);
 
   tinygltf::Model model = makeQuadModel({}, "");
-  addBufferViewImage(model, encodePng(makeSolid(2, Rgba8(9, 8, 7, 6))));
-  addBufferViewImage(model, encodePng(makeTestPixels()));
+  addBufferViewImage(model, pngBytes(makeSolid(2, Rgba8(9, 8, 7, 6))));
+  addBufferViewImage(model, pngBytes(makeTestPixels()));
   TextureDesc gltf = textureDesc(TextureKind::Gltf);
   gltf.file = writeModel(model, dir.path() / "textured.glb", true);
   gltf.image = 1;
