@@ -80,7 +80,7 @@ struct ModuleLoader::Impl {
 
   // Parses a file, loads what it includes, then appends it to the program.
   // Returns its module, or null when it is not text.
-  const ast::Module* load(std::string displayPath, std::string key, std::string root, std::string text,
+  const ast::Module* load(const std::string& displayPath, std::string key, const std::string& root, std::string text,
                           ast::Program& program) {
     loaded.insert(key);
     const FileId file = sources.addFile(displayPath, std::move(text), logicalName(key, root));

@@ -47,7 +47,7 @@ void Parser::parsePipelineMember(ast::PipelineDecl& decl) {
   } else if (at(TokenKind::KwImport)) {
     if (auto import = parseImport(begin, std::move(*attributes))) decl.imports.push_back(std::move(*import));
   } else if (startsComponent()) {
-    parseComponentDecl(begin, std::move(*attributes), decl.components);
+    parseComponentDecl(begin, *attributes, decl.components);
   } else {
     rejectUnexpected("expected a world, import or component declaration", SyncLevel::Member);
   }
@@ -171,7 +171,7 @@ void Parser::parseShaderMember(ast::ShaderDecl& decl) {
   const uint32_t begin = current().range.begin;
   auto attributes = parseAttributes();
   if (!attributes) return synchronize(SyncLevel::Member);
-  if (startsComponent()) return parseComponentDecl(begin, std::move(*attributes), decl.components);
+  if (startsComponent()) return parseComponentDecl(begin, *attributes, decl.components);
   rejectUnexpected(at(TokenKind::KwWorld) || at(TokenKind::KwImport)
                        ? "worlds and imports can only be declared in a pipeline"
                        : "expected a component declaration",
@@ -252,7 +252,7 @@ bool Parser::startsComponent() const {
 //
 // Each name becomes its own ComponentDecl sharing the attributes, flags,
 // world and (a copy of) the type.
-void Parser::parseComponentDecl(uint32_t begin, std::vector<ast::Attribute> attributes,
+void Parser::parseComponentDecl(uint32_t begin, const std::vector<ast::Attribute>& attributes,
                                 std::vector<ast::ComponentDecl>& out) {
   const bool isAbstract = accept(TokenKind::KwAbstract);
   const bool isExport = accept(TokenKind::KwExport);

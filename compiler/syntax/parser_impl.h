@@ -121,7 +121,8 @@ class Parser {
   std::optional<ast::GroupEntry> parseGroupEntry();
   std::optional<std::vector<ast::Attribute>> parseAttributes();
   bool startsComponent() const;
-  void parseComponentDecl(uint32_t begin, std::vector<ast::Attribute> attributes, std::vector<ast::ComponentDecl>& out);
+  void parseComponentDecl(uint32_t begin, const std::vector<ast::Attribute>& attributes,
+                          std::vector<ast::ComponentDecl>& out);
   bool parseComponentName(ast::ComponentDecl& decl);
   void closeMembers(const Token& open, std::string_view what);
 

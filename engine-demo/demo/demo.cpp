@@ -194,6 +194,8 @@ std::optional<int> prepareVariants(engine::ToolRun& run, const std::vector<Varia
     results.push_back({variant.name, {}, scenePrepared->bakes, {}, {}});
     prepared.push_back(std::move(scenePrepared).value());
   }
+  renderer.reportUnreadBindings();
+  run.reporter().flush();
   if (results.empty()) {
     return runs.size() == 1 ? kExitInputError
                             : run.fail(fmt::format("nothing was rendered: all {} variants failed", runs.size()));

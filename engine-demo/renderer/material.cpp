@@ -25,21 +25,16 @@ class MaterialResolver {
                    DiagnosticList& diags)
       : program_(program), instance_(instance), textureFor_(textureFor), diags_(diags) {}
 
-  std::optional<MaterialValues> resolve() {
+  ResolvedMaterial resolve() {
     const size_t errorsBefore = diags_.errorCount();
     for (const KernelProgram& kernel : program_.kernels) {
       checkKernelWorld(kernel);
       for (const KernelInput& input : kernel.inputs) checkInput(kernel, input);
     }
-    for (const scene::MaterialBinding& binding : instance_.material) {
-      if (!used_.contains(binding.component)) {
-        diags_.reportOnce(DiagCode::W7101, binding.keyRange,
-                          fmt::format("'{}' is not an input of this variant of '{}'; the value is ignored",
-                                      binding.component, program_.shader));
-      }
-    }
-    if (diags_.errorCount() != errorsBefore) return std::nullopt;
-    return std::move(values_);
+    ResolvedMaterial resolved;
+    resolved.read = std::move(used_);
+    if (diags_.errorCount() == errorsBefore) resolved.values = std::move(values_);
+    return resolved;
   }
 
  private:
@@ -183,9 +178,19 @@ class MaterialResolver {
 
 }  // namespace
 
-std::optional<MaterialValues> resolveMaterial(const VariantProgram& program, const scene::InstanceDesc& instance,
-                                              const TextureLookup& textureFor, DiagnosticList& diags) {
+ResolvedMaterial resolveMaterial(const VariantProgram& program, const scene::InstanceDesc& instance,
+                                 const TextureLookup& textureFor, DiagnosticList& diags) {
   return MaterialResolver(program, instance, textureFor, diags).resolve();
+}
+
+void reportUnreadBindings(const scene::InstanceDesc& instance, const std::set<std::string, std::less<>>& read,
+                          DiagnosticList& diags) {
+  for (const scene::MaterialBinding& binding : instance.material) {
+    if (read.contains(binding.component)) continue;
+    diags.reportOnce(DiagCode::W7101, binding.keyRange,
+                     fmt::format("'{}' is not an input of any variant of '{}' rendered; the value is ignored",
+                                 binding.component, instance.shader));
+  }
 }
 
 }  // namespace spire::engine

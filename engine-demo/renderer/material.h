@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "renderer/kernel_bindings.h"
@@ -21,10 +22,20 @@ namespace spire::engine {
 // reporting why it cannot be loaded at `range`.
 using TextureLookup = std::function<const GpuTexture*(const std::string& name, SourceRange range)>;
 
+struct ResolvedMaterial {
+  std::optional<MaterialValues> values;     // nullopt after errors
+  std::set<std::string, std::less<>> read;  // the bindings the variant reads
+};
+
 // Checks `program` against this engine's world table and resolves the
-// instance's material; nullopt after errors. Bindings that match no input
-// of the variant are warnings (W7101): a variant may not need every value.
-std::optional<MaterialValues> resolveMaterial(const VariantProgram& program, const scene::InstanceDesc& instance,
-                                              const TextureLookup& textureFor, DiagnosticList& diags);
+// instance's material.
+ResolvedMaterial resolveMaterial(const VariantProgram& program, const scene::InstanceDesc& instance,
+                                 const TextureLookup& textureFor, DiagnosticList& diags);
+
+// W7101 for each binding of `instance` that is not in `read`. A binding one
+// variant does not read is expected (a baked variant no longer reads the
+// maps it baked), so a tool reports this once, over all its variants.
+void reportUnreadBindings(const scene::InstanceDesc& instance, const std::set<std::string, std::less<>>& read,
+                          DiagnosticList& diags);
 
 }  // namespace spire::engine

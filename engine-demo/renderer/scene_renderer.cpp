@@ -197,8 +197,15 @@ Expected<RenderTarget*> SceneRenderer::targetFor(size_t colorTargets) {
   return &*target_;
 }
 
+void SceneRenderer::reportUnreadBindings() {
+  for (size_t i = 0; i < scene_.instances.size() && i < readBindings_.size(); ++i) {
+    engine::reportUnreadBindings(scene_.instances[i], readBindings_[i], diags_);
+  }
+}
+
 Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>& programs) {
   PreparedScene prepared;
+  readBindings_.resize(std::max(readBindings_.size(), programs.size()));
   std::vector<const GpuMesh*> meshes;
   const size_t errorsBefore = diags_.errorCount();
   for (size_t i = 0; i < programs.size(); ++i) {
@@ -211,8 +218,9 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
     }
     meshes.push_back(meshFor(instance.mesh, instance.meshRange));
     const TextureLookup lookup = [this](const std::string& name, SourceRange range) { return textureFor(name, range); };
-    auto material = resolveMaterial(programs[i], instance, lookup, diags_);
-    prepared.materials.push_back(material ? std::move(*material) : MaterialValues{});
+    ResolvedMaterial material = resolveMaterial(programs[i], instance, lookup, diags_);
+    readBindings_[i].merge(material.read);
+    prepared.materials.push_back(material.values ? std::move(*material.values) : MaterialValues{});
   }
   if (diags_.errorCount() != errorsBefore) return Error{"nothing was rendered: the scene has errors", {}, {}};
 

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,10 @@ class SceneRenderer {
   // Resolves materials (reporting problems to `diags`), runs the bakes the
   // programs need and builds their draws.
   Expected<PreparedScene> prepare(const std::vector<VariantProgram>& programs);
+  // W7101 for each material binding that no variant prepared so far read:
+  // called once after a tool's variants are prepared, since one variant not
+  // reading a value another reads is expected.
+  void reportUnreadBindings();
 
   // Renders `warmup` frames (the first one timed separately), then `frames`
   // measured ones, from camera view 0.
@@ -134,6 +139,8 @@ class SceneRenderer {
   std::optional<RenderTarget> target_;
   std::string compilerWarnings_;
   std::map<std::string, std::vector<double>> overrides_;
+  // Per instance: the material bindings some prepared variant read.
+  std::vector<std::set<std::string, std::less<>>> readBindings_;
   bool strictDecisions_ = true;
 };
 

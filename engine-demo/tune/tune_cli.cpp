@@ -101,6 +101,10 @@ std::optional<int> measureAll(const TuneOptions& options, engine::ToolRun& run, 
   if (options.jobs == 1 || workerProgram.empty()) {
     Progress progress(err, total, already);
     const int status = measureShard(options, run, session, -1, &progress);
+    // Workers prepare variants in other processes, so only an in-process
+    // run knows which bindings no variant read.
+    run.renderer().reportUnreadBindings();
+    run.reporter().flush();
     return status == kExitSuccess ? std::nullopt : std::optional<int>(status);
   }
   if (const auto created = WorkQueue::create(queuePath(options)); !created) return run.fail(created.error().message);
