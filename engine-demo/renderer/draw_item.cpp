@@ -61,7 +61,7 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
   builder.vertexShader(*vertexModule).fragmentShader(*fragmentModule).vertexBinding(0, sizeof(scene::Vertex));
   for (const KernelInput& input : vertex->inputs) {
     if (input.kind != InputKind::Varying) continue;
-    const MeshAttribute* attribute = findMeshAttribute(input.component);
+    const MeshAttribute* attribute = findMeshAttribute(input.component, input.type.name);
     if (!attribute) {
       return Error{
           fmt::format("the {} kernel reads '{}', which is not a mesh attribute", vertex->world, input.component),

@@ -142,7 +142,7 @@ class KernelBinder {
     const std::span<std::byte> memory = bytesOf(buffer);
     const WorldRole role = roleOf(kernel_, input);
     if (role == WorldRole::MeshAttributes) {
-      const MeshAttribute* attribute = findMeshAttribute(input.component);
+      const MeshAttribute* attribute = findMeshAttribute(input.component, input.type.name);
       if (!attribute) return missing(kernel_, input, "the engine supplies no such mesh attribute");
       for (uint32_t i = 0; i < records; ++i) {
         writeValue(memory.subspan(size_t{i} * block.recordStride, block.recordStride), *member,

@@ -80,10 +80,10 @@ class MaterialResolver {
                         fmt::format("the {} kernel reads mesh attribute '{}', which meshes do not have "
                                     "(they have vert_pos, vert_uv, vert_normal and vert_tangent)",
                                     kernel.world, input.component));
-    } else if (attribute->type != input.type.name) {
+    } else if (!findMeshAttribute(input.component, input.type.name)) {
       diags_.reportOnce(DiagCode::E7103, shaderRange(),
                         fmt::format("mesh attribute '{}' is a {}, but '{}' declares it as {}", input.component,
-                                    attribute->type, program_.shader, input.type.name));
+                                    meshAttributeTypes(input.component), program_.shader, input.type.name));
     }
   }
 

@@ -1,5 +1,6 @@
 #include "renderer/supplied_values.h"
 
+#include <fmt/format.h>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -18,6 +19,7 @@ constexpr std::array kMeshAttributes = {
     MeshAttribute{"vert_uv", "vec2", offsetof(scene::Vertex, uv), 2, VK_FORMAT_R32G32_SFLOAT},
     MeshAttribute{"vert_normal", "vec3", offsetof(scene::Vertex, normal), 3, VK_FORMAT_R32G32B32_SFLOAT},
     MeshAttribute{"vert_tangent", "vec4", offsetof(scene::Vertex, tangent), 4, VK_FORMAT_R32G32B32A32_SFLOAT},
+    MeshAttribute{"vert_tangent", "vec3", offsetof(scene::Vertex, tangent), 3, VK_FORMAT_R32G32B32_SFLOAT},
 };
 
 constexpr std::array kFrameValues = {
@@ -51,10 +53,19 @@ std::vector<double> flattenVector(const glm::vec3& v) { return {v.x, v.y, v.z}; 
 
 std::span<const MeshAttribute> meshAttributes() { return kMeshAttributes; }
 
-const MeshAttribute* findMeshAttribute(std::string_view component) {
-  const auto it = std::find_if(kMeshAttributes.begin(), kMeshAttributes.end(),
-                               [&](const MeshAttribute& a) { return a.component == component; });
+const MeshAttribute* findMeshAttribute(std::string_view component, std::string_view type) {
+  const auto it = std::find_if(kMeshAttributes.begin(), kMeshAttributes.end(), [&](const MeshAttribute& a) {
+    return a.component == component && (type.empty() || a.type == type);
+  });
   return it == kMeshAttributes.end() ? nullptr : &*it;
+}
+
+std::string meshAttributeTypes(std::string_view component) {
+  std::string types;
+  for (const MeshAttribute& a : kMeshAttributes) {
+    if (a.component == component) types += fmt::format("{}{}", types.empty() ? "" : " or ", a.type);
+  }
+  return types;
 }
 
 std::vector<double> attributeValue(const scene::Vertex& vertex, const MeshAttribute& attribute) {

@@ -27,8 +27,14 @@ struct MeshAttribute {
   VkFormat format;
 };
 
+// One row per attribute and declared type: vert_tangent may be declared vec4
+// (xyz and the bitangent sign in w) or vec3 (xyz only).
 std::span<const MeshAttribute> meshAttributes();
-const MeshAttribute* findMeshAttribute(std::string_view component);
+// The attribute `component` declared as `type`; with an empty `type`, its
+// first row (the one with every component).
+const MeshAttribute* findMeshAttribute(std::string_view component, std::string_view type = {});
+// "vec4 or vec3": the types `component` may be declared with.
+std::string meshAttributeTypes(std::string_view component);
 // The attribute of `vertex` as numbers.
 std::vector<double> attributeValue(const scene::Vertex& vertex, const MeshAttribute& attribute);
 

@@ -196,7 +196,7 @@ Expected<vk::Pipeline> buildBakePipeline(const vk::Context& ctx, const BakeModul
   builder.vertexShader(modules.vertex).fragmentShader(modules.fragment).vertexBinding(0, sizeof(scene::Vertex));
   for (const KernelInput& input : kernel.inputs) {
     if (input.kind != InputKind::Varying) continue;
-    const MeshAttribute* attribute = findMeshAttribute(input.component);
+    const MeshAttribute* attribute = findMeshAttribute(input.component, input.type.name);
     if (!attribute)
       return Error{
           fmt::format("the {} kernel reads '{}', which is not a mesh attribute", kernel.world, input.component),

@@ -10,7 +10,6 @@ namespace spire::tune {
 namespace {
 
 using engine::Capture;
-using engine::Error;
 using engine::Expected;
 
 Expected<std::vector<Capture>> renderViews(engine::SceneRenderer& renderer, size_t instance, const TunePoint& point,

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 #include "driver/spirec.h"
@@ -254,6 +255,32 @@ TEST_F(RendererTest, AnUnknownRoleIsAnErrorListingTheRoles) {
       << message;
   EXPECT_NE(message.find("prebakeTexture (rasterized in UV space at load into textures)"), std::string::npos)
       << message;
+}
+
+// vert_tangent may be declared vec3 as well as vec4: the engine binds the
+// same data with the format the declaration asks for.
+TEST_F(RendererTest, TangentsMayBeDeclaredVec3OrVec4) {
+  std::string vec4Scene = planeScene("tangent_types.spire", "TangentVec4", "{}");
+  std::string vec3Scene = planeScene("tangent_types.spire", "TangentVec3", "{}");
+  for (std::string* scene : {&vec4Scene, &vec3Scene}) {
+    const size_t at = scene->find(R"({"mesh": "plane")");
+    ASSERT_NE(at, std::string::npos);
+    scene->replace(at, 16, R"({"mesh": "ball")");
+  }
+  const auto reference = render(vec4Scene, std::nullopt);
+  ASSERT_TRUE(reference);
+  const auto test = render(vec3Scene, std::nullopt);
+  ASSERT_TRUE(test);
+  EXPECT_GT(coveredFraction(test->capture), 0.2);
+  EXPECT_EQ(compare(reference->capture, test->capture).maxError, 0.0);
+  // The tangents of a sphere vary, so the comparison is not of one colour.
+  std::set<std::array<float, 3>> colors;
+  for (size_t i = 0; i < test->capture.coverage.size(); ++i) {
+    if (!test->capture.coverage[i]) continue;
+    const float* rgba = &test->capture.color.rgba[i * 4];
+    colors.insert({rgba[0], rgba[1], rgba[2]});
+  }
+  EXPECT_GT(colors.size(), 50U);
 }
 
 // A renderer made from another shares its textures (it sees them before it
