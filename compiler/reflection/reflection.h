@@ -49,7 +49,8 @@ ValueType parseValueType(std::string_view glsl);
 struct DescriptorSlot {
   uint32_t set = 0;
   uint32_t binding = 0;
-  auto operator<=>(const DescriptorSlot&) const = default;
+  // clang-tidy 14 reports the literal 0 of the defaulted comparison as a null pointer.
+  auto operator<=>(const DescriptorSlot&) const = default;  // NOLINT(modernize-use-nullptr)
 };
 
 // One member of a uniform block or of a storage buffer's record.

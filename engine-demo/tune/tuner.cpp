@@ -12,7 +12,7 @@
 namespace spire::tune {
 
 Tuner::Tuner(engine::SceneRenderer& renderer, size_t instance, std::vector<Axis> axes, TunerOptions options)
-    : renderer_(renderer), instance_(instance), axes_(std::move(axes)), options_(options) {}
+    : renderer_(renderer), instance_(instance), axes_(std::move(axes)), options_(std::move(options)) {}
 
 std::vector<ParameterSample> Tuner::samples() const {
   return options_.parameterSamples.empty() ? std::vector<ParameterSample>{ParameterSample{}}
