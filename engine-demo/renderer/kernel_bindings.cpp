@@ -82,6 +82,10 @@ class KernelBinder {
         bound_.frameWrites.push_back({*buffer, *member, input.component});
         continue;
       }
+      if (bound && !bound->engineValue.empty()) {
+        bound_.frameWrites.push_back({*buffer, *member, bound->engineValue});
+        continue;
+      }
       if (role == WorldRole::UniformBake) {
         const std::vector<double>* baked = bakedUniform(input.component);
         if (!baked) return missing(kernel_, input, "the uniform bake did not produce it");

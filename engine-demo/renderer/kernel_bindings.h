@@ -23,7 +23,8 @@ namespace spire::engine {
 struct MaterialValue {
   std::vector<double> numbers;
   const GpuTexture* texture = nullptr;
-  std::string identity;  // stable text naming the value, for bake cache keys
+  std::string identity;     // stable text naming the value, for bake cache keys
+  std::string engineValue;  // set: the per-frame engine value of that name (frameValue), written every frame
 };
 using MaterialValues = std::map<std::string, MaterialValue, std::less<>>;
 

@@ -121,7 +121,33 @@ class MaterialResolver {
     return nullptr;
   }
 
+  // `binding` names a value the engine supplies every frame: it must be one,
+  // of the input's type, read from a uniform block (which the engine
+  // rewrites before each frame).
+  void resolveEngineValue(const KernelInput& input, const scene::MaterialBinding& binding) {
+    const std::string& name = *binding.engineValue;
+    const auto supplied = frameValue(name, FrameState{}, glm::mat4(1.0F));
+    if (!supplied) {
+      diags_.report(DiagCode::E7103, binding.valueRange,
+                    fmt::format("'{}' is bound to the engine value '{}', which the engine does not supply; it "
+                                "supplies {}",
+                                input.component, name, supportedNames()));
+    } else if (supplied->type != input.type.name) {
+      diags_.report(DiagCode::E7103, binding.valueRange,
+                    fmt::format("'{}' is a {}, but the engine value '{}' is a {}", input.component, input.type.name,
+                                name, supplied->type));
+    } else if (input.kind != InputKind::UniformMember) {
+      diags_.report(DiagCode::E7103, binding.valueRange,
+                    fmt::format("'{}' is not read from a uniform block; an engine value can be bound only to a "
+                                "uniform (import it with uniformImport)",
+                                input.component));
+    } else {
+      values_[input.component] = MaterialValue{{}, nullptr, "engine:" + name, name};
+    }
+  }
+
   void resolveBinding(const KernelInput& input, const scene::MaterialBinding& binding) {
+    if (binding.engineValue) return resolveEngineValue(input, binding);
     if (input.type.kind == ValueType::Kind::Sampler) {
       if (!binding.texture) {
         diags_.report(
@@ -130,7 +156,7 @@ class MaterialResolver {
         return;
       }
       if (const GpuTexture* texture = textureFor_(*binding.texture, binding.valueRange)) {
-        values_[input.component] = MaterialValue{{}, texture, "texture:" + *binding.texture};
+        values_[input.component] = MaterialValue{{}, texture, "texture:" + *binding.texture, {}};
       }
       return;
     }
@@ -165,7 +191,7 @@ class MaterialResolver {
     }
     std::string identity = "numbers:";
     for (double n : binding.numbers) identity += fmt::format("{},", n);
-    values_[input.component] = MaterialValue{binding.numbers, nullptr, std::move(identity)};
+    values_[input.component] = MaterialValue{binding.numbers, nullptr, std::move(identity), {}};
   }
 
   const VariantProgram& program_;

@@ -584,6 +584,8 @@ class SceneReader {
       if (v.is(JsonKind::String)) {
         binding.texture = v.string;
         checkReference(v, textureNames_, "texture", "textures");
+      } else if (v.is(JsonKind::Object)) {
+        binding.engineValue = engineValueName(v, what);
       } else if (v.is(JsonKind::Number)) {
         binding.numbers.push_back(v.number);
       } else if (v.is(JsonKind::Array) && !v.elements.empty() && v.elements.size() <= kMaxMaterialNumbers) {
@@ -593,11 +595,26 @@ class SceneReader {
         }
       } else {
         diags_.report(DiagCode::E7003, v.range,
-                      fmt::format("{} must be a texture name, a number or an array of 1 to {} numbers, found {}", what,
-                                  kMaxMaterialNumbers, check_.kindOf(v)));
+                      fmt::format("{} must be a texture name, a number, an array of 1 to {} numbers or "
+                                  "{{\"engine\": NAME}}, found {}",
+                                  what, kMaxMaterialNumbers, check_.kindOf(v)));
       }
       material.push_back(std::move(binding));
     }
+  }
+
+  // {"engine": NAME}: the one key, a non-empty string (which names a value
+  // only the renderer knows).
+  std::optional<std::string> engineValueName(const JsonValue& value, const std::string& what) {
+    if (value.members.size() == 1 && value.members.front().key == "engine" &&
+        value.members.front().value.is(JsonKind::String) && !value.members.front().value.string.empty()) {
+      return value.members.front().value.string;
+    }
+    diags_.report(DiagCode::E7003, value.range,
+                  fmt::format("{} as an object must be {{\"engine\": NAME}}, naming a value the engine supplies "
+                              "every frame",
+                              what));
+    return std::nullopt;
   }
 
   void readVariants(const JsonValue& value, std::vector<VariantDesc>& variants) {

@@ -73,15 +73,18 @@ struct TextureDesc {
 };
 
 // A material value for one shader input, by component name. Either the name
-// of a texture in "textures" (for sampler inputs) or a literal: a number or a
+// of a texture in "textures" (for sampler inputs), a literal: a number or a
 // flat array of numbers (a vector or a column-major matrix), whose arity and
-// type the renderer checks against the reflection.
+// type the renderer checks against the reflection; or {"engine": NAME}, a
+// value the engine supplies every frame (the camera's matrices, the light,
+// time), which the renderer checks against the values it supplies.
 struct MaterialBinding {
   std::string component;
   SourceRange keyRange;    // the component name
   SourceRange valueRange;  // the value
   std::optional<std::string> texture;
-  std::vector<double> numbers;  // when texture is empty
+  std::optional<std::string> engineValue;
+  std::vector<double> numbers;  // when neither texture nor engineValue is set
 };
 
 struct InstanceDesc {

@@ -168,9 +168,9 @@ class RendererDescriptorSetsTest : public vk::testing::DeviceTest {
     auto texture = uploadTexture(ctx(), image, true);
     ASSERT_TRUE(texture) << texture.error().message;
     texture_ = std::move(texture).value();
-    material_["offset"] = {{0, 0, 0, 0}, nullptr, "offset"};
-    material_["scale"] = {{1, 0.5, 2, 1}, nullptr, "scale"};
-    material_["tint"] = {{}, texture_.get(), "tint"};
+    material_["offset"] = {{0, 0, 0, 0}, nullptr, "offset", {}};
+    material_["scale"] = {{1, 0.5, 2, 1}, nullptr, "scale", {}};
+    material_["tint"] = {{}, texture_.get(), "tint", {}};
   }
 
   BindingSources sources() const { return {mesh_.get(), &material_, nullptr, nullptr, nullptr}; }

@@ -283,6 +283,68 @@ TEST_F(RendererTest, TangentsMayBeDeclaredVec3OrVec4) {
   EXPECT_GT(colors.size(), 50U);
 }
 
+// A scene binds any numeric uniform input to a value the engine supplies
+// every frame, by the engine value's name: a shader's own names then follow
+// the camera like the engine's, from every view.
+TEST_F(RendererTest, InputsBoundToEngineValuesFollowTheCamera) {
+  const auto twoViews = [](std::string scene) {
+    const std::string one = R"("views": [{"position": [0, 2.2, 0.01], "target": [0, 0, 0]}])";
+    scene.replace(scene.find(one), one.size(),
+                  R"("views": [{"position": [0, 2.2, 0.01], "target": [0, 0, 0]},
+                               {"position": [0.6, 3.0, 0.4], "target": [0, 0, 0]}])");
+    return scene;
+  };
+  // Every view of `json`, rendered by one renderer.
+  const auto renderViews = [&](const std::string& json) {
+    std::vector<Capture> captures;
+    const auto rendered = render(json, std::nullopt);
+    if (!rendered) return captures;
+    for (const scene::CameraView& view : scene_->camera.views) {
+      auto capture = renderer_->capture(rendered->prepared, view);
+      EXPECT_TRUE(capture) << capture.error().message;
+      if (capture) captures.push_back(std::move(capture).value());
+    }
+    return captures;
+  };
+  const std::vector<Capture> own = renderViews(twoViews(planeScene(
+      "engine_values.spire", "OwnNames",
+      R"({"color": [0.2, 0.4, 0.6, 1], "viewProjectionModel": {"engine": "matMVP"}, "eye": {"engine": "cameraPos"}})")));
+  const std::vector<Capture> engine =
+      renderViews(twoViews(planeScene("flat_plane.spire", "FlatPlane", R"({"color": [0.2, 0.4, 0.6, 1]})")));
+  ASSERT_EQ(own.size(), 2U);
+  ASSERT_EQ(engine.size(), 2U);
+  EXPECT_NE(engine[0].coverage, engine[1].coverage);  // the views differ
+  for (size_t v = 0; v < 2; ++v) {
+    SCOPED_TRACE(v);
+    EXPECT_EQ(own[v].coverage, engine[v].coverage);  // the matrix is the engine's, for this view
+    const double factor = std::min((v == 0 ? 2.2 : 3.0) / 4.0, 1.0);
+    const auto mean = coveredMean(own[v]);
+    EXPECT_NEAR(mean[0], 0.2 * factor, 1e-5);
+    EXPECT_NEAR(mean[2], 0.6 * factor, 1e-5);
+  }
+}
+
+TEST_F(RendererTest, AnUnknownEngineValueIsAnErrorListingTheValues) {
+  sources_ = std::make_unique<SourceManager>();
+  diags_ = std::make_unique<DiagnosticList>();
+  scene_ = scene::parseSceneFile(
+      "test_scene.json",
+      planeScene("engine_values.spire", "OwnNames",
+                 R"({"color": [1, 1, 1, 1], "viewProjectionModel": {"engine": "matVP"}, "eye": {"engine": "time"}})"),
+      kDataDir, *sources_, *diags_);
+  ASSERT_TRUE(scene_);
+  renderer_ = std::make_unique<SceneRenderer>(ctx(), *scene_, *diags_);
+  auto programs = renderer_->compile(std::nullopt);
+  ASSERT_TRUE(programs) << programs.error().message;
+  EXPECT_FALSE(renderer_->prepare(*programs));
+  const std::string text = renderDiagnostics(*sources_, *diags_, DiagnosticFormat::Text);
+  EXPECT_NE(text.find("'viewProjectionModel' is bound to the engine value 'matVP', which the engine does not supply; "
+                      "it supplies matMVP"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("'eye' is a vec3, but the engine value 'time' is a float"), std::string::npos) << text;
+}
+
 // A renderer made from another shares its textures (it sees them before it
 // builds any) but bakes with its own options.
 TEST_F(RendererTest, ARendererWithOtherBakeOptionsSharesTheScenesTextures) {

@@ -221,10 +221,12 @@ TEST(SceneFile, TransformScalesThenRotatesXYZThenTranslates) {
 TEST(SceneFile, MaterialValues) {
   const auto loaded = parseScene(withInstance(
       R"({"mesh": "ground", "kernels": "k", "material": {"albedo": "stone", "gloss": 0.5, "tint": [1, 0.5, 0.25],
-          "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}})"));
+          "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1], "eye": {"engine": "cameraPos"}}})"));
   ASSERT_TRUE(loaded->scene) << loaded->rendered;
   const std::vector<MaterialBinding>& material = loaded->scene->instances[0].material;
-  ASSERT_EQ(material.size(), 4u);
+  ASSERT_EQ(material.size(), 5u);
+  EXPECT_EQ(material[4].engineValue, "cameraPos");
+  EXPECT_TRUE(material[4].numbers.empty());
   EXPECT_EQ(material[0].texture, "stone");
   EXPECT_TRUE(material[0].numbers.empty());
   EXPECT_EQ(loaded->sources.text(material[0].keyRange), "\"albedo\"");
@@ -326,11 +328,19 @@ TEST(SceneFile, WrongTypesE7003) {
   expectError(scene(R"("camera": {"views": [[0, 2, 5]]})", false), DiagCode::E7003,
               "each element of 'views' must be an object, found an array of 3 elements");
   expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "material": {"gloss": true}})"), DiagCode::E7003,
-              "the material value of 'gloss' must be a texture name, a number or an array of 1 to 16 numbers, found a "
-              "boolean");
+              "the material value of 'gloss' must be a texture name, a number, an array of 1 to 16 numbers or "
+              "{\"engine\": NAME}, found a boolean");
+  expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "material": {"eye": {"engine": 3}}})"),
+              DiagCode::E7003,
+              "the material value of 'eye' as an object must be {\"engine\": NAME}, naming a value the engine "
+              "supplies every frame");
+  expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "material": {"eye": {"engin": "cameraPos"}}})"),
+              DiagCode::E7003,
+              "the material value of 'eye' as an object must be {\"engine\": NAME}, naming a value the engine "
+              "supplies every frame");
   expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "material": {"gloss": []}})"), DiagCode::E7003,
-              "the material value of 'gloss' must be a texture name, a number or an array of 1 to 16 numbers, found an "
-              "empty array");
+              "the material value of 'gloss' must be a texture name, a number, an array of 1 to 16 numbers or "
+              "{\"engine\": NAME}, found an empty array");
   expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "material": {"m": [[1, 0], 2]}})"), DiagCode::E7003,
               "each element of the material value of 'm' must be a number, found an array of 2 elements");
   expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "transform": {"scale": "big"}})"), DiagCode::E7003,
