@@ -135,7 +135,7 @@ struct ModuleLoader::Impl {
       if (loaded.contains(key)) return;
       auto text = readThrough(options.readFile, candidate.path);
       if (text) {
-        load(candidate.path, std::move(key), std::move(candidate.root), std::move(text).value(), program);
+        load(candidate.path, std::move(key), candidate.root, std::move(text).value(), program);
         return;
       }
       if (text.error() != std::errc::no_such_file_or_directory && text.error() != std::errc::not_a_directory) {
