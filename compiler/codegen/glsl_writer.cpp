@@ -85,15 +85,16 @@ std::string GlslWriter::statementExpr(const ast::Expr& e, std::vector<std::strin
   const bool pure = assign ? !hasSideEffects(model_, *assign->target) && !hasSideEffects(model_, *assign->value)
                            : !hasSideEffects(model_, e);
   if (!pure) return expr(e, minPrecedence);
-  std::vector<std::string>* const saved = std::exchange(hoisted_, &before);
-  std::string text = expr(e, minPrecedence);
-  hoisted_ = saved;
-  return text;
+  return hoistingInto(&before, [&] { return expr(e, minPrecedence); });
 }
 
 std::string GlslWriter::conditionalExpr(const ast::Expr& e, Precedence minPrecedence) {
-  std::vector<std::string>* const saved = std::exchange(hoisted_, nullptr);
-  std::string text = expr(e, minPrecedence);
+  return hoistingInto(nullptr, [&] { return expr(e, minPrecedence); });
+}
+
+std::string GlslWriter::hoistingInto(std::vector<std::string>* target, const std::function<std::string()>& write) {
+  std::vector<std::string>* const saved = std::exchange(hoisted_, target);
+  std::string text = write();
   hoisted_ = saved;
   return text;
 }
@@ -235,10 +236,7 @@ std::string GlslWriter::localDeclaration(const ast::VarDeclStmt& d) {
 std::string GlslWriter::declarationStatement(const ast::VarDeclStmt& d, std::vector<std::string>& before) {
   const bool single = d.declarators.size() == 1 && d.declarators.front().init;
   if (!single || hasSideEffects(model_, *d.declarators.front().init)) return localDeclaration(d);
-  std::vector<std::string>* const saved = std::exchange(hoisted_, &before);
-  std::string text = localDeclaration(d);
-  hoisted_ = saved;
-  return text;
+  return hoistingInto(&before, [&] { return localDeclaration(d); });
 }
 
 void GlslWriter::writeHoisted(GlslOutput& out, const std::string& pad, const std::vector<std::string>& before,

@@ -100,6 +100,9 @@ class GlslWriter {
   // right of `&&`, `||` or `^^`): never hoisted, since that would evaluate it
   // unconditionally.
   std::string conditionalExpr(const ast::Expr& e, ast::Precedence minPrecedence);
+  // Runs `write` with hoisted temporaries going to `target` (nullptr: none
+  // may be hoisted), then restores where they went before.
+  std::string hoistingInto(std::vector<std::string>* target, const std::function<std::string()>& write);
   std::string declarationStatement(const ast::VarDeclStmt& d, std::vector<std::string>& before);
 
   const sem::Model& model_;
