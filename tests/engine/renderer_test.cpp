@@ -55,17 +55,22 @@ class RendererTest : public vk::testing::DeviceTest {
     std::string diagnostics;
   };
 
-  // Loads `json` as if it were a file in tests/data/engine and renders view 0
-  // with `decisions` applied to every instance.
-  std::optional<Rendered> render(const std::string& json, const std::optional<fs::path>& decisions,
-                                 TextureBakeOptions bakeOptions = {}) {
+  // Loads `json` into scene_ as if it were a file in tests/data/engine, with
+  // fresh sources and diagnostics; false (and a test failure) when it does
+  // not parse.
+  bool loadScene(const std::string& json) {
     sources_ = std::make_unique<SourceManager>();
     diags_ = std::make_unique<DiagnosticList>();
     scene_ = scene::parseSceneFile("test_scene.json", json, kDataDir, *sources_, *diags_);
-    if (!scene_) {
-      ADD_FAILURE() << renderDiagnostics(*sources_, *diags_, DiagnosticFormat::Text);
-      return std::nullopt;
-    }
+    if (!scene_) ADD_FAILURE() << renderDiagnostics(*sources_, *diags_, DiagnosticFormat::Text);
+    return scene_.has_value();
+  }
+
+  // Loads `json` (loadScene) and renders view 0 with `decisions` applied to
+  // every instance.
+  std::optional<Rendered> render(const std::string& json, const std::optional<fs::path>& decisions,
+                                 TextureBakeOptions bakeOptions = {}) {
+    if (!loadScene(json)) return std::nullopt;
     renderer_ = std::make_unique<SceneRenderer>(ctx(), *scene_, *diags_, bakeOptions);
     auto programs = renderer_->compile(decisions ? std::optional(kDataDir / *decisions) : std::nullopt);
     if (!programs) {
@@ -240,12 +245,7 @@ TEST_F(RendererTest, RenamedWorldsRenderAsTheirRoles) {
 }
 
 TEST_F(RendererTest, AnUnknownRoleIsAnErrorListingTheRoles) {
-  sources_ = std::make_unique<SourceManager>();
-  diags_ = std::make_unique<DiagnosticList>();
-  scene_ = scene::parseSceneFile("test_scene.json",
-                                 planeScene("unknown_role.spire", "TexBakeRenamed", R"({"colorMap": "noise"})"),
-                                 kDataDir, *sources_, *diags_);
-  ASSERT_TRUE(scene_);
+  ASSERT_TRUE(loadScene(planeScene("unknown_role.spire", "TexBakeRenamed", R"({"colorMap": "noise"})")));
   renderer_ = std::make_unique<SceneRenderer>(ctx(), *scene_, *diags_);
   const auto programs = renderer_->compile(std::nullopt);
   ASSERT_FALSE(programs);
@@ -325,14 +325,9 @@ TEST_F(RendererTest, InputsBoundToEngineValuesFollowTheCamera) {
 }
 
 TEST_F(RendererTest, AnUnknownEngineValueIsAnErrorListingTheValues) {
-  sources_ = std::make_unique<SourceManager>();
-  diags_ = std::make_unique<DiagnosticList>();
-  scene_ = scene::parseSceneFile(
-      "test_scene.json",
+  ASSERT_TRUE(loadScene(
       planeScene("engine_values.spire", "OwnNames",
-                 R"({"color": [1, 1, 1, 1], "viewProjectionModel": {"engine": "matVP"}, "eye": {"engine": "time"}})"),
-      kDataDir, *sources_, *diags_);
-  ASSERT_TRUE(scene_);
+                 R"({"color": [1, 1, 1, 1], "viewProjectionModel": {"engine": "matVP"}, "eye": {"engine": "time"}})")));
   renderer_ = std::make_unique<SceneRenderer>(ctx(), *scene_, *diags_);
   auto programs = renderer_->compile(std::nullopt);
   ASSERT_TRUE(programs) << programs.error().message;
@@ -466,10 +461,7 @@ TEST_F(RendererTest, NonFiniteOutputIsCountedNotAveraged) {
 // not apply are reported back as skipped rather than refused.
 TEST_F(RendererTest, InMemoryDecisionsAreCheckedAndSkippedOnesReported) {
   std::string json = planeScene("normal_bake.spire", "NormalBake", R"({"colorMap": "noise"})");
-  sources_ = std::make_unique<SourceManager>();
-  diags_ = std::make_unique<DiagnosticList>();
-  scene_ = scene::parseSceneFile("test_scene.json", json, kDataDir, *sources_, *diags_);
-  ASSERT_TRUE(scene_);
+  ASSERT_TRUE(loadScene(json));
   SceneRenderer renderer(ctx(), *scene_, *diags_);
   const std::map<std::string, std::string> decisions{{"bentNormal", "PrebakeTex"}};
   auto badFormat = renderer.compileVariant(0, decisions, nullptr, {{"bentNormal", {{"Format", "BC7"}}}});
@@ -487,10 +479,7 @@ TEST_F(RendererTest, InMemoryDecisionsAreCheckedAndSkippedOnesReported) {
 // 8 bits without the remap (which clamps every negative component to 0).
 TEST_F(RendererTest, BakedUnitVectorsSelectRgb10A2WithSignedRemap) {
   std::string json = planeScene("normal_bake.spire", "NormalBake", R"({"colorMap": "noise"})");
-  sources_ = std::make_unique<SourceManager>();
-  diags_ = std::make_unique<DiagnosticList>();
-  scene_ = scene::parseSceneFile("test_scene.json", json, kDataDir, *sources_, *diags_);
-  ASSERT_TRUE(scene_);
+  ASSERT_TRUE(loadScene(json));
   const std::map<std::string, std::string> decisions{{"bentNormal", "PrebakeTex"}};
   const auto renderWith = [&](SceneRenderer& renderer, const ShaderLibrary::Attributes& attributes,
                               const TextureBakeResult** baked) -> std::optional<Capture> {
