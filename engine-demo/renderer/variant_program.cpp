@@ -48,11 +48,11 @@ spire::Expected<void, Failure> supportedInputs(const reflection::Kernel& kernel)
   return {};
 }
 
-// The pass of `world`: its [Role]'s, else the one its name is usual for
-// (reflection written by hand, as tests do, may list no worlds).
+// The pass of `world` (resolveWorldPasses), or nullptr for a world the
+// engine does not know.
 const WorldPass* passOf(const WorldPasses& passes, std::string_view world) {
   const auto it = passes.find(world);
-  return it != passes.end() ? it->second : findWorldPass(world);
+  return it != passes.end() ? it->second : nullptr;
 }
 
 }  // namespace

@@ -65,9 +65,17 @@ Json reflectionOf(const std::vector<TestKernel>& kernels) {
     for (const char* list : {"inputs", "outputs", "blocks"}) fillNames(entry[list]);
     kernelList.push_back(std::move(entry));
   }
-  return Json{{"format", "spire-reflection"}, {"version", reflection::kFormatVersion},
-              {"shader", "SetsTest"},         {"pipeline", "EnginePipeline"},
-              {"worlds", Json::array()},      {"placement", Json::object()},
+  // EnginePipeline's worlds, none with a [Role]: the engine knows them by name.
+  Json worlds = Json::array();
+  for (const char* world : {"FrameUniform", "MaterialUniform", "MeshVertex", "PrebakeTex", "Vertex", "Fragment"}) {
+    worlds.push_back({{"name", world}, {"role", ""}});
+  }
+  return Json{{"format", "spire-reflection"},
+              {"version", reflection::kFormatVersion},
+              {"shader", "SetsTest"},
+              {"pipeline", "EnginePipeline"},
+              {"worlds", worlds},
+              {"placement", Json::object()},
               {"kernels", kernelList}};
 }
 
