@@ -36,10 +36,15 @@ std::string renderAll(const SourceManager& sources, const std::vector<Diagnostic
 
 SceneRenderer::SceneRenderer(const vk::Context& ctx, const scene::SceneFile& scene, DiagnosticList& diags,
                              TextureBakeOptions bakeOptions)
-    : ctx_(ctx), scene_(scene), diags_(diags), bakes_(bakeOptions) {}
+    : ctx_(ctx), scene_(scene), diags_(diags), bakes_(bakeOptions), readBindings_(scene.instances.size()) {}
 
 SceneRenderer::SceneRenderer(SceneRenderer& other, DiagnosticList& diags, TextureBakeOptions bakeOptions)
-    : ctx_(other.ctx_), scene_(other.scene_), diags_(diags), bakes_(bakeOptions), assets_(other.assets_) {}
+    : ctx_(other.ctx_),
+      scene_(other.scene_),
+      diags_(diags),
+      bakes_(bakeOptions),
+      assets_(other.assets_),
+      readBindings_(other.scene_.instances.size()) {}
 
 Expected<ShaderLibrary*> SceneRenderer::libraryFor(const scene::InstanceDesc& instance) {
   const std::string key = instance.source.string();
@@ -198,14 +203,13 @@ Expected<RenderTarget*> SceneRenderer::targetFor(size_t colorTargets) {
 }
 
 void SceneRenderer::reportUnreadBindings() {
-  for (size_t i = 0; i < scene_.instances.size() && i < readBindings_.size(); ++i) {
-    engine::reportUnreadBindings(scene_.instances[i], readBindings_[i], diags_);
+  for (size_t i = 0; i < scene_.instances.size(); ++i) {
+    if (readBindings_[i]) engine::reportUnreadBindings(scene_.instances[i], *readBindings_[i], diags_);
   }
 }
 
 Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>& programs) {
   PreparedScene prepared;
-  readBindings_.resize(std::max(readBindings_.size(), programs.size()));
   std::vector<const GpuMesh*> meshes;
   const size_t errorsBefore = diags_.errorCount();
   for (size_t i = 0; i < programs.size(); ++i) {
@@ -219,7 +223,8 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
     meshes.push_back(meshFor(instance.mesh, instance.meshRange));
     const TextureLookup lookup = [this](const std::string& name, SourceRange range) { return textureFor(name, range); };
     ResolvedMaterial material = resolveMaterial(programs[i], instance, lookup, diags_);
-    readBindings_[i].merge(material.read);
+    if (!readBindings_[i]) readBindings_[i].emplace();
+    readBindings_[i]->merge(material.read);
     prepared.materials.push_back(material.values ? std::move(*material.values) : MaterialValues{});
   }
   if (diags_.errorCount() != errorsBefore) return Error{"nothing was rendered: the scene has errors", {}, {}};

@@ -139,8 +139,10 @@ class SceneRenderer {
   std::optional<RenderTarget> target_;
   std::string compilerWarnings_;
   std::map<std::string, std::vector<double>> overrides_;
-  // Per instance: the material bindings some prepared variant read.
-  std::vector<std::set<std::string, std::less<>>> readBindings_;
+  // Per instance: the material bindings some prepared variant read;
+  // nullopt until one of its variants gets that far (a variant that failed
+  // to compile read nothing, and says so itself).
+  std::vector<std::optional<std::set<std::string, std::less<>>>> readBindings_;
   bool strictDecisions_ = true;
 };
 
