@@ -23,6 +23,18 @@ std::optional<Stage> parseStage(std::string_view name) {
   return std::nullopt;
 }
 
+std::string_view inputKindName(InputKind kind) {
+  switch (kind) {
+    case InputKind::Varying: return "varying";
+    case InputKind::UniformMember: return "uniform";
+    case InputKind::Sampler: return "sampler";
+    case InputKind::Texture: return "texture";
+    case InputKind::BufferMember: return "buffer";
+    case InputKind::PushConstant: return "push";
+  }
+  return "unknown";
+}
+
 namespace {
 
 std::optional<ValueType::Scalar> scalarPrefix(char c) {

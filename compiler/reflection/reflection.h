@@ -88,6 +88,9 @@ enum class InputKind {
   PushConstant,   // a member of the kernel's push-constant block at `offset`
 };
 
+// The kind's name in reflection.json: "varying", "uniform", "sampler", ...
+std::string_view inputKindName(InputKind kind);
+
 struct KernelInput {
   InputKind kind = InputKind::Varying;
   std::string component;

@@ -8,18 +8,6 @@ using Json = nlohmann::ordered_json;
 
 namespace {
 
-std::string_view inputKindName(InputKind kind) {
-  switch (kind) {
-    case InputKind::Varying: return "varying";
-    case InputKind::UniformMember: return "uniform";
-    case InputKind::Sampler: return "sampler";
-    case InputKind::Texture: return "texture";
-    case InputKind::BufferMember: return "buffer";
-    case InputKind::PushConstant: return "push";
-  }
-  return "unknown";
-}
-
 std::string_view outputKindName(OutputKind kind) {
   switch (kind) {
     case OutputKind::Varying: return "varying";

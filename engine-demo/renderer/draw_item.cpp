@@ -57,19 +57,12 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
   if (!vertexModule) return vertexModule.error();
   auto fragmentModule = modules.get(ctx, fragment->hash, fragment->spirv);
   if (!fragmentModule) return fragmentModule.error();
+  auto vertexInput = vertexInputs(*vertex, sources);
+  if (!vertexInput) return vertexInput.error();
+  item.vertexInputs = std::move(vertexInput).value();
   vk::GraphicsPipelineBuilder builder;
-  builder.vertexShader(*vertexModule).fragmentShader(*fragmentModule).vertexBinding(0, sizeof(scene::Vertex));
-  for (const KernelInput& input : vertex->inputs) {
-    if (input.kind != InputKind::Varying) continue;
-    const MeshAttribute* attribute = findMeshAttribute(input.component, input.type.name);
-    if (!attribute) {
-      return Error{
-          fmt::format("the {} kernel reads '{}', which is not a mesh attribute", vertex->world, input.component),
-          {},
-          {}};
-    }
-    builder.vertexAttribute(input.location, 0, attribute->format, attribute->offset);
-  }
+  builder.vertexShader(*vertexModule).fragmentShader(*fragmentModule);
+  item.vertexInputs.applyTo(builder);
   for (VkFormat format : formats.colors) builder.colorFormat(format);
   builder.depthFormat(formats.depth).descriptorSetLayouts(item.descriptors.layoutHandles());
   // Meshes are wound counter-clockwise seen from the front, and the
@@ -88,9 +81,7 @@ void updateFrameValues(const DrawItem& item, const FrameState& frame) {
 void recordDraw(VkCommandBuffer cmd, const DrawItem& item) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, item.pipeline.pipeline.get());
   bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, item.pipeline.layout.get(), item.descriptors);
-  const VkBuffer vertexBuffer = item.mesh->vertices.handle();
-  const VkDeviceSize offset = 0;
-  vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
+  item.vertexInputs.bind(cmd);
   vkCmdBindIndexBuffer(cmd, item.mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
   vkCmdDrawIndexed(cmd, item.mesh->indexCount(), 1, 0, 0, 0);
 }

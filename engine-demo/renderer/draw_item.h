@@ -8,6 +8,7 @@
 #include "renderer/kernel_bindings.h"
 #include "renderer/module_cache.h"
 #include "renderer/pipeline_descriptors.h"
+#include "renderer/vertex_inputs.h"
 #include "vk/pipeline.h"
 
 namespace spire::engine {
@@ -29,6 +30,7 @@ struct DrawItem {
   glm::mat4 model{1.0F};
   std::vector<BoundKernel> kernels;
   DescriptorBundle descriptors;
+  VertexInputs vertexInputs;  // the mesh, and the vertex bake's records when Vertex reads them as inputs
   vk::Pipeline pipeline;
 };
 

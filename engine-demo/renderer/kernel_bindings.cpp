@@ -119,7 +119,10 @@ class KernelBinder {
     const bool written = std::any_of(kernel_.outputs.begin(), kernel_.outputs.end(), [&](const KernelOutput& o) {
       return o.kind == OutputKind::BufferMember && o.slot == block.slot;
     });
-    auto buffer = newBuffer(VkDeviceSize{records} * block.recordStride, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    // A vertex bake's records may later be bound as vertex data (vertex_inputs.h).
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    if (written) usage |= VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
+    auto buffer = newBuffer(VkDeviceSize{records} * block.recordStride, usage);
     if (!buffer) return buffer.error();
     if (written) {
       bound_.outputs[block.slot] = *buffer;

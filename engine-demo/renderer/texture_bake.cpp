@@ -8,6 +8,7 @@
 #include "codegen/spirv_compiler.h"
 #include "renderer/pipeline_descriptors.h"
 #include "renderer/supplied_values.h"
+#include "renderer/vertex_inputs.h"
 #include "renderer/world_roles.h"
 #include "vk/timer.h"
 
@@ -190,21 +191,11 @@ Expected<BakeModules> loadBakeModules(const vk::Context& ctx, ModuleCache& modul
 }
 
 Expected<vk::Pipeline> buildBakePipeline(const vk::Context& ctx, const BakeModules& modules,
-                                         const KernelProgram& kernel, uint32_t uvLocation,
-                                         const std::vector<BakeTarget>& targets, const DescriptorBundle& descriptors) {
+                                         const VertexInputs& vertexInputs, const std::vector<BakeTarget>& targets,
+                                         const DescriptorBundle& descriptors) {
   vk::GraphicsPipelineBuilder builder;
-  builder.vertexShader(modules.vertex).fragmentShader(modules.fragment).vertexBinding(0, sizeof(scene::Vertex));
-  for (const KernelInput& input : kernel.inputs) {
-    if (input.kind != InputKind::Varying) continue;
-    const MeshAttribute* attribute = findMeshAttribute(input.component, input.type.name);
-    if (!attribute)
-      return Error{
-          fmt::format("the {} kernel reads '{}', which is not a mesh attribute", kernel.world, input.component),
-          {},
-          {}};
-    builder.vertexAttribute(input.location, 0, attribute->format, attribute->offset);
-  }
-  builder.vertexAttribute(uvLocation, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(scene::Vertex, uv));
+  builder.vertexShader(modules.vertex).fragmentShader(modules.fragment);
+  vertexInputs.applyTo(builder);
   for (const BakeTarget& target : targets) builder.colorFormat(target.format);
   // The engine's vertex shader binds nothing, so the sets are the kernel's
   // (set 0 stays empty when the kernel's resources are in set 1).
@@ -227,7 +218,8 @@ Expected<std::vector<vk::Image>> createTargetImages(const vk::Context& ctx, cons
 }
 
 void recordBake(const vk::Context& ctx, VkCommandBuffer cmd, std::vector<vk::Image>& images, vk::Image& depth,
-                uint32_t size, const vk::Pipeline& pipeline, const DescriptorBundle& descriptors, const GpuMesh& mesh) {
+                uint32_t size, const vk::Pipeline& pipeline, const DescriptorBundle& descriptors,
+                const VertexInputs& vertexInputs, const GpuMesh& mesh) {
   std::vector<vk::ColorTarget> colors;
   for (vk::Image& image : images) {
     image.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
@@ -237,9 +229,7 @@ void recordBake(const vk::Context& ctx, VkCommandBuffer cmd, std::vector<vk::Ima
   vk::beginRendering(ctx, cmd, {size, size}, colors, vk::DepthTarget{depth.view(), 1.0F});
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline.get());
   bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout.get(), descriptors);
-  const VkBuffer vertexBuffer = mesh.vertices.handle();
-  const VkDeviceSize offset = 0;
-  vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
+  vertexInputs.bind(cmd);
   vkCmdBindIndexBuffer(cmd, mesh.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
   vkCmdDrawIndexed(cmd, mesh.indexCount(), 1, 0, 0, 0);
   vk::endRendering(ctx, cmd);
@@ -284,7 +274,10 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
   auto descriptors = createDescriptors(ctx, kernels);
   if (!descriptors) return descriptors.error();
 
-  auto pipeline = buildBakePipeline(ctx, *shaderModules, kernel, uvLocation, targets, *descriptors);
+  auto vertexInput = vertexInputs(kernel, sources);
+  if (!vertexInput) return vertexInput.error();
+  vertexInput->addMeshAttribute(uvLocation, VK_FORMAT_R32G32_SFLOAT, offsetof(scene::Vertex, uv));
+  auto pipeline = buildBakePipeline(ctx, *shaderModules, *vertexInput, targets, *descriptors);
   if (!pipeline) return pipeline.error();
 
   auto images = createTargetImages(ctx, targets, size);
@@ -295,7 +288,7 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
 
   const vk::HostTimer timer;
   auto submitted = ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    recordBake(ctx, cmd, *images, *depth, size, *pipeline, *descriptors, *sources.mesh);
+    recordBake(ctx, cmd, *images, *depth, size, *pipeline, *descriptors, *vertexInput, *sources.mesh);
   });
   if (!submitted) return Error::fromVk(submitted.error());
 

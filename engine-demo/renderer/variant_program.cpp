@@ -37,17 +37,6 @@ std::string VariantProgram::fingerprint() const {
 
 namespace {
 
-// Input kinds a strategy may reflect that this engine has no way to supply.
-spire::Expected<void, Failure> supportedInputs(const reflection::Kernel& kernel) {
-  for (const reflection::KernelInput& input : kernel.inputs) {
-    if (input.kind == reflection::InputKind::PushConstant) {
-      return Failure{fmt::format("kernel '{}' reads '{}' as a push constant ({}), which this engine does not supply",
-                                 kernel.world, input.component, input.strategy)};
-    }
-  }
-  return {};
-}
-
 // The pass of `world` (resolveWorldPasses), or nullptr for a world the
 // engine does not know.
 const WorldPass* passOf(const WorldPasses& passes, std::string_view world) {
@@ -66,7 +55,6 @@ Expected<VariantProgram> makeProgram(const reflection::Variant& reflection,
   const auto passes = resolveWorldPasses(reflection.worlds);
   if (!passes) return Error(passes.error());
   for (const reflection::Kernel& kernel : reflection.kernels) {
-    if (auto supported = supportedInputs(kernel); !supported) return Error(supported.error());
     const auto words = spirv.find(kernel.world);
     if (words == spirv.end() || words->second.empty()) {
       return Error{fmt::format("no SPIR-V for kernel '{}'", kernel.world), {}};
@@ -74,6 +62,9 @@ Expected<VariantProgram> makeProgram(const reflection::Variant& reflection,
     KernelProgram& added = program.kernels.emplace_back(KernelProgram{kernel, words->second, nullptr, {}});
     added.pass = passOf(*passes, kernel.world);
     for (const KernelInput& input : kernel.inputs) added.inputPasses.push_back(passOf(*passes, input.from));
+    if (added.pass) {
+      if (auto edges = checkEdges(added, *added.pass, added.inputPasses); !edges) return Error(edges.error());
+    }
     if (auto matching = checkInterface(added.spirv, added); !matching) {
       return Error{fmt::format("the SPIR-V of kernel '{}' does not match its reflection: {}", kernel.world,
                                matching.error().message),

@@ -27,7 +27,73 @@ constexpr std::array kTable = {
               "fragment shader of each frame's draw"},
 };
 
+using reflection::InputKind;
+constexpr uint32_t kBakes =
+    roleBit(WorldRole::UniformBake) | roleBit(WorldRole::VertexBake) | roleBit(WorldRole::TextureBake);
+constexpr uint32_t kDraw = roleBit(WorldRole::VertexStage) | roleBit(WorldRole::FragmentStage);
+constexpr uint32_t kRasterized = roleBit(WorldRole::TextureBake) | roleBit(WorldRole::VertexStage);
+
+constexpr std::array kEdges = {
+    WorldEdge{InputKind::Varying, WorldRole::MeshAttributes, kRasterized, "the mesh's vertex buffer"},
+    WorldEdge{InputKind::Varying, WorldRole::VertexBake, kRasterized,
+              "the vertex bake's records as a second vertex buffer"},
+    WorldEdge{InputKind::Varying, WorldRole::VertexStage, roleBit(WorldRole::FragmentStage),
+              "the rasterizer's interpolated outputs"},
+    WorldEdge{InputKind::UniformMember, WorldRole::MaterialParameters, kBakes | kDraw,
+              "material bindings, written once"},
+    // Frame values change every frame; bakes run once, at load.
+    WorldEdge{InputKind::UniformMember, WorldRole::FrameParameters, kDraw, "engine values, written every frame"},
+    WorldEdge{InputKind::UniformMember, WorldRole::UniformBake,
+              roleBit(WorldRole::VertexBake) | roleBit(WorldRole::TextureBake) | kDraw,
+              "the uniform bake's averages, written once"},
+    WorldEdge{InputKind::BufferMember, WorldRole::MeshAttributes,
+              roleBit(WorldRole::UniformBake) | roleBit(WorldRole::VertexBake),
+              "std430 records of the mesh's vertices"},
+    WorldEdge{InputKind::BufferMember, WorldRole::VertexBake, roleBit(WorldRole::VertexStage),
+              "the vertex bake's records, read at gl_VertexIndex"},
+    WorldEdge{InputKind::Texture, WorldRole::TextureBake, kDraw, "the bake's render targets as sampled images"},
+    WorldEdge{InputKind::Sampler, WorldRole::MaterialParameters, kBakes | kDraw, "the bound scene texture"},
+};
+
+// "varying into vertex and prebakeTexture; uniform into ...": the edges out of `from`.
+std::string edgesFrom(WorldRole from) {
+  std::string text;
+  for (const WorldEdge& edge : kEdges) {
+    if (edge.from != from) continue;
+    std::string into;
+    for (const WorldPass& p : kTable) {
+      if (edge.into & roleBit(p.kind)) into += fmt::format("{}{}", into.empty() ? "" : ", ", p.role);
+    }
+    text += fmt::format("{}{} into {}", text.empty() ? "" : "; ", reflection::inputKindName(edge.kind), into);
+  }
+  return text.empty() ? "nothing" : text;
+}
+
 }  // namespace
+
+std::span<const WorldEdge> worldEdgeTable() { return kEdges; }
+
+const WorldEdge* findEdge(reflection::InputKind kind, WorldRole from, WorldRole into) {
+  const auto it = std::find_if(kEdges.begin(), kEdges.end(), [&](const WorldEdge& e) {
+    return e.kind == kind && e.from == from && (e.into & roleBit(into)) != 0;
+  });
+  return it == kEdges.end() ? nullptr : &*it;
+}
+
+spire::Expected<void, Failure> checkEdges(const reflection::Kernel& kernel, const WorldPass& pass,
+                                          const std::vector<const WorldPass*>& inputPasses) {
+  for (size_t i = 0; i < kernel.inputs.size() && i < inputPasses.size(); ++i) {
+    const reflection::KernelInput& input = kernel.inputs[i];
+    const WorldPass* from = inputPasses[i];
+    if (!from || findEdge(input.kind, from->kind, pass.kind)) continue;
+    return Failure{fmt::format(
+        "the {} kernel ({}) reads '{}' from world '{}' ({}) as a {} input ({}), an edge this engine does not "
+        "implement; out of {} it implements: {}",
+        kernel.world, pass.role, input.component, input.from, from->role, reflection::inputKindName(input.kind),
+        input.strategy, from->role, edgesFrom(from->kind))};
+  }
+  return {};
+}
 
 std::span<const WorldPass> worldPassTable() { return kTable; }
 

@@ -4,9 +4,7 @@
 // test checks its content independently (a flat color's exact value, a bake
 // against the unbaked variant) as well as against a golden PNG, so neither a
 // black image nor a drifting golden can pass.
-//
-// Goldens live in tests/golden/images; after an intended change run with
-// SPIRE_UPDATE_GOLDENS=1 and review the new PNGs.
+// The fixture is renderer_fixture.h.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,7 +14,7 @@
 #include <sstream>
 
 #include "driver/spirec.h"
-#include "engine/device_fixture.h"
+#include "engine/renderer_fixture.h"
 #include "measure/image_metrics.h"
 #include "renderer/bake_analysis.h"
 #include "renderer/scene_renderer.h"
@@ -28,120 +26,9 @@ namespace spire::engine {
 namespace {
 
 namespace fs = std::filesystem;
-
-const fs::path kDataDir = fs::path(SPIRE_SOURCE_DIR) / "tests/data/engine";
-
-// A 96x64 view straight down onto a 2x2 plane at the origin, which then
-// covers the middle of the image.
-std::string planeScene(const std::string& source, const std::string& shader, const std::string& material,
-                       const std::string& extra = "") {
-  return R"({
-  "resolution": [96, 64], "frames": 2, "warmupFrames": 1,
-  "clearColor": [0, 0, 0, 1],
-  "camera": {"fovY": 60, "views": [{"position": [0, 2.2, 0.01], "target": [0, 0, 0]}]},
-  "meshes": {"plane": {"type": "plane", "size": 2, "resolution": 4},
-             "ball": {"type": "sphere", "radius": 0.9, "rings": 12, "segments": 24}},
-  "textures": {"noise": {"type": "noise", "size": 32, "seed": 9, "octaves": 3},
-               "checker": {"type": "checker", "size": 64, "cells": 4, "color": [0.9, 0.2, 0.1], "color2": [0.1, 0.3, 0.8]}},
-  "instances": [{"mesh": "plane", "source": ")" +
-         source + R"(", "shader": ")" + shader + R"(", "material": )" + material + "}]" + extra + "\n}\n";
-}
-
-class RendererTest : public vk::testing::DeviceTest {
- protected:
-  struct Rendered {
-    Capture capture;
-    PreparedScene prepared;
-    std::string diagnostics;
-  };
-
-  // Loads `json` into scene_ as if it were a file in tests/data/engine, with
-  // fresh sources and diagnostics; false (and a test failure) when it does
-  // not parse.
-  bool loadScene(const std::string& json) {
-    sources_ = std::make_unique<SourceManager>();
-    diags_ = std::make_unique<DiagnosticList>();
-    scene_ = scene::parseSceneFile("test_scene.json", json, kDataDir, *sources_, *diags_);
-    if (!scene_) ADD_FAILURE() << renderDiagnostics(*sources_, *diags_, DiagnosticFormat::Text);
-    return scene_.has_value();
-  }
-
-  // Loads `json` (loadScene) and renders view 0 with `decisions` applied to
-  // every instance.
-  std::optional<Rendered> render(const std::string& json, const std::optional<fs::path>& decisions,
-                                 TextureBakeOptions bakeOptions = {}) {
-    if (!loadScene(json)) return std::nullopt;
-    renderer_ = std::make_unique<SceneRenderer>(ctx(), *scene_, *diags_, bakeOptions);
-    auto programs = renderer_->compile(decisions ? std::optional(kDataDir / *decisions) : std::nullopt);
-    if (!programs) {
-      ADD_FAILURE() << programs.error().message << "\n" << programs.error().details;
-      return std::nullopt;
-    }
-    auto prepared = renderer_->prepare(*programs);
-    const std::string diagnostics = renderDiagnostics(*sources_, *diags_, DiagnosticFormat::Text);
-    if (!prepared) {
-      ADD_FAILURE() << prepared.error().message << "\n" << diagnostics;
-      return std::nullopt;
-    }
-    auto capture = renderer_->capture(*prepared, scene_->camera.views.front());
-    if (!capture) {
-      ADD_FAILURE() << capture.error().message;
-      return std::nullopt;
-    }
-    return Rendered{std::move(capture).value(), std::move(prepared).value(), diagnostics};
-  }
-
-  // The error of `test` against `reference` over pixels either covers.
-  static measure::ImageError compare(const Capture& reference, const Capture& test) {
-    auto error = engine::viewError(reference, test);
-    EXPECT_TRUE(error) << error.error().message;
-    return error ? *error : measure::ImageError{};
-  }
-
-  static double coveredFraction(const Capture& capture) {
-    size_t covered = 0;
-    for (uint8_t c : capture.coverage) covered += c;
-    return static_cast<double>(covered) / static_cast<double>(capture.coverage.size());
-  }
-
-  // Mean RGBA over covered pixels.
-  static std::array<double, 4> coveredMean(const Capture& capture) {
-    std::array<double, 4> sum{};
-    size_t count = 0;
-    for (size_t i = 0; i < capture.coverage.size(); ++i) {
-      if (!capture.coverage[i]) continue;
-      for (size_t c = 0; c < 4; ++c) sum[c] += capture.color.rgba[i * 4 + c];
-      ++count;
-    }
-    for (double& s : sum) s /= static_cast<double>(std::max<size_t>(count, 1));
-    return sum;
-  }
-
-  // Compares the 8-bit rendering with tests/golden/images/NAME.png, allowing
-  // `tolerance` (in 8-bit steps) per channel for rasterizer differences.
-  static void expectGolden(const Capture& capture, const std::string& name, int tolerance = 2) {
-    const scene::Image image = measure::toRgba8(capture.color);
-    const fs::path golden = fs::path(SPIRE_SOURCE_DIR) / "tests/golden/images" / (name + ".png");
-    if (std::getenv("SPIRE_UPDATE_GOLDENS")) {
-      ASSERT_TRUE(scene::writePng(golden, image));
-      return;
-    }
-    auto expected = scene::loadImage(golden);
-    ASSERT_TRUE(expected) << expected.error().message << "; run with SPIRE_UPDATE_GOLDENS=1";
-    ASSERT_EQ(expected->width, image.width);
-    ASSERT_EQ(expected->height, image.height);
-    size_t differing = 0;
-    for (size_t i = 0; i < image.rgba8.size(); ++i) {
-      if (std::abs(int{image.rgba8[i]} - int{expected->rgba8[i]}) > tolerance) ++differing;
-    }
-    EXPECT_EQ(differing, 0U) << name << ": " << differing << " channels differ by more than " << tolerance;
-  }
-
-  std::unique_ptr<SourceManager> sources_;
-  std::unique_ptr<DiagnosticList> diags_;
-  std::optional<scene::SceneFile> scene_;
-  std::unique_ptr<SceneRenderer> renderer_;
-};
+using testing::kDataDir;
+using testing::planeScene;
+using testing::RendererTest;
 
 TEST_F(RendererTest, FlatPlaneHasExactlyItsMaterialColor) {
   const auto rendered =

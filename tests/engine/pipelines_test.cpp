@@ -1,0 +1,155 @@
+// The engine on pipelines other than the ones it ships: the paper's Figure 4
+// pipeline as drawn, where PrebakeVertex feeds Vertex and PrebakeTex through
+// standardImport (tests/data/engine/figure4.spire). Every world choice of its
+// shader renders, with validation on, and each image is checked against what
+// its placement must give: per-vertex, per-texel and per-fragment placements
+// of a value linear in the attributes give the reference image, and a
+// PrebakeUniform placement makes the value constant over the mesh.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+#include <algorithm>
+
+#include <fstream>
+
+#include "driver/shader_library.h"
+#include "engine/renderer_fixture.h"
+
+namespace spire::engine {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::kDataDir;
+using testing::planeScene;
+
+std::string figure4Scene() {
+  std::string scene = planeScene("figure4.spire", "Figure4Shade", R"({"tint": [0.9, 0.5, 0.2]})");
+  scene.replace(scene.find("\"mesh\": \"plane\""), 15, "\"mesh\": \"ball\"");
+  return scene;
+}
+
+// The largest difference of channel `c` between covered pixels.
+double channelSpread(const Capture& capture, size_t c) {
+  float low = 1e30F;
+  float high = -1e30F;
+  for (size_t i = 0; i < capture.coverage.size(); ++i) {
+    if (!capture.coverage[i]) continue;
+    low = std::min(low, capture.color.rgba[i * 4 + c]);
+    high = std::max(high, capture.color.rgba[i * 4 + c]);
+  }
+  return high - low;
+}
+
+// Whether a kernel of `program` reads an input from `producer` as a varying:
+// the standardImport edge the test is about.
+bool readsVaryingFrom(const VariantProgram& program, std::string_view consumer, std::string_view producer) {
+  const KernelProgram* kernel = program.kernel(consumer);
+  if (!kernel) return false;
+  return std::any_of(kernel->inputs.begin(), kernel->inputs.end(), [&](const KernelInput& input) {
+    return input.kind == InputKind::Varying && input.from == producer;
+  });
+}
+
+class Figure4Test : public testing::RendererTest {
+ protected:
+  void SetUp() override {
+    RendererTest::SetUp();
+    if (IsSkipped() || HasFatalFailure()) return;
+    dir_ = fs::path(::testing::TempDir()) / "figure4_decisions";
+    fs::create_directories(dir_);
+    reference_ = render(figure4Scene(), std::nullopt);
+    ASSERT_TRUE(reference_);
+    ASSERT_GT(coveredFraction(reference_->capture), 0.2);
+  }
+
+  // Renders Figure4Shade with `decisions` ("Figure4Shade.shade = Vertex" lines).
+  std::optional<Rendered> renderWith(const std::string& name, const std::string& decisions) {
+    const fs::path path = dir_ / (name + ".decisions");
+    std::ofstream(path) << decisions;
+    return render(figure4Scene(), path);
+  }
+
+  fs::path dir_;
+  std::optional<Rendered> reference_;
+};
+
+TEST_F(Figure4Test, EveryWorldChoiceRendersWhatItsPlacementMeans) {
+  ShaderLibrary library;
+  ASSERT_TRUE(library.addFile((kDataDir / "figure4.spire").string()));
+  ASSERT_TRUE(library.compile());
+  const std::vector<Choice> choices = library.choices("Figure4Shade");
+  ASSERT_EQ(choices.size(), 3U);
+  size_t rendered = 0;
+  for (const Choice& choice : choices) {
+    const std::string component = choice.key.substr(choice.key.find('.') + 1);
+    ASSERT_EQ(choice.names.size(), 5U) << choice.key;
+    for (const std::string& world : choice.names) {
+      SCOPED_TRACE(choice.key + " = " + world);
+      const auto variant = renderWith(component + "_" + world, fmt::format("{} = {}\n", choice.key, world));
+      ASSERT_TRUE(variant);
+      ++rendered;
+      EXPECT_EQ(variant->capture.coverage, reference_->capture.coverage);
+      const measure::ImageError error = compare(reference_->capture, variant->capture);
+      EXPECT_EQ(error.nanPixels + error.infPixels, 0U);
+      if (world != "PrebakeUniform" || component == "tinted") {
+        // Texture bakes resample (RGBA16F, bilinear, seams of the sphere's UVs).
+        EXPECT_LT(error.rmse, world == "PrebakeTex" ? 5e-3 : 1e-5);
+        continue;
+      }
+      // An average over the vertices is constant: all of ramp, and the blue
+      // channel of the output when shade is averaged (ramp.b = shade.b / 2 + 0.125).
+      EXPECT_LT(channelSpread(variant->capture, 2), 1e-6);
+      if (component == "ramp") {
+        EXPECT_LT(channelSpread(variant->capture, 0), 1e-6);
+      }
+      EXPECT_GT(error.rmse, 1e-3) << "an average should differ from the per-pixel value";
+    }
+  }
+  EXPECT_EQ(rendered, 15U);
+}
+
+// PrebakeVertex's records reach Vertex and PrebakeTex as vertex attributes
+// (standardImport), and values computed from them match the reference.
+TEST_F(Figure4Test, VertexBakeRecordsAreVertexAttributesOfVertexAndPrebakeTex) {
+  const auto intoVertex = renderWith("into_vertex", "Figure4Shade.shade = PrebakeVertex\nFigure4Shade.ramp = Vertex\n");
+  ASSERT_TRUE(intoVertex);
+  ASSERT_EQ(intoVertex->programs.size(), 1U);
+  EXPECT_TRUE(readsVaryingFrom(intoVertex->programs[0], "Vertex", "PrebakeVertex"));
+  EXPECT_LT(compare(reference_->capture, intoVertex->capture).maxError, 1e-5);
+
+  const auto intoTexture =
+      renderWith("into_texture", "Figure4Shade.shade = PrebakeVertex\nFigure4Shade.ramp = PrebakeTex\n");
+  ASSERT_TRUE(intoTexture);
+  EXPECT_TRUE(readsVaryingFrom(intoTexture->programs[0], "PrebakeTex", "PrebakeVertex"));
+  std::vector<std::string> bakes;
+  for (const BakeRecord& bake : intoTexture->prepared.bakes) bakes.push_back(bake.world);
+  EXPECT_EQ(bakes, (std::vector<std::string>{"PrebakeVertex", "PrebakeTex"}));
+  EXPECT_LT(compare(reference_->capture, intoTexture->capture).rmse, 5e-3);
+  expectGolden(intoTexture->capture, "figure4_vertex_bake_into_texture");
+}
+
+// An edge the pipeline declares but the engine cannot run (a per-frame value
+// into a bake that runs once) is refused when the variant is loaded, naming
+// the kernel, the input and the edges the engine implements out of that role.
+class EdgeTest : public testing::RendererTest {};
+
+TEST_F(EdgeTest, AnEdgeTheEngineDoesNotImplementIsRefusedListingTheEdgesItDoes) {
+  const fs::path decisions = fs::path(::testing::TempDir()) / "frame_into_bake.decisions";
+  std::ofstream(decisions) << "FrameIntoBake.pulse = PrebakeTex\n";
+  ASSERT_TRUE(loadScene(planeScene("frame_into_bake.spire", "FrameIntoBake", "{}")));
+  renderer_ = std::make_unique<SceneRenderer>(ctx(), *scene_, *diags_);
+  const auto programs = renderer_->compile(decisions);
+  ASSERT_FALSE(programs);
+  const std::string& message = programs.error().message;
+  EXPECT_NE(message.find("the PrebakeTex kernel (prebakeTexture) reads 'time' from world 'FrameUniform' (frame) as a "
+                         "uniform input (uniformImport), an edge this engine does not implement"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("out of frame it implements: uniform into vertex, fragment"), std::string::npos) << message;
+
+  // Placed where the engine runs frame values, the same shader renders.
+  EXPECT_TRUE(render(planeScene("frame_into_bake.spire", "FrameIntoBake", "{}"), std::nullopt));
+}
+
+}  // namespace
+}  // namespace spire::engine
