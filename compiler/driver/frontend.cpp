@@ -44,7 +44,7 @@ const sem::Model& FrontEnd::analyze() {
   }
   const sem::StrategyCatalog& strategies =
       options_.strategies ? *options_.strategies : codegen::StrategyRegistry::builtin().catalog();
-  model_ = sem::analyze(program_, diags_, strategies);
+  model_ = sem::analyze(program_, diags_, strategies, sem::AnalysisOptions{options_.pipeline});
   return *model_;
 }
 

@@ -26,6 +26,8 @@ struct FrontEndOptions {
   // Strategies pipelines may name; null means those of
   // codegen::StrategyRegistry::builtin().
   const sem::StrategyCatalog* strategies = nullptr;
+  // Retargets every `using` shader to this pipeline (sem::AnalysisOptions).
+  std::string pipeline;
 };
 
 class FrontEnd {

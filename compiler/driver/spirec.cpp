@@ -30,6 +30,7 @@ struct Options {
   std::string emit = "both";
   bool dumpPlacement = false;
   std::string shader;
+  std::string pipeline;
   uint32_t maxErrors = 20;
   bool warningsAsErrors = false;
   std::vector<std::string> warningFlags;  // `-Werror` is `-W error`
@@ -130,6 +131,10 @@ CLI::Option* addOptions(CLI::App& app, Options& options) {
   app.add_flag("--dump-placement", options.dumpPlacement,
                "Print each variant's placement (as a decision file) and what each world computes, imports and exports");
   app.add_option("--shader", options.shader, "Restrict output to one shader")->check(kNotEmpty)->type_name("NAME");
+  app.add_option("--pipeline", options.pipeline,
+                 "Retarget every shader written 'using' a pipeline to pipeline NAME (declared in one of the files)")
+      ->check(kNotEmpty)
+      ->type_name("NAME");
   app.add_option("--max-errors", options.maxErrors, "Stop after N errors (0: no limit)")->type_name("N");
   app.add_flag("--warnings-as-errors", options.warningsAsErrors,
                "Fail on any warning, reporting each warning as an error");
@@ -215,6 +220,7 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
 
   FrontEndOptions feOptions;
   feOptions.includeDirs = options.includeDirs;
+  feOptions.pipeline = options.pipeline;
   feOptions.errorLimit = options.maxErrors == 0 ? UINT32_MAX : options.maxErrors;
   ShaderLibrary library(std::move(feOptions));
   for (const std::string& file : options.files) library.addFile(file);

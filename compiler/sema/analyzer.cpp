@@ -8,12 +8,14 @@
 
 namespace spire::sem {
 
-std::unique_ptr<Model> analyze(const ast::Program& program, DiagnosticList& diags, const StrategyCatalog& strategies) {
-  return Analyzer(program, diags, strategies).run();
+std::unique_ptr<Model> analyze(const ast::Program& program, DiagnosticList& diags, const StrategyCatalog& strategies,
+                               const AnalysisOptions& options) {
+  return Analyzer(program, diags, strategies, options).run();
 }
 
-Analyzer::Analyzer(const ast::Program& program, DiagnosticList& diags, const StrategyCatalog& strategies)
-    : program_(program), diags_(diags), strategies_(strategies), model_(std::make_unique<Model>()) {
+Analyzer::Analyzer(const ast::Program& program, DiagnosticList& diags, const StrategyCatalog& strategies,
+                   const AnalysisOptions& options)
+    : program_(program), diags_(diags), strategies_(strategies), options_(options), model_(std::make_unique<Model>()) {
   model_->reserveExprs(program.exprCount);
 }
 

@@ -34,7 +34,8 @@ class ComponentTableResolver final : public ComponentResolver {
 
 class Analyzer {
  public:
-  Analyzer(const ast::Program& program, DiagnosticList& diags, const StrategyCatalog& strategies);
+  Analyzer(const ast::Program& program, DiagnosticList& diags, const StrategyCatalog& strategies,
+           const AnalysisOptions& options);
   std::unique_ptr<Model> run();
 
  private:
@@ -59,6 +60,9 @@ class Analyzer {
   // shader_analysis.cpp
   void analyzeShaders();
   void analyzeShaderDecl(const ast::ShaderDecl& decl);
+  // The pipeline a `using` shader is built against: the one it names, or
+  // the retargeting pipeline (AnalysisOptions::pipeline); null after E4005.
+  const Pipeline* pipelineOf(const ast::ShaderDecl& decl);
   Shader* buildShader(const ast::ShaderDecl& decl, std::string name, const Pipeline& pipeline, const Shader* base);
   // Adds one declaration to a pipeline's or shader's components. `origin`
   // names the pipeline or shader that wrote it.
@@ -78,6 +82,7 @@ class Analyzer {
   const ast::Program& program_;
   DiagnosticList& diags_;
   const StrategyCatalog& strategies_;
+  AnalysisOptions options_;
   std::unique_ptr<Model> model_;
   FunctionTable functions_;
   // Every global name with what it is and where it was declared.

@@ -1,5 +1,6 @@
 // Shaders, inheritance, groups, components and the component graph.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 
@@ -154,6 +155,17 @@ void mergeDeclaration(Component& existing, const Pipeline& pipeline, const ast::
   for (const ast::Attribute& a : decl.attributes) existing.attributes.push_back(&a);
   const bool existingIsInput = !existing.definitions.empty() && existing.definitions.front().isInput();
   if (decl.isAbstract) return redeclareAbstract(existing, pipeline, decl, world, diags);
+  // The same input declared again by a shader of the pipeline (or a derived
+  // shader) that provides it: the engine supplies one value either way, so a
+  // pipeline can rely on an input (a retargeting pipeline positioning its own
+  // pass with matMVP) that the shaders written for it also declare.
+  if (isInput && existingIsInput) {
+    Definition& input = existing.definitions.front();
+    if (input.origin != origin && input.world == world) {
+      input.origin = origin;  // so that a second declaration in the same shader is still a redefinition
+      return;
+    }
+  }
   if (isInput || existingIsInput) {
     diags
         .report(
@@ -331,18 +343,7 @@ void Analyzer::analyzeShaderDecl(const ast::ShaderDecl& decl) {
   analyzedShaders_.insert(&decl);
 
   if (decl.pipeline) {
-    const Pipeline* pipeline = model_->findPipeline(decl.pipeline->name);
-    if (!pipeline) {
-      std::vector<std::string_view> names;
-      for (const auto& p : model_->pipelines) names.push_back(p->name);
-      const auto suggestion = closestSpelling(decl.pipeline->name, names);
-      diags_.report(DiagCode::E4005, decl.pipeline->range,
-                    suggestion
-                        ? fmt::format("unknown pipeline '{}'; did you mean '{}'?", decl.pipeline->name, *suggestion)
-                        : fmt::format("unknown pipeline '{}'", decl.pipeline->name));
-    } else {
-      buildShader(decl, decl.name, *pipeline, nullptr);
-    }
+    if (const Pipeline* pipeline = pipelineOf(decl)) buildShader(decl, decl.name, *pipeline, nullptr);
   } else if (decl.base) {
     if (auto it = shaderDecls_.find(decl.base->name); it != shaderDecls_.end()) {
       analyzeShaderDecl(*it->second);
@@ -368,6 +369,26 @@ void Analyzer::analyzeShaderDecl(const ast::ShaderDecl& decl) {
                   fmt::format("shader '{}' needs a pipeline ('using Pipeline') or a base (': Base')", decl.name));
   }
   shadersInProgress_.pop_back();
+}
+
+const Pipeline* Analyzer::pipelineOf(const ast::ShaderDecl& decl) {
+  const bool retargeted = !options_.pipeline.empty();
+  const std::string& name = retargeted ? options_.pipeline : decl.pipeline->name;
+  if (const Pipeline* pipeline = model_->findPipeline(name)) return pipeline;
+  std::vector<std::string_view> names;
+  for (const auto& p : model_->pipelines) names.push_back(p->name);
+  const auto suggestion = closestSpelling(name, names);
+  // A retargeting pipeline comes from the command line or the scene, so the
+  // error stands at the `using` it replaces and lists what is loaded.
+  const std::string loaded = names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
+  diags_.report(DiagCode::E4005, decl.pipeline->range,
+                retargeted   ? fmt::format("cannot retarget '{}' to pipeline '{}', which no loaded file declares{}; "
+                                             "loaded pipelines: {}",
+                                           decl.name, name,
+                                         suggestion ? fmt::format(" (did you mean '{}'?)", *suggestion) : "", loaded)
+                : suggestion ? fmt::format("unknown pipeline '{}'; did you mean '{}'?", name, *suggestion)
+                             : fmt::format("unknown pipeline '{}'", name));
+  return nullptr;
 }
 
 Shader* Analyzer::buildShader(const ast::ShaderDecl& decl, std::string name, const Pipeline& pipeline,

@@ -51,6 +51,26 @@ TEST(Spirec, IncludeDirectoriesAreSearchedAfterTheIncludingFolder) {
   fs::remove_all(dir);
 }
 
+// --pipeline retargets: the Terrain example, unedited, gets the multi-rate
+// pipeline's worlds as choices and its kernels.
+TEST(Spirec, PipelineRetargetsEveryUsingShader) {
+  const std::string terrain = (sourceDir() / "examples/terrain.spire").string();
+  const std::string multiRate = (sourceDir() / "pipelines/multi_rate.spire").string();
+  const SpirecRun choices = spirec({terrain, multiRate, "--pipeline", "MultiRatePipeline", "--choices"});
+  ASSERT_EQ(choices.exitCode, kExitSuccess) << choices.err;
+  EXPECT_NE(choices.out.find("Terrain.albedo = {PrebakeUniform,PrebakeVertex,PrebakeTex,LowResVertex,LowResFragment,"
+                             "Vertex,Fragment}"),
+            std::string::npos)
+      << choices.out;
+  const SpirecRun original = spirec({terrain, multiRate, "--choices"});
+  EXPECT_EQ(original.out.find("LowResFragment"), std::string::npos) << original.out;
+  EXPECT_EQ(spirec({terrain, "--pipeline", ""}).exitCode, kExitUsageError);
+  const SpirecRun unknown = spirec({terrain, "--pipeline", "MultiRatePipeline"});
+  EXPECT_EQ(unknown.exitCode, kExitInputError);
+  EXPECT_NE(unknown.err.find("cannot retarget 'Terrain' to pipeline 'MultiRatePipeline'"), std::string::npos)
+      << unknown.err;
+}
+
 TEST(Spirec, KernelsAreWrittenOnlyWhenEveryShaderCompiles) {
   const fs::path dir = fs::temp_directory_path() / "spirec_partial_test";
   fs::remove_all(dir);

@@ -80,14 +80,16 @@ const char* verdictName(Verdict verdict) {
   return "?";
 }
 
+FrontEndOptions ProgramChecker::readingDecisionsFromMemory() {
+  FrontEndOptions options;
+  options.readFile = [this](const std::string& path) -> std::optional<std::string> {
+    return path == kDecisionsPath ? std::optional(decisions_) : readWholeFile(path);
+  };
+  return options;
+}
+
 ProgramChecker::ProgramChecker(std::string source, std::string displayPath, bool compileKernels)
-    : compileKernels_(compileKernels),
-      library_(FrontEndOptions{{},
-                               20,
-                               [this](const std::string& path) -> std::optional<std::string> {
-                                 return path == kDecisionsPath ? std::optional(decisions_) : readWholeFile(path);
-                               },
-                               nullptr}) {
+    : compileKernels_(compileKernels), library_(readingDecisionsFromMemory()) {
   library_.addSource(std::move(displayPath), std::move(source));
   try {
     if (!library_.compile()) frontEnd_ = refusal("", library_.diagnostics());

@@ -60,6 +60,8 @@ class ProgramChecker {
   std::vector<VariantReport> check(const std::string& decisions);
 
  private:
+  // The front end reads `generated.decisions` from decisions_, files otherwise.
+  FrontEndOptions readingDecisionsFromMemory();
   VariantReport checkVariant(const graph::Variant& variant, DiagnosticList& diags);
   std::optional<std::string> kernelProblem(const codegen::Kernel& kernel);
   VariantReport refusal(std::string shader, const DiagnosticList& diags) const;

@@ -38,6 +38,11 @@ struct BlockDeclaration {
 BlockDeclaration declareBlock(KernelBuilder& kernel, const std::string& hint, const std::vector<KernelValue>& values,
                               BlockLayout layout, std::string_view qualifier, std::string_view strategy);
 
+// One sampler per value of `site`, each fetched at the GLSL expression `uv`
+// in the consuming kernel and reflected as a texture input of `strategy`.
+// Float scalars and vectors only; honours [Encoding: "signed"].
+Expected<void, Failure> emitTextureFetches(ImportSite& site, const std::string& uv, std::string_view strategy);
+
 // `flat` where GLSL requires it for integer varyings.
 bool needsFlat(const sem::Type* type);
 // Types that may cross stages as `in`/`out` variables.
