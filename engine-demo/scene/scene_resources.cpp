@@ -80,11 +80,11 @@ Expected<void> checkProcedural(const TextureDesc& desc) {
 }
 
 Image colorizeNoise(Image noise, const glm::vec4& color, const glm::vec4& color2) {
-  for (size_t texel = 0; texel < noise.rgba8.size(); texel += 4) {
-    float v = static_cast<float>(noise.rgba8[texel]) / 255.0F;
+  for (size_t texel = 0; texel < noise.bytes.size(); texel += 4) {
+    float v = static_cast<float>(noise.bytes[texel]) / 255.0F;
     glm::vec4 mixed = color2 + (color - color2) * v;
     Rgba8 out = toColor8(mixed);
-    for (size_t c = 0; c < 4; ++c) noise.rgba8[texel + c] = out[static_cast<glm::length_t>(c)];
+    for (size_t c = 0; c < 4; ++c) noise.bytes[texel + c] = out[static_cast<glm::length_t>(c)];
   }
   return noise;
 }
@@ -146,13 +146,13 @@ Expected<Image> packChannels(const TextureDesc& desc, const SceneFile& scene) {
           desc.name, desc.channels.front().texture, first.width, first.height, name, image.width, image.height)};
     }
   }
-  Image packed{first.width, first.height, std::vector<uint8_t>(first.rgba8.size(), 0)};
-  for (size_t texel = 3; texel < packed.rgba8.size(); texel += 4) packed.rgba8[texel] = 255;
+  Image packed{first.width, first.height, std::vector<uint8_t>(first.bytes.size(), 0)};
+  for (size_t texel = 3; texel < packed.bytes.size(); texel += 4) packed.bytes[texel] = 255;
   for (size_t c = 0; c < desc.channels.size(); ++c) {
     const ChannelSource& channel = desc.channels[c];
-    const std::vector<uint8_t>& from = sources.at(channel.texture).rgba8;
-    for (size_t texel = 0; texel < packed.rgba8.size(); texel += 4) {
-      packed.rgba8[texel + c] = from[texel + channel.channel];
+    const std::vector<uint8_t>& from = sources.at(channel.texture).bytes;
+    for (size_t texel = 0; texel < packed.bytes.size(); texel += 4) {
+      packed.bytes[texel + c] = from[texel + channel.channel];
     }
   }
   return packed;

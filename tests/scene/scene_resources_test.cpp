@@ -86,12 +86,12 @@ TEST(SceneResourcesTest, PackCopiesTheNamedChannels) {
   const Image noise = build(scene.textures[0]);
   const Image checker = build(scene.textures[1]);
   ASSERT_EQ(packed->width, noise.width);
-  ASSERT_EQ(packed->rgba8.size(), noise.rgba8.size());
-  for (size_t texel = 0; texel < packed->rgba8.size(); texel += 4) {
-    ASSERT_EQ(packed->rgba8[texel], checker.rgba8[texel + 2]) << texel;
-    ASSERT_EQ(packed->rgba8[texel + 1], noise.rgba8[texel]) << texel;
-    ASSERT_EQ(packed->rgba8[texel + 2], 0) << texel;
-    ASSERT_EQ(packed->rgba8[texel + 3], 255) << texel;
+  ASSERT_EQ(packed->bytes.size(), noise.bytes.size());
+  for (size_t texel = 0; texel < packed->bytes.size(); texel += 4) {
+    ASSERT_EQ(packed->bytes[texel], checker.bytes[texel + 2]) << texel;
+    ASSERT_EQ(packed->bytes[texel + 1], noise.bytes[texel]) << texel;
+    ASSERT_EQ(packed->bytes[texel + 2], 0) << texel;
+    ASSERT_EQ(packed->bytes[texel + 3], 255) << texel;
   }
 
   scene.textures[1].size = 8;
@@ -189,34 +189,34 @@ TEST(SceneResourcesTest, SolidCheckerNormalMapAndGgxLutUseTheirGenerators) {
   TextureDesc solid = textureDesc(TextureKind::Solid);
   // 0.5 * 255 = 127.5 rounds up; out-of-range components clamp.
   solid.color = glm::vec4(0.5F, 0.25F, 2.0F, -1.0F);
-  EXPECT_EQ(build(solid).rgba8, makeSolid(16, Rgba8(128, 64, 255, 0)).rgba8);
+  EXPECT_EQ(build(solid).bytes, makeSolid(16, Rgba8(128, 64, 255, 0)).bytes);
 
-  EXPECT_EQ(build(textureDesc(TextureKind::Checker)).rgba8,
-            makeChecker(16, 4, Rgba8(255, 0, 128, 255), Rgba8(0, 255, 0, 128)).rgba8);
-  EXPECT_EQ(build(textureDesc(TextureKind::NormalMap)).rgba8, makeNormalMap(16, 3, 1.5F).rgba8);
-  EXPECT_EQ(build(textureDesc(TextureKind::GgxLut)).rgba8, makeGgxLut(16).rgba8);
+  EXPECT_EQ(build(textureDesc(TextureKind::Checker)).bytes,
+            makeChecker(16, 4, Rgba8(255, 0, 128, 255), Rgba8(0, 255, 0, 128)).bytes);
+  EXPECT_EQ(build(textureDesc(TextureKind::NormalMap)).bytes, makeNormalMap(16, 3, 1.5F).bytes);
+  EXPECT_EQ(build(textureDesc(TextureKind::GgxLut)).bytes, makeGgxLut(16).bytes);
 }
 
 TEST(SceneResourcesTest, NoiseMixesTheTwoColors) {
   TextureDesc desc = textureDesc(TextureKind::Noise);
   Image colored = build(desc);
   Image grey = makeNoise(16, 3, 4);
-  ASSERT_EQ(colored.rgba8.size(), grey.rgba8.size());
-  for (size_t texel = 0; texel < grey.rgba8.size(); texel += 4) {
-    int v = grey.rgba8[texel];
+  ASSERT_EQ(colored.bytes.size(), grey.bytes.size());
+  for (size_t texel = 0; texel < grey.bytes.size(); texel += 4) {
+    int v = grey.bytes[texel];
     // mix(color2, color, v): red follows v, green its complement; blue runs
     // from 0 to 0.5 and alpha from 0.5 to 1, rounded to the nearest step (ties
     // either way, as float arithmetic lands them).
-    EXPECT_EQ(colored.rgba8[texel], v);
-    EXPECT_EQ(colored.rgba8[texel + 1], 255 - v);
-    EXPECT_LE(std::abs(colored.rgba8[texel + 2] - v * 0.5), 0.5);
-    EXPECT_LE(std::abs(colored.rgba8[texel + 3] - (127.5 + v * 0.5)), 0.5);
+    EXPECT_EQ(colored.bytes[texel], v);
+    EXPECT_EQ(colored.bytes[texel + 1], 255 - v);
+    EXPECT_LE(std::abs(colored.bytes[texel + 2] - v * 0.5), 0.5);
+    EXPECT_LE(std::abs(colored.bytes[texel + 3] - (127.5 + v * 0.5)), 0.5);
   }
   // The default colors (white over opaque black) leave the grey noise as it is.
   TextureDesc plain = desc;
   plain.color = TextureDesc{}.color;
   plain.color2 = TextureDesc{}.color2;
-  EXPECT_EQ(build(plain).rgba8, grey.rgba8);
+  EXPECT_EQ(build(plain).bytes, grey.bytes);
 }
 
 TEST(SceneResourcesTest, ProceduralTexturesAreDeterministic) {
@@ -226,11 +226,11 @@ TEST(SceneResourcesTest, ProceduralTexturesAreDeterministic) {
     Image first = build(desc);
     EXPECT_EQ(first.width, 16u);
     EXPECT_EQ(first.height, 16u);
-    EXPECT_EQ(build(desc).rgba8, first.rgba8);
+    EXPECT_EQ(build(desc).bytes, first.bytes);
   }
   TextureDesc reseeded = textureDesc(TextureKind::Noise);
   reseeded.seed = 4;
-  EXPECT_NE(build(reseeded).rgba8, build(textureDesc(TextureKind::Noise)).rgba8);
+  EXPECT_NE(build(reseeded).bytes, build(textureDesc(TextureKind::Noise)).bytes);
 }
 
 TEST(SceneResourcesTest, FileAndGltfTextures) {
@@ -238,7 +238,7 @@ TEST(SceneResourcesTest, FileAndGltfTextures) {
   TextureDesc file = textureDesc(TextureKind::File);
   file.file = dir.path() / "pixels.png";
   ASSERT_TRUE(writePng(file.file, makeTestPixels()));
-  EXPECT_EQ(build(file).rgba8, makeTestPixels().rgba8);
+  EXPECT_EQ(build(file).bytes, makeTestPixels().bytes);
 
   tinygltf::Model model = makeQuadModel({}, "");
   addBufferViewImage(model, pngBytes(makeSolid(2, Rgba8(9, 8, 7, 6))));
@@ -248,7 +248,7 @@ TEST(SceneResourcesTest, FileAndGltfTextures) {
   gltf.image = 1;
   Image image = build(gltf);
   EXPECT_EQ(image.width, 3u);
-  EXPECT_EQ(image.rgba8, makeTestPixels().rgba8);
+  EXPECT_EQ(image.bytes, makeTestPixels().bytes);
 }
 
 TEST(SceneResourcesTest, TextureErrors) {
