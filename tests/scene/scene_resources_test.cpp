@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <stb/stb_image_write.h>
+
 #include <cmath>
 #include <string>
 
@@ -99,6 +101,93 @@ TEST(SceneResourcesTest, PackCopiesTheNamedChannels) {
   ASSERT_FALSE(mismatched);
   EXPECT_EQ(mismatched.error().message,
             "texture 'masks': its channels come from textures of different sizes ('checker' is 8x8, 'noise' 16x16)");
+}
+
+// A pack of 8-bit sources stays RGBA8; a float source makes it RGBA32F, so
+// that every value of every source survives; "format" overrides both.
+TEST(SceneResourcesTest, PackTakesTheWiderFormatOfItsSources) {
+  SceneFile scene;
+  scene.textures.push_back(textureDesc(TextureKind::Noise));
+  scene.textures.back().name = "noise";
+  scene.textures.push_back(textureDesc(TextureKind::Solid));
+  scene.textures.back().name = "fine";
+  scene.textures.back().color = glm::vec4(0.123456F, 0.25F, 1.0F / 3.0F, 1.0F);
+  scene.textures.back().format = PixelFormat::RGBA32F;
+  TextureDesc pack;
+  pack.name = "masks";
+  pack.kind = TextureKind::Pack;
+  pack.channels = {{"noise", 0, {}}, {"fine", 0, {}}, {"fine", 2, {}}};
+  auto packed = buildTexture(pack, scene);
+  ASSERT_TRUE(packed) << packed.error().message;
+  EXPECT_EQ(packed->format, PixelFormat::RGBA32F);
+  const Image noise = build(scene.textures[0]);
+  EXPECT_EQ(packed->texel(5, 7), glm::vec4(noise.pixel(5, 7).r / 255.0F, 0.123456F, 1.0F / 3.0F, 1.0F));
+
+  scene.textures.back().format = PixelFormat::RGBA16;
+  packed = buildTexture(pack, scene);
+  ASSERT_TRUE(packed) << packed.error().message;
+  EXPECT_EQ(packed->format, PixelFormat::RGBA16);
+  EXPECT_EQ(std::lround(packed->texel(5, 7).r * 65535.0F), noise.pixel(5, 7).r * 257);
+  EXPECT_EQ(std::lround(packed->texel(5, 7).g * 65535.0F), std::lround(0.123456F * 65535.0F));
+
+  pack.format = PixelFormat::R32F;
+  packed = buildTexture(pack, scene);
+  ASSERT_TRUE(packed) << packed.error().message;
+  EXPECT_EQ(packed->format, PixelFormat::R32F);
+  EXPECT_EQ(packed->texel(5, 7), glm::vec4(noise.pixel(5, 7).r / 255.0F, 0.0F, 0.0F, 1.0F));
+}
+
+// Procedural textures in a format other than RGBA8 are computed in float, so
+// that colors keep more than 8 bits; "RGBA8" asked for is the default.
+TEST(SceneResourcesTest, ProceduralTexturesAreMadeInTheirFormat) {
+  const glm::vec4 fine(0.123456F, 0.25F, 1.0F / 3.0F, 0.75F);
+  for (TextureKind kind :
+       {TextureKind::Noise, TextureKind::Checker, TextureKind::NormalMap, TextureKind::Solid, TextureKind::GgxLut}) {
+    TextureDesc desc = textureDesc(kind);
+    const Image eightBit = build(desc);
+    desc.format = PixelFormat::RGBA8;
+    EXPECT_EQ(build(desc).bytes, eightBit.bytes);
+    for (PixelFormat format : {PixelFormat::RGBA16, PixelFormat::RGBA16F, PixelFormat::RGBA32F, PixelFormat::R32F}) {
+      desc.format = format;
+      const Image image = build(desc);
+      EXPECT_EQ(image.format, format);
+      EXPECT_TRUE(image.consistent());
+      EXPECT_EQ(image.width, 16U);
+    }
+  }
+  TextureDesc solid = textureDesc(TextureKind::Solid);
+  solid.color = fine;
+  solid.format = PixelFormat::RGBA32F;
+  EXPECT_EQ(build(solid).texel(3, 3), fine);
+  TextureDesc noise = textureDesc(TextureKind::Noise);
+  noise.format = PixelFormat::RGBA32F;
+  const Image grey = makeNoise(16, 3, 4, PixelFormat::RGBA32F);
+  const float v = grey.texel(9, 2).r;
+  const glm::vec4 mixed = noise.color2 + (noise.color - noise.color2) * v;
+  EXPECT_EQ(build(noise).texel(9, 2), mixed);
+}
+
+TEST(SceneResourcesTest, FileTexturesConvertIntoTheirFormat) {
+  TempDir dir;
+  TextureDesc file = textureDesc(TextureKind::File);
+  file.file = dir.path() / "pixels.png";
+  const Image pixels = makeTestPixels();
+  ASSERT_TRUE(writePng(file.file, pixels));
+  file.format = PixelFormat::RGBA16F;
+  const Image half = build(file);
+  EXPECT_EQ(half.format, PixelFormat::RGBA16F);
+  EXPECT_EQ(convertImage(half, PixelFormat::RGBA8).bytes, pixels.bytes);
+
+  // .hdr is RGBA32F by default and clamps into RGBA8.
+  file.file = dir.path() / "bright.hdr";
+  const float rgb[] = {4.0F, 0.5F, 0.25F};
+  ASSERT_NE(stbi_write_hdr(file.file.c_str(), 1, 1, 3, rgb), 0);
+  file.format.reset();
+  const Image bright = build(file);
+  EXPECT_EQ(bright.format, PixelFormat::RGBA32F);
+  EXPECT_EQ(bright.texel(0, 0), glm::vec4(4.0F, 0.5F, 0.25F, 1.0F));
+  file.format = PixelFormat::RGBA8;
+  EXPECT_EQ(build(file).pixel(0, 0), Rgba8(255, 128, 64, 255));
 }
 
 TEST(SceneResourcesTest, ProceduralMeshesComeFromTheGenerators) {
