@@ -206,7 +206,7 @@ std::optional<int> prepareVariants(engine::ToolRun& run, const std::vector<Varia
 // RGBA8 with alpha 255: the shader's alpha is rarely meant as transparency,
 // and viewers show a translucent image washed out.
 scene::Image opaque(scene::Image image) {
-  for (size_t i = 3; i < image.rgba8.size(); i += 4) image.rgba8[i] = 255;
+  for (size_t i = 3; i < image.bytes.size(); i += 4) image.bytes[i] = 255;
   return image;
 }
 

@@ -83,7 +83,7 @@ void fillBlock(scene::Image& image, uint64_t x, uint64_t y, uint32_t scale, scen
   for (uint64_t py = y; py < y + scale && py < image.height; ++py) {
     for (uint64_t px = x; px < x + scale && px < image.width; ++px) {
       size_t offset = (static_cast<size_t>(py) * image.width + static_cast<size_t>(px)) * 4;
-      for (int c = 0; c < 4; ++c) image.rgba8[offset + static_cast<size_t>(c)] = color[c];
+      for (int c = 0; c < 4; ++c) image.bytes[offset + static_cast<size_t>(c)] = color[c];
     }
   }
 }
@@ -97,7 +97,7 @@ uint32_t textWidth(std::string_view text, uint32_t scale) {
 }
 
 void drawText(scene::Image& image, uint32_t x, uint32_t y, std::string_view text, uint32_t scale, scene::Rgba8 color) {
-  if (image.rgba8.size() != static_cast<size_t>(image.width) * image.height * 4) return;
+  if (image.format != scene::PixelFormat::RGBA8 || !image.consistent()) return;
   // 64-bit positions: a long caption at a large scale must clip, not wrap around.
   uint64_t left = x;
   for (char character : text) {

@@ -19,7 +19,7 @@ void fillRect(scene::Image& image, uint32_t x, uint32_t y, uint32_t width, uint3
   for (uint32_t py = y; py < y + height; ++py) {
     for (uint32_t px = x; px < x + width; ++px) {
       size_t offset = (static_cast<size_t>(py) * image.width + px) * 4;
-      for (int c = 0; c < 4; ++c) image.rgba8[offset + static_cast<size_t>(c)] = color[c];
+      for (int c = 0; c < 4; ++c) image.bytes[offset + static_cast<size_t>(c)] = color[c];
     }
   }
 }
@@ -29,8 +29,8 @@ void blitOpaque(scene::Image& canvas, const scene::Image& image, uint32_t x, uin
     for (uint32_t column = 0; column < image.width; ++column) {
       size_t from = (static_cast<size_t>(row) * image.width + column) * 4;
       size_t to = (static_cast<size_t>(y + row) * canvas.width + x + column) * 4;
-      std::copy_n(&image.rgba8[from], 3, &canvas.rgba8[to]);
-      canvas.rgba8[to + 3] = 255;
+      std::copy_n(&image.bytes[from], 3, &canvas.bytes[to]);
+      canvas.bytes[to + 3] = 255;
     }
   }
 }
@@ -52,7 +52,7 @@ scene::Expected<scene::Image> makeComparisonImage(const std::vector<Panel>& pane
   uint64_t tallest = 0;
   for (size_t i = 0; i < panels.size(); ++i) {
     const scene::Image& image = panels[i].image;
-    if (image.rgba8.size() != static_cast<size_t>(image.width) * image.height * 4) {
+    if (image.format != scene::PixelFormat::RGBA8 || !image.consistent()) {
       return scene::Error{
           fmt::format("cannot make a comparison image: image {} ('{}') has pixel data that does "
                       "not match {}x{} RGBA8",
@@ -70,7 +70,7 @@ scene::Expected<scene::Image> makeComparisonImage(const std::vector<Panel>& pane
   scene::Image canvas;
   canvas.width = static_cast<uint32_t>(width);
   canvas.height = static_cast<uint32_t>(height);
-  canvas.rgba8.resize(static_cast<size_t>(width) * height * 4);
+  canvas.bytes.resize(static_cast<size_t>(width) * height * 4);
   fillRect(canvas, 0, 0, canvas.width, canvas.height, kBackground);
   auto stripTop = static_cast<uint32_t>(layout.gap + tallest);
   const auto textSpaceOf = [&](const Panel& panel) {

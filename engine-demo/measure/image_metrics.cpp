@@ -103,10 +103,10 @@ scene::Image toRgba8(const FloatImage& image) {
   if (!consistent(image)) return out;
   out.width = image.width;
   out.height = image.height;
-  out.rgba8.resize(image.rgba.size());
+  out.bytes.resize(image.rgba.size());
   for (size_t p = 0; p < pixelCount(image); ++p) {
     const float* in = &image.rgba[p * 4];
-    uint8_t* px = &out.rgba8[p * 4];
+    uint8_t* px = &out.bytes[p * 4];
     switch (pixelHazard(in)) {
       case Hazard::NaN: std::copy_n(kNanColor, 4, px); break;
       case Hazard::Inf: std::copy_n(kInfColor, 4, px); break;

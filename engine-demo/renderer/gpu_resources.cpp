@@ -18,6 +18,31 @@ Expected<vk::Buffer> makeBuffer(const vk::Context& ctx, const std::vector<T>& da
   return std::move(buffer).value();
 }
 
+// The GPU format of each scene::PixelFormat: the same layout, so texels are
+// copied as they are.
+VkFormat textureFormat(scene::PixelFormat format) {
+  switch (format) {
+    case scene::PixelFormat::RGBA8: return VK_FORMAT_R8G8B8A8_UNORM;
+    case scene::PixelFormat::RGBA16: return VK_FORMAT_R16G16B16A16_UNORM;
+    case scene::PixelFormat::RGBA16F: return VK_FORMAT_R16G16B16A16_SFLOAT;
+    case scene::PixelFormat::RGBA32F: return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case scene::PixelFormat::R32F: return VK_FORMAT_R32_SFLOAT;
+  }
+  return VK_FORMAT_UNDEFINED;
+}
+
+// Material textures are sampled with linear filtering, which Vulkan makes
+// optional for every format but a few 8-bit and 16-bit float ones.
+Expected<void> checkSampledFormat(const vk::Context& ctx, scene::PixelFormat format) {
+  VkFormatProperties properties{};
+  vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), textureFormat(format), &properties);
+  const VkFormatFeatureFlags needed =
+      VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+  if ((properties.optimalTilingFeatures & needed) == needed) return {};
+  return Error{fmt::format("texture format {} cannot be sampled with linear filtering on {}; choose another 'format'",
+                           scene::pixelFormatName(format), ctx.selectedDevice().name)};
+}
+
 }  // namespace
 
 Expected<std::unique_ptr<GpuMesh>> uploadMesh(const vk::Context& ctx, scene::Mesh mesh) {
@@ -81,8 +106,13 @@ std::vector<uint8_t> depthCoverage(std::span<const std::byte> depthTexels) {
 }
 
 Expected<std::unique_ptr<GpuTexture>> uploadTexture(const vk::Context& ctx, const scene::Image& image, bool clamp) {
+  if (!image.consistent()) {
+    return Error{fmt::format("the {} image's pixel data does not match its size {}x{}",
+                             scene::pixelFormatName(image.format), image.width, image.height)};
+  }
+  if (auto supported = checkSampledFormat(ctx, image.format); !supported) return supported.error();
   auto uploaded =
-      uploadImage(ctx, image.width, image.height, VK_FORMAT_R8G8B8A8_UNORM, std::as_bytes(std::span(image.rgba8)));
+      uploadImage(ctx, image.width, image.height, textureFormat(image.format), std::as_bytes(std::span(image.bytes)));
   if (!uploaded) return uploaded.error();
   vk::SamplerDesc samplerDesc{};
   samplerDesc.addressMode = clamp ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE : VK_SAMPLER_ADDRESS_MODE_REPEAT;

@@ -30,9 +30,12 @@ struct GpuTexture {
   vk::Sampler sampler;
 };
 
-// Material images are RGBA8 and sampled with linear filtering; `clamp` picks
-// clamp-to-edge over repeat. Values are used as stored (no sRGB decode), so a
-// texel of 128 reads as 0.502 in every world, baked or not.
+// Material images are uploaded in the GPU format of their PixelFormat
+// (RGBA8 as R8G8B8A8_UNORM, RGBA16 as R16G16B16A16_UNORM, RGBA16F, RGBA32F
+// and R32F as the SFLOAT formats) and sampled with linear filtering; a format
+// the device cannot filter is an error naming it. `clamp` picks clamp-to-edge
+// over repeat. Values are used as stored (no sRGB decode), so an RGBA8 texel
+// of 128 reads as 0.502 in every world, baked or not.
 Expected<std::unique_ptr<GpuTexture>> uploadTexture(const vk::Context& ctx, const scene::Image& image, bool clamp);
 
 // Copies `bytes` into a new image of `format` through a staging buffer and

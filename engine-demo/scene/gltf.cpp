@@ -2,8 +2,6 @@
 
 #include <tiny_gltf.h>
 
-#include <stb/stb_image.h>
-
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
@@ -11,7 +9,6 @@
 #include <glm/matrix.hpp>
 
 #include <cerrno>
-#include <climits>
 #include <cstring>
 #include <fstream>
 #include <memory>
@@ -391,20 +388,8 @@ Expected<Image> loadGltfImage(const std::filesystem::path& path, uint32_t index)
                              : std::make_error_code(std::errc::no_such_file_or_directory).message();
     return Error{prefix + "external image '" + external.string() + "': " + reason};
   }
-  if (size == 0 || size > static_cast<size_t>(INT_MAX)) {
-    return Error{prefix + "encoded image size " + std::to_string(size) + " is out of range"};
-  }
-  int width = 0;
-  int height = 0;
-  int channels = 0;
-  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
-      stbi_load_from_memory(bytes, static_cast<int>(size), &width, &height, &channels, STBI_rgb_alpha),
-      stbi_image_free);
-  if (!pixels) return Error{prefix + "cannot decode: " + stbi_failure_reason()};
-  Image image;
-  image.width = static_cast<uint32_t>(width);
-  image.height = static_cast<uint32_t>(height);
-  image.rgba8.assign(pixels.get(), pixels.get() + static_cast<size_t>(width) * static_cast<size_t>(height) * 4);
+  auto image = decodeImage(std::span(bytes, size));
+  if (!image) return Error{prefix + "cannot decode: " + image.error().message};
   return image;
 }
 

@@ -2,6 +2,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 
 namespace spire::scene {
@@ -13,6 +15,14 @@ std::string quotedList(const KeyList& names, std::string_view conjunction) {
     text += fmt::format("'{}'", names[i]);
   }
   return text;
+}
+
+std::optional<std::string> suggestedChoice(std::string_view written, const KeyList& names) {
+  const auto lower = [](unsigned char c) { return std::tolower(c); };
+  for (std::string_view name : names) {
+    if (std::ranges::equal(name, written, {}, lower, lower)) return std::string(name);
+  }
+  return closestSpelling(written, names);
 }
 
 bool Bounds::contains(double x) const {

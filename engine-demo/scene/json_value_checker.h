@@ -30,6 +30,11 @@ using KeyList = std::vector<std::string_view>;
 // "'a', 'b' or 'c'" when `conjunction` is "or".
 std::string quotedList(const KeyList& names, std::string_view conjunction);
 
+// The option `written` was probably meant to be: one that differs only in
+// case ("rgba16f" is 'RGBA16F', not the nearer 'RGBA16'), else the closest
+// spelling.
+std::optional<std::string> suggestedChoice(std::string_view written, const KeyList& names);
+
 inline constexpr double kMaxFloat = std::numeric_limits<float>::max();
 
 // The numbers a value may take; by default anything a float can hold.
@@ -93,7 +98,7 @@ class JsonValueChecker {
       names.push_back(name);
     }
     std::string message = fmt::format("unknown {} {}", what, quotedForMessage(value.string));
-    const std::optional<std::string> suggestion = closestSpelling(value.string, names);
+    const std::optional<std::string> suggestion = suggestedChoice(value.string, names);
     message += suggestion ? fmt::format("; did you mean '{}'?", *suggestion)
                           : fmt::format(" (expected {})", quotedList(names, "or"));
     diags_.report(DiagCode::E7004, value.range, std::move(message));

@@ -47,14 +47,14 @@ const std::vector<KindKeys<MeshKind>> kMeshKinds = {
 };
 
 const std::vector<KindKeys<TextureKind>> kTextureKinds = {
-    {TextureKind::File, "file", {"type", "file", "address"}},
-    {TextureKind::Gltf, "gltf", {"type", "file", "image", "address"}},
-    {TextureKind::Noise, "noise", {"type", "size", "seed", "octaves", "color", "color2", "address"}},
-    {TextureKind::Checker, "checker", {"type", "size", "cells", "color", "color2", "address"}},
-    {TextureKind::NormalMap, "normalMap", {"type", "size", "seed", "strength", "address"}},
-    {TextureKind::Solid, "solid", {"type", "size", "color", "address"}},
-    {TextureKind::GgxLut, "ggxLut", {"type", "size", "address"}},
-    {TextureKind::Pack, "pack", {"type", "channels", "address"}},
+    {TextureKind::File, "file", {"type", "file", "address", "format"}},
+    {TextureKind::Gltf, "gltf", {"type", "file", "image", "address", "format"}},
+    {TextureKind::Noise, "noise", {"type", "size", "seed", "octaves", "color", "color2", "address", "format"}},
+    {TextureKind::Checker, "checker", {"type", "size", "cells", "color", "color2", "address", "format"}},
+    {TextureKind::NormalMap, "normalMap", {"type", "size", "seed", "strength", "address", "format"}},
+    {TextureKind::Solid, "solid", {"type", "size", "color", "address", "format"}},
+    {TextureKind::GgxLut, "ggxLut", {"type", "size", "address", "format"}},
+    {TextureKind::Pack, "pack", {"type", "channels", "address", "format"}},
 };
 
 constexpr uint32_t kMaxImageSide = 8192;
@@ -63,6 +63,13 @@ constexpr uint32_t kMaxGridResolution = 4096;
 constexpr uint32_t kMaxOctaves = 16;
 constexpr size_t kMaxMaterialNumbers = 16;  // a mat4
 constexpr uint32_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
+
+// The "format" names of kPixelFormats, for JsonValueChecker::choice.
+const std::vector<std::pair<std::string_view, PixelFormat>> kFormatOptions = [] {
+  std::vector<std::pair<std::string_view, PixelFormat>> options;
+  for (const PixelFormatName& entry : kPixelFormats) options.emplace_back(entry.name, entry.format);
+  return options;
+}();
 
 template <typename Kind>
 KeyList kindNames(const std::vector<KindKeys<Kind>>& kinds) {
@@ -410,6 +417,7 @@ class SceneReader {
         assign(texture.clamp, clamp);
       }
       if (member.key == "channels") readChannels(v, texture.channels);
+      if (member.key == "format") texture.format = check_.choice(v, "texture format", kFormatOptions);
     }
     // A checker cell must be at least one pixel wide.
     if (cells != nullptr && texture.cells > texture.size) {

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/pixel_format.h"
 #include "support/diagnostic.h"
 #include "support/source_manager.h"
 
@@ -70,6 +71,10 @@ struct TextureDesc {
   glm::vec4 color2{0.0F, 0.0F, 0.0F, 1.0F};  // Checker's second color
   bool clamp = false;                        // sampler addressing: "address", default repeat (clamp for GgxLut)
   std::vector<ChannelSource> channels;       // Pack: its R, G, B, A in order (1 to 4 of them)
+  // The texels' and the GPU texture's format, "format"; when absent, the
+  // file's own (RGBA8, RGBA16 for a 16-bit PNG, RGBA32F for .hdr), RGBA8 for
+  // procedural kinds, a pack's sources' widerFormat.
+  std::optional<PixelFormat> format;
 };
 
 // A material value for one shader input, by component name. Either the name

@@ -25,15 +25,6 @@ constexpr uint32_t kMaxTextureSize = 16384;
 // only cost time.
 constexpr uint32_t kMaxOctaves = 16;
 
-uint8_t toUnorm8(float value) {
-  if (!(value > 0.0F)) return 0;  // also maps NaN to 0
-  return static_cast<uint8_t>(std::lround(std::min(value, 1.0F) * 255.0F));
-}
-
-Rgba8 toColor8(const glm::vec4& color) {
-  return {toUnorm8(color.r), toUnorm8(color.g), toUnorm8(color.b), toUnorm8(color.a)};
-}
-
 std::string meshPrefix(const MeshDesc& desc) { return "mesh '" + desc.name + "': "; }
 
 Expected<void> checkGrid(const MeshDesc& desc, uint64_t vertices) {
@@ -79,14 +70,37 @@ Expected<void> checkProcedural(const TextureDesc& desc) {
   return {};
 }
 
-Image colorizeNoise(Image noise, const glm::vec4& color, const glm::vec4& color2) {
-  for (size_t texel = 0; texel < noise.rgba8.size(); texel += 4) {
-    float v = static_cast<float>(noise.rgba8[texel]) / 255.0F;
-    glm::vec4 mixed = color2 + (color - color2) * v;
-    Rgba8 out = toColor8(mixed);
-    for (size_t c = 0; c < 4; ++c) noise.rgba8[texel + c] = out[static_cast<glm::length_t>(c)];
+// Noise is made at the precision of `format` (8 bits for RGBA8, float else)
+// and colored in float: RGBA8 texels are those of colorizing 8-bit noise.
+Image coloredNoise(const TextureDesc& desc, PixelFormat format) {
+  const PixelFormat grey = format == PixelFormat::RGBA8 ? PixelFormat::RGBA8 : PixelFormat::RGBA32F;
+  const Image noise = makeNoise(desc.size, desc.seed, desc.octaves, grey);
+  Image colored = makeImage(noise.width, noise.height, format);
+  for (uint32_t y = 0; y < noise.height; ++y) {
+    for (uint32_t x = 0; x < noise.width; ++x) {
+      const float v = noise.texel(x, y).r;
+      colored.setTexel(x, y, desc.color2 + (desc.color - desc.color2) * v);
+    }
   }
-  return noise;
+  return colored;
+}
+
+Expected<Image> buildProcedural(const TextureDesc& desc) {
+  if (auto checked = checkProcedural(desc); !checked) {
+    return Error{"texture '" + desc.name + "': " + checked.error().message};
+  }
+  const PixelFormat format = desc.format.value_or(PixelFormat::RGBA8);
+  switch (desc.kind) {
+    case TextureKind::Noise: return coloredNoise(desc, format);
+    case TextureKind::Checker: return makeChecker(desc.size, desc.cells, desc.color, desc.color2, format);
+    case TextureKind::NormalMap: return makeNormalMap(desc.size, desc.seed, desc.strength, format);
+    case TextureKind::Solid: return makeSolid(desc.size, desc.color, format);
+    case TextureKind::GgxLut: return makeGgxLut(desc.size, format);
+    case TextureKind::File:
+    case TextureKind::Gltf:
+    case TextureKind::Pack: break;
+  }
+  return Error{"texture '" + desc.name + "': not a procedural kind"};
 }
 
 }  // namespace
@@ -124,7 +138,8 @@ Expected<Mesh> buildMesh(const MeshDesc& desc) {
 
 namespace {
 
-Expected<Image> packChannels(const TextureDesc& desc, const SceneFile& scene) {
+// The sources of a pack by name, built once each, of one size.
+Expected<std::map<std::string, Image>> packSources(const TextureDesc& desc, const SceneFile& scene) {
   std::map<std::string, Image> sources;
   for (const ChannelSource& channel : desc.channels) {
     if (sources.contains(channel.texture)) continue;
@@ -133,7 +148,7 @@ Expected<Image> packChannels(const TextureDesc& desc, const SceneFile& scene) {
       return Error{"texture '" + desc.name + "': '" + channel.texture + "' is not a texture it can take channels of"};
     }
     auto image = buildTexture(*source, scene);
-    if (!image) return image;
+    if (!image) return Error{image.error()};
     sources.emplace(channel.texture, std::move(image).value());
   }
   if (sources.empty()) return Error{"texture '" + desc.name + "': no channels"};
@@ -146,36 +161,49 @@ Expected<Image> packChannels(const TextureDesc& desc, const SceneFile& scene) {
           desc.name, desc.channels.front().texture, first.width, first.height, name, image.width, image.height)};
     }
   }
-  Image packed{first.width, first.height, std::vector<uint8_t>(first.rgba8.size(), 0)};
-  for (size_t texel = 3; texel < packed.rgba8.size(); texel += 4) packed.rgba8[texel] = 255;
-  for (size_t c = 0; c < desc.channels.size(); ++c) {
-    const ChannelSource& channel = desc.channels[c];
-    const std::vector<uint8_t>& from = sources.at(channel.texture).rgba8;
-    for (size_t texel = 0; texel < packed.rgba8.size(); texel += 4) {
-      packed.rgba8[texel + c] = from[texel + channel.channel];
+  return sources;
+}
+
+Expected<Image> packChannels(const TextureDesc& desc, const SceneFile& scene) {
+  auto sources = packSources(desc, scene);
+  if (!sources) return Error{sources.error()};
+  PixelFormat format = sources->begin()->second.format;
+  for (const auto& [name, image] : *sources) format = widerFormat(format, image.format);
+  std::vector<const Image*> from;
+  for (const ChannelSource& channel : desc.channels) from.push_back(&sources->at(channel.texture));
+  Image packed = makeImage(from.front()->width, from.front()->height, desc.format.value_or(format));
+  for (uint32_t y = 0; y < packed.height; ++y) {
+    for (uint32_t x = 0; x < packed.width; ++x) {
+      glm::vec4 texel(0.0F, 0.0F, 0.0F, 1.0F);
+      for (size_t c = 0; c < from.size(); ++c) {
+        const auto channel = static_cast<glm::length_t>(desc.channels[c].channel);
+        texel[static_cast<glm::length_t>(c)] = from[c]->texel(x, y)[channel];
+      }
+      packed.setTexel(x, y, texel);
     }
   }
   return packed;
 }
 
+Expected<Image> loadFile(const TextureDesc& desc) {
+  auto image = desc.kind == TextureKind::Gltf ? loadGltfImage(desc.file, desc.image) : loadImage(desc.file);
+  if (!image) return image;
+  const PixelFormat format = desc.format.value_or(image->format);
+  return convertImage(std::move(image).value(), format);
+}
+
 }  // namespace
 
 Expected<Image> buildTexture(const TextureDesc& desc, const SceneFile& scene) {
-  if (desc.kind != TextureKind::File && desc.kind != TextureKind::Gltf && desc.kind != TextureKind::Pack) {
-    if (auto checked = checkProcedural(desc); !checked) {
-      return Error{"texture '" + desc.name + "': " + checked.error().message};
-    }
-  }
   switch (desc.kind) {
-    case TextureKind::File: return loadImage(desc.file);
-    case TextureKind::Gltf: return loadGltfImage(desc.file, desc.image);
-    case TextureKind::Noise:
-      return colorizeNoise(makeNoise(desc.size, desc.seed, desc.octaves), desc.color, desc.color2);
-    case TextureKind::Checker: return makeChecker(desc.size, desc.cells, toColor8(desc.color), toColor8(desc.color2));
-    case TextureKind::NormalMap: return makeNormalMap(desc.size, desc.seed, desc.strength);
-    case TextureKind::Solid: return makeSolid(desc.size, toColor8(desc.color));
-    case TextureKind::GgxLut: return makeGgxLut(desc.size);
+    case TextureKind::File:
+    case TextureKind::Gltf: return loadFile(desc);
     case TextureKind::Pack: return packChannels(desc, scene);
+    case TextureKind::Noise:
+    case TextureKind::Checker:
+    case TextureKind::NormalMap:
+    case TextureKind::Solid:
+    case TextureKind::GgxLut: return buildProcedural(desc);
   }
   return Error{"texture '" + desc.name + "': unknown kind"};
 }

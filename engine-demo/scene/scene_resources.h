@@ -18,13 +18,18 @@ namespace spire::scene {
 // kept apart. The mesh is named after the description.
 Expected<Mesh> buildMesh(const MeshDesc& desc);
 
-// File: loadImage. Gltf: image `desc.image` of the file. Noise: makeNoise,
-// each texel's value v in [0, 1] then becomes mix(color2, color, v) in every
-// channel, alpha included. Checker, NormalMap, Solid: their generators with
-// the description's colors. Colors are rounded to the nearest 8-bit value.
-// Pack: its channels taken from the textures of `scene` they name (built
-// here, each once), which must all have one size; a pack of fewer than four
-// channels has 0 in the missing colors and 1 in a missing alpha.
+// File: loadImage. Gltf: image `desc.image` of the file. Both keep the file's
+// precision (decodeImage) unless `desc.format` asks for another format, into
+// which they are converted (convertImage). Noise: makeNoise, each texel's
+// value v in [0, 1] then becomes mix(color2, color, v) in every channel, alpha
+// included. Checker, NormalMap, Solid, GgxLut: their generators with the
+// description's colors. Procedural textures are made in `desc.format`,
+// RGBA8 by default: there colors are rounded to the nearest 8-bit value and
+// noise to 8 bits before it is colored; in other formats all of it is
+// computed in float. Pack: its channels taken from the textures of `scene`
+// they name (built here, each once), which must all have one size; a pack of
+// fewer than four channels has 0 in the missing colors and 1 in a missing
+// alpha. Its format is `desc.format` or else the widerFormat of its sources'.
 Expected<Image> buildTexture(const TextureDesc& desc, const SceneFile& scene);
 
 }  // namespace spire::scene

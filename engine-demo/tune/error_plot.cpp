@@ -18,10 +18,10 @@ constexpr scene::Rgba8 kFront{210, 40, 30, 255};
 void put(scene::Image& image, int64_t x, int64_t y, scene::Rgba8 color) {
   if (x < 0 || y < 0 || x >= image.width || y >= image.height) return;
   const size_t i = (static_cast<size_t>(y) * image.width + static_cast<size_t>(x)) * 4;
-  image.rgba8[i] = color.r;
-  image.rgba8[i + 1] = color.g;
-  image.rgba8[i + 2] = color.b;
-  image.rgba8[i + 3] = color.a;
+  image.bytes[i] = color.r;
+  image.bytes[i + 1] = color.g;
+  image.bytes[i + 2] = color.b;
+  image.bytes[i + 3] = color.a;
 }
 
 void disc(scene::Image& image, int64_t cx, int64_t cy, int64_t radius, scene::Rgba8 color) {
@@ -46,7 +46,7 @@ scene::Image plotErrorAgainstTime(const std::vector<Measured>& points, const std
   scene::Image image;
   image.width = width;
   image.height = height;
-  image.rgba8.assign(size_t{width} * height * 4, 255);
+  image.bytes.assign(size_t{width} * height * 4, 255);
   double maxTime = 0.0;
   double maxError = 0.0;
   for (const Measured& p : points) {

@@ -13,9 +13,9 @@
 
 namespace spire::vk {
 
-// Bytes per texel of the formats the engine uses (R8, RG8, RGBA8, BGRA8 and
-// A2B10G10R10 unorm; R16, RG16, RGBA16, R32 and RGBA32 float; D32 float);
-// 0 for others.
+// Bytes per texel of the formats the engine uses (R8, RG8, RGBA8, BGRA8,
+// A2B10G10R10 and RGBA16 unorm; R16, RG16, RGBA16, R32 and RGBA32 float; D32
+// float); 0 for others.
 uint32_t formatTexelSize(VkFormat format);
 bool isDepthFormat(VkFormat format);
 

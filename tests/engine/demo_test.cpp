@@ -94,7 +94,7 @@ TEST_F(DemoTest, MainJobWritesImagesReportAndTheTrade) {
   const auto fullQuality = scene::loadImage(dir / "full_quality.png");
   ASSERT_TRUE(fullQuality);
   size_t translucent = 0;
-  for (size_t i = 3; i < fullQuality->rgba8.size(); i += 4) translucent += fullQuality->rgba8[i] != 255;
+  for (size_t i = 3; i < fullQuality->bytes.size(); i += 4) translucent += fullQuality->bytes[i] != 255;
   EXPECT_GT(translucent, 0U);
   const std::string report = readFile(dir / "report.md");
   EXPECT_NE(report.find("| baked_vertex_normal |"), std::string::npos) << report;
@@ -132,7 +132,7 @@ TEST_F(DemoTest, AFailingVariantIsReportedAndTheOthersAreWritten) {
   const auto image = scene::loadImage(dir / "terrain_full_quality.png");
   ASSERT_TRUE(image) << image.error().message;
   size_t translucent = 0;
-  for (size_t i = 3; i < image->rgba8.size(); i += 4) translucent += image->rgba8[i] != 255;
+  for (size_t i = 3; i < image->bytes.size(); i += 4) translucent += image->bytes[i] != 255;
   EXPECT_EQ(translucent, 0U);
   EXPECT_TRUE(fs::exists(dir / "comparison.png"));
   const std::string report = readFile(dir / "report.md");

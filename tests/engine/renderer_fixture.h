@@ -129,8 +129,8 @@ class RendererTest : public vk::testing::DeviceTest {
     ASSERT_EQ(expected->width, image.width);
     ASSERT_EQ(expected->height, image.height);
     size_t differing = 0;
-    for (size_t i = 0; i < image.rgba8.size(); ++i) {
-      if (std::abs(int{image.rgba8[i]} - int{expected->rgba8[i]}) > tolerance) ++differing;
+    for (size_t i = 0; i < image.bytes.size(); ++i) {
+      if (std::abs(int{image.bytes[i]} - int{expected->bytes[i]}) > tolerance) ++differing;
     }
     EXPECT_EQ(differing, 0U) << name << ": " << differing << " channels differ by more than " << tolerance;
   }

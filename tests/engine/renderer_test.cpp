@@ -7,6 +7,13 @@
 // The fixture is renderer_fixture.h.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <glm/common.hpp>
+#include <glm/gtc/packing.hpp>
+
+#include <stb/stb_image_write.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -19,6 +26,7 @@
 #include "renderer/bake_analysis.h"
 #include "renderer/scene_renderer.h"
 #include "renderer/view_error.h"
+#include "scene/temp_dir.h"
 #include "scene/texture.h"
 #include "support/diagnostic_renderer.h"
 
@@ -412,6 +420,49 @@ TEST_F(RendererTest, BakedUnitVectorsSelectRgb10A2WithSignedRemap) {
   const double clampedError = compare(*reference, *clamped).rmse;
   EXPECT_LT(remappedError, 0.002);  // 10 bits over [-1, 1], halved again by the shader's * 0.5
   EXPECT_GT(clampedError, 10.0 * remappedError);
+}
+
+// Float textures reach the shader as they were stored: each format's texel
+// comes back from the RGBA32F target although 8 bits could not hold it (an
+// .hdr texel above 1, 0.123456 which is 31.48 8-bit steps), with validation
+// on. A solid texture makes every sample that texel, however it is filtered.
+TEST_F(RendererTest, FloatTexturesAreSampledAtTheirPrecision) {
+  scene::testing::TempDir dir;
+  const fs::path hdr = dir.path() / "bright.hdr";
+  std::vector<float> texels;
+  for (int i = 0; i < 4; ++i) texels.insert(texels.end(), {3.5F, 0.25F, 1.0F});  // exact in RGBE
+  ASSERT_NE(stbi_write_hdr(hdr.c_str(), 2, 2, 3, texels.data()), 0);
+  const float fine = 0.123456F;
+  const auto solid = [](const char* format) {
+    return fmt::format(R"({{"type": "solid", "size": 4, "color": [0.123456, 0.5, 0.75, 1], "format": "{}"}})", format);
+  };
+  const std::string textures =
+      fmt::format(R"("textures": {{"sky": {{"type": "file", "file": "{}"}}, )"
+                  R"("unorm16": {}, "half": {}, "float": {}, "red": {}, )",
+                  hdr.string(), solid("RGBA16"), solid("RGBA16F"), solid("RGBA32F"), solid("R32F"));
+  const struct {
+    const char* texture;
+    glm::vec4 expected;
+  } cases[] = {
+      {"sky", {3.5F, 0.25F, 1.0F, 1.0F}},
+      {"unorm16", glm::round(glm::vec4(fine, 0.5F, 0.75F, 1.0F) * 65535.0F) / 65535.0F},
+      {"half", glm::unpackHalf4x16(glm::packHalf4x16(glm::vec4(fine, 0.5F, 0.75F, 1.0F)))},
+      {"float", {fine, 0.5F, 0.75F, 1.0F}},
+      {"red", {fine, 0.0F, 0.0F, 1.0F}},
+  };
+  for (const auto& [texture, expected] : cases) {
+    SCOPED_TRACE(texture);
+    std::string json =
+        planeScene("sampled_plane.spire", "SampledPlane", fmt::format(R"({{"colorMap": "{}"}})", texture));
+    json.replace(json.find(R"("textures": {)"), std::string_view(R"("textures": {)").size(), textures);
+    const auto rendered = render(json, std::nullopt);
+    ASSERT_TRUE(rendered);
+    EXPECT_GT(coveredFraction(rendered->capture), 0.3);
+    const auto mean = coveredMean(rendered->capture);
+    for (size_t c = 0; c < 4; ++c) EXPECT_NEAR(mean[c], expected[static_cast<glm::length_t>(c)], 1e-6) << c;
+    // Not an 8-bit value: the texture kept more than 8 bits to the shader.
+    EXPECT_GT(std::abs(mean[0] * 255.0 - std::round(mean[0] * 255.0)), 0.3);
+  }
 }
 
 }  // namespace

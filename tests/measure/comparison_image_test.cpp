@@ -17,7 +17,7 @@ const Rgba8 kText(240, 240, 240, 255);
 Image solid(uint32_t width, uint32_t height, Rgba8 color) {
   Image image{width, height, {}};
   for (uint32_t p = 0; p < width * height; ++p)
-    image.rgba8.insert(image.rgba8.end(), {color.r, color.g, color.b, color.a});
+    image.bytes.insert(image.bytes.end(), {color.r, color.g, color.b, color.a});
   return image;
 }
 
@@ -81,9 +81,9 @@ TEST(ComparisonImageTest, CaptionStripHasTextInEveryPanel) {
 
 TEST(ComparisonImageTest, LowercaseIsUppercaseAndUnknownIsABox) {
   Image panel = solid(40, 2, Rgba8(0, 0, 0, 255));
-  EXPECT_EQ(compose({{panel, "rmse 1.5x"}}).rgba8, compose({{panel, "RMSE 1.5X"}}).rgba8);
+  EXPECT_EQ(compose({{panel, "rmse 1.5x"}}).bytes, compose({{panel, "RMSE 1.5X"}}).bytes);
   Image unknown = compose({{panel, "#"}});
-  EXPECT_NE(unknown.rgba8, compose({{panel, " "}}).rgba8);
+  EXPECT_NE(unknown.bytes, compose({{panel, " "}}).bytes);
   EXPECT_EQ(unknown.pixel(kGap + kPadding, kGap + 2 + kPadding), kText);
 }
 

@@ -197,7 +197,7 @@ TEST(ImageMetricsTest, ToRgba8PaintsHazards) {
   broken.rgba.resize(3);
   scene::Image empty = toRgba8(broken);
   EXPECT_EQ(empty.width, 0u);
-  EXPECT_TRUE(empty.rgba8.empty());
+  EXPECT_TRUE(empty.bytes.empty());
 }
 
 }  // namespace

@@ -217,10 +217,10 @@ TEST(GltfImageTest, BufferViewImagesInGlbByIndex) {
   ASSERT_TRUE(first) << first.error().message;
   EXPECT_EQ(first->width, 3u);
   EXPECT_EQ(first->height, 2u);
-  EXPECT_EQ(first->rgba8, makeTestPixels().rgba8);
+  EXPECT_EQ(first->bytes, makeTestPixels().bytes);
   auto other = loadGltfImage(path, 1);
   ASSERT_TRUE(other) << other.error().message;
-  EXPECT_EQ(other->rgba8, second.rgba8);
+  EXPECT_EQ(other->bytes, second.bytes);
   // Images do not get in the way of the meshes.
   auto meshes = loadGltf(path);
   ASSERT_TRUE(meshes) << meshes.error().message;
@@ -237,7 +237,7 @@ TEST(GltfImageTest, DataUriImage) {
   auto image = loadGltfImage(path, 0);
   ASSERT_TRUE(image) << image.error().message;
   EXPECT_EQ(image->width, 3u);
-  EXPECT_EQ(image->rgba8, makeTestPixels().rgba8);
+  EXPECT_EQ(image->bytes, makeTestPixels().bytes);
 }
 
 TEST(GltfImageTest, ExternalImage) {
@@ -248,7 +248,7 @@ TEST(GltfImageTest, ExternalImage) {
   ASSERT_TRUE(std::filesystem::exists(dir.path() / "pixels.png"));
   auto image = loadGltfImage(path, 0);
   ASSERT_TRUE(image) << image.error().message;
-  EXPECT_EQ(image->rgba8, makeTestPixels().rgba8);
+  EXPECT_EQ(image->bytes, makeTestPixels().bytes);
 }
 
 TEST(GltfImageTest, MissingExternalImageNamesItsPath) {

@@ -153,7 +153,7 @@ inline int addPixelImage(tinygltf::Model& model, const std::string& name, const 
   image.component = 4;
   image.bits = 8;
   image.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-  image.image = pixels.rgba8;
+  image.image = pixels.bytes;
   model.images.push_back(image);
   return static_cast<int>(model.images.size() - 1);
 }
@@ -164,7 +164,7 @@ inline Image makeTestPixels() {
   Image image;
   image.width = 3;
   image.height = 2;
-  image.rgba8 = {255, 0, 0, 255, 0, 255, 0, 200, 0, 0, 255, 100, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120};
+  image.bytes = {255, 0, 0, 255, 0, 255, 0, 200, 0, 0, 255, 100, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120};
   return image;
 }
 

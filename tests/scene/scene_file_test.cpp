@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
 
@@ -171,7 +173,42 @@ TEST(SceneFile, LookupTablesClampByDefault) {
   EXPECT_FALSE(loaded->scene->findTexture("wrapped")->clamp);
   EXPECT_FALSE(loaded->scene->findTexture("tiles")->clamp);
   expectError(scene(R"("textures": {"lut": {"type": "ggxLut", "seed": 2}})"), DiagCode::E7002,
-              "key 'seed' does not apply to a ggxLut texture (its keys are 'type', 'size' and 'address')");
+              "key 'seed' does not apply to a ggxLut texture (its keys are 'type', 'size', 'address' and 'format')");
+}
+
+TEST(SceneFile, FormatPicksTheTexelFormatOfEveryTextureType) {
+  const auto loaded = parseScene(scene(R"("textures": {"lut": {"type": "ggxLut", "format": "RGBA32F"},
+      "sky": {"type": "file", "file": "sky.hdr", "format": "RGBA16F"}, "height": {"type": "noise", "format": "R32F"},
+      "mask": {"type": "pack", "channels": ["height.r"], "format": "RGBA16"}, "tiles": {"type": "checker"},
+      "plain": {"type": "solid", "format": "RGBA8"}})"));
+  ASSERT_TRUE(loaded->scene) << loaded->rendered;
+  EXPECT_EQ(loaded->scene->findTexture("lut")->format, PixelFormat::RGBA32F);
+  EXPECT_EQ(loaded->scene->findTexture("sky")->format, PixelFormat::RGBA16F);
+  EXPECT_EQ(loaded->scene->findTexture("height")->format, PixelFormat::R32F);
+  EXPECT_EQ(loaded->scene->findTexture("mask")->format, PixelFormat::RGBA16);
+  EXPECT_EQ(loaded->scene->findTexture("plain")->format, PixelFormat::RGBA8);
+  // No "format": the source decides (texture.h), so none is recorded.
+  EXPECT_FALSE(loaded->scene->findTexture("tiles")->format.has_value());
+}
+
+// An unknown format is reported at the value, with the caret under it and
+// the nearest name or the list of names.
+TEST(SceneFile, AnUnknownFormatIsAnErrorAtItsValue) {
+  const std::string line = R"(  "sky": {"type": "file", "file": "sky.hdr", "format": "RGBA16f"})";
+  const auto loaded = parseScene(scene("\"textures\": {\n" + line + "\n}"));
+  EXPECT_FALSE(loaded->scene.has_value());
+  ASSERT_EQ(loaded->diags.all().size(), 1U) << loaded->rendered;
+  const size_t column = line.find("\"RGBA16f\"") + 1;
+  const std::string expected = fmt::format(
+      "scene.json:2:{}: error[E7004]: unknown texture format 'RGBA16f'; did you mean 'RGBA16F'?\n"
+      " 2 | {}\n"
+      "   | {}^~~~~~~~~\n",
+      column, line, std::string(column - 1, ' '));
+  EXPECT_EQ(loaded->rendered.substr(0, expected.size()), expected) << loaded->rendered;
+  expectError(scene(R"("textures": {"t": {"type": "solid", "format": "XYZ"}})"), DiagCode::E7004,
+              "unknown texture format 'XYZ' (expected 'RGBA8', 'RGBA16', 'RGBA16F', 'RGBA32F' or 'R32F')");
+  expectError(scene(R"("textures": {"t": {"type": "solid", "format": 8}})"), DiagCode::E7003,
+              "texture format must be a string, found a number");
 }
 
 TEST(SceneFile, PathsResolveAgainstTheSceneDirectory) {
@@ -287,7 +324,7 @@ TEST(SceneFile, PackTakesNamedChannelsOfOtherTextures) {
               "pack texture 'm' takes a channel of 'n', another pack; name the textures that one packs instead");
   expectError(scene(R"("textures": {"m": {"type": "pack", "channels": ["t.r"], "size": 4}, "t": {"type": "solid"}})"),
               DiagCode::E7002,
-              "key 'size' does not apply to a pack texture (its keys are 'type', 'channels' and 'address')");
+              "key 'size' does not apply to a pack texture (its keys are 'type', 'channels', 'address' and 'format')");
 }
 
 TEST(SceneFile, LightDirectionIsNormalized) {

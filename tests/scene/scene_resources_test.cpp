@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <stb/stb_image_write.h>
+
 #include <cmath>
 #include <string>
 
@@ -86,12 +88,12 @@ TEST(SceneResourcesTest, PackCopiesTheNamedChannels) {
   const Image noise = build(scene.textures[0]);
   const Image checker = build(scene.textures[1]);
   ASSERT_EQ(packed->width, noise.width);
-  ASSERT_EQ(packed->rgba8.size(), noise.rgba8.size());
-  for (size_t texel = 0; texel < packed->rgba8.size(); texel += 4) {
-    ASSERT_EQ(packed->rgba8[texel], checker.rgba8[texel + 2]) << texel;
-    ASSERT_EQ(packed->rgba8[texel + 1], noise.rgba8[texel]) << texel;
-    ASSERT_EQ(packed->rgba8[texel + 2], 0) << texel;
-    ASSERT_EQ(packed->rgba8[texel + 3], 255) << texel;
+  ASSERT_EQ(packed->bytes.size(), noise.bytes.size());
+  for (size_t texel = 0; texel < packed->bytes.size(); texel += 4) {
+    ASSERT_EQ(packed->bytes[texel], checker.bytes[texel + 2]) << texel;
+    ASSERT_EQ(packed->bytes[texel + 1], noise.bytes[texel]) << texel;
+    ASSERT_EQ(packed->bytes[texel + 2], 0) << texel;
+    ASSERT_EQ(packed->bytes[texel + 3], 255) << texel;
   }
 
   scene.textures[1].size = 8;
@@ -99,6 +101,93 @@ TEST(SceneResourcesTest, PackCopiesTheNamedChannels) {
   ASSERT_FALSE(mismatched);
   EXPECT_EQ(mismatched.error().message,
             "texture 'masks': its channels come from textures of different sizes ('checker' is 8x8, 'noise' 16x16)");
+}
+
+// A pack of 8-bit sources stays RGBA8; a float source makes it RGBA32F, so
+// that every value of every source survives; "format" overrides both.
+TEST(SceneResourcesTest, PackTakesTheWiderFormatOfItsSources) {
+  SceneFile scene;
+  scene.textures.push_back(textureDesc(TextureKind::Noise));
+  scene.textures.back().name = "noise";
+  scene.textures.push_back(textureDesc(TextureKind::Solid));
+  scene.textures.back().name = "fine";
+  scene.textures.back().color = glm::vec4(0.123456F, 0.25F, 1.0F / 3.0F, 1.0F);
+  scene.textures.back().format = PixelFormat::RGBA32F;
+  TextureDesc pack;
+  pack.name = "masks";
+  pack.kind = TextureKind::Pack;
+  pack.channels = {{"noise", 0, {}}, {"fine", 0, {}}, {"fine", 2, {}}};
+  auto packed = buildTexture(pack, scene);
+  ASSERT_TRUE(packed) << packed.error().message;
+  EXPECT_EQ(packed->format, PixelFormat::RGBA32F);
+  const Image noise = build(scene.textures[0]);
+  EXPECT_EQ(packed->texel(5, 7), glm::vec4(noise.pixel(5, 7).r / 255.0F, 0.123456F, 1.0F / 3.0F, 1.0F));
+
+  scene.textures.back().format = PixelFormat::RGBA16;
+  packed = buildTexture(pack, scene);
+  ASSERT_TRUE(packed) << packed.error().message;
+  EXPECT_EQ(packed->format, PixelFormat::RGBA16);
+  EXPECT_EQ(std::lround(packed->texel(5, 7).r * 65535.0F), noise.pixel(5, 7).r * 257);
+  EXPECT_EQ(std::lround(packed->texel(5, 7).g * 65535.0F), std::lround(0.123456F * 65535.0F));
+
+  pack.format = PixelFormat::R32F;
+  packed = buildTexture(pack, scene);
+  ASSERT_TRUE(packed) << packed.error().message;
+  EXPECT_EQ(packed->format, PixelFormat::R32F);
+  EXPECT_EQ(packed->texel(5, 7), glm::vec4(noise.pixel(5, 7).r / 255.0F, 0.0F, 0.0F, 1.0F));
+}
+
+// Procedural textures in a format other than RGBA8 are computed in float, so
+// that colors keep more than 8 bits; "RGBA8" asked for is the default.
+TEST(SceneResourcesTest, ProceduralTexturesAreMadeInTheirFormat) {
+  const glm::vec4 fine(0.123456F, 0.25F, 1.0F / 3.0F, 0.75F);
+  for (TextureKind kind :
+       {TextureKind::Noise, TextureKind::Checker, TextureKind::NormalMap, TextureKind::Solid, TextureKind::GgxLut}) {
+    TextureDesc desc = textureDesc(kind);
+    const Image eightBit = build(desc);
+    desc.format = PixelFormat::RGBA8;
+    EXPECT_EQ(build(desc).bytes, eightBit.bytes);
+    for (PixelFormat format : {PixelFormat::RGBA16, PixelFormat::RGBA16F, PixelFormat::RGBA32F, PixelFormat::R32F}) {
+      desc.format = format;
+      const Image image = build(desc);
+      EXPECT_EQ(image.format, format);
+      EXPECT_TRUE(image.consistent());
+      EXPECT_EQ(image.width, 16U);
+    }
+  }
+  TextureDesc solid = textureDesc(TextureKind::Solid);
+  solid.color = fine;
+  solid.format = PixelFormat::RGBA32F;
+  EXPECT_EQ(build(solid).texel(3, 3), fine);
+  TextureDesc noise = textureDesc(TextureKind::Noise);
+  noise.format = PixelFormat::RGBA32F;
+  const Image grey = makeNoise(16, 3, 4, PixelFormat::RGBA32F);
+  const float v = grey.texel(9, 2).r;
+  const glm::vec4 mixed = noise.color2 + (noise.color - noise.color2) * v;
+  EXPECT_EQ(build(noise).texel(9, 2), mixed);
+}
+
+TEST(SceneResourcesTest, FileTexturesConvertIntoTheirFormat) {
+  TempDir dir;
+  TextureDesc file = textureDesc(TextureKind::File);
+  file.file = dir.path() / "pixels.png";
+  const Image pixels = makeTestPixels();
+  ASSERT_TRUE(writePng(file.file, pixels));
+  file.format = PixelFormat::RGBA16F;
+  const Image half = build(file);
+  EXPECT_EQ(half.format, PixelFormat::RGBA16F);
+  EXPECT_EQ(convertImage(half, PixelFormat::RGBA8).bytes, pixels.bytes);
+
+  // .hdr is RGBA32F by default and clamps into RGBA8.
+  file.file = dir.path() / "bright.hdr";
+  const float rgb[] = {4.0F, 0.5F, 0.25F};
+  ASSERT_NE(stbi_write_hdr(file.file.c_str(), 1, 1, 3, rgb), 0);
+  file.format.reset();
+  const Image bright = build(file);
+  EXPECT_EQ(bright.format, PixelFormat::RGBA32F);
+  EXPECT_EQ(bright.texel(0, 0), glm::vec4(4.0F, 0.5F, 0.25F, 1.0F));
+  file.format = PixelFormat::RGBA8;
+  EXPECT_EQ(build(file).pixel(0, 0), Rgba8(255, 128, 64, 255));
 }
 
 TEST(SceneResourcesTest, ProceduralMeshesComeFromTheGenerators) {
@@ -189,34 +278,34 @@ TEST(SceneResourcesTest, SolidCheckerNormalMapAndGgxLutUseTheirGenerators) {
   TextureDesc solid = textureDesc(TextureKind::Solid);
   // 0.5 * 255 = 127.5 rounds up; out-of-range components clamp.
   solid.color = glm::vec4(0.5F, 0.25F, 2.0F, -1.0F);
-  EXPECT_EQ(build(solid).rgba8, makeSolid(16, Rgba8(128, 64, 255, 0)).rgba8);
+  EXPECT_EQ(build(solid).bytes, makeSolid(16, Rgba8(128, 64, 255, 0)).bytes);
 
-  EXPECT_EQ(build(textureDesc(TextureKind::Checker)).rgba8,
-            makeChecker(16, 4, Rgba8(255, 0, 128, 255), Rgba8(0, 255, 0, 128)).rgba8);
-  EXPECT_EQ(build(textureDesc(TextureKind::NormalMap)).rgba8, makeNormalMap(16, 3, 1.5F).rgba8);
-  EXPECT_EQ(build(textureDesc(TextureKind::GgxLut)).rgba8, makeGgxLut(16).rgba8);
+  EXPECT_EQ(build(textureDesc(TextureKind::Checker)).bytes,
+            makeChecker(16, 4, Rgba8(255, 0, 128, 255), Rgba8(0, 255, 0, 128)).bytes);
+  EXPECT_EQ(build(textureDesc(TextureKind::NormalMap)).bytes, makeNormalMap(16, 3, 1.5F).bytes);
+  EXPECT_EQ(build(textureDesc(TextureKind::GgxLut)).bytes, makeGgxLut(16).bytes);
 }
 
 TEST(SceneResourcesTest, NoiseMixesTheTwoColors) {
   TextureDesc desc = textureDesc(TextureKind::Noise);
   Image colored = build(desc);
   Image grey = makeNoise(16, 3, 4);
-  ASSERT_EQ(colored.rgba8.size(), grey.rgba8.size());
-  for (size_t texel = 0; texel < grey.rgba8.size(); texel += 4) {
-    int v = grey.rgba8[texel];
+  ASSERT_EQ(colored.bytes.size(), grey.bytes.size());
+  for (size_t texel = 0; texel < grey.bytes.size(); texel += 4) {
+    int v = grey.bytes[texel];
     // mix(color2, color, v): red follows v, green its complement; blue runs
     // from 0 to 0.5 and alpha from 0.5 to 1, rounded to the nearest step (ties
     // either way, as float arithmetic lands them).
-    EXPECT_EQ(colored.rgba8[texel], v);
-    EXPECT_EQ(colored.rgba8[texel + 1], 255 - v);
-    EXPECT_LE(std::abs(colored.rgba8[texel + 2] - v * 0.5), 0.5);
-    EXPECT_LE(std::abs(colored.rgba8[texel + 3] - (127.5 + v * 0.5)), 0.5);
+    EXPECT_EQ(colored.bytes[texel], v);
+    EXPECT_EQ(colored.bytes[texel + 1], 255 - v);
+    EXPECT_LE(std::abs(colored.bytes[texel + 2] - v * 0.5), 0.5);
+    EXPECT_LE(std::abs(colored.bytes[texel + 3] - (127.5 + v * 0.5)), 0.5);
   }
   // The default colors (white over opaque black) leave the grey noise as it is.
   TextureDesc plain = desc;
   plain.color = TextureDesc{}.color;
   plain.color2 = TextureDesc{}.color2;
-  EXPECT_EQ(build(plain).rgba8, grey.rgba8);
+  EXPECT_EQ(build(plain).bytes, grey.bytes);
 }
 
 TEST(SceneResourcesTest, ProceduralTexturesAreDeterministic) {
@@ -226,11 +315,11 @@ TEST(SceneResourcesTest, ProceduralTexturesAreDeterministic) {
     Image first = build(desc);
     EXPECT_EQ(first.width, 16u);
     EXPECT_EQ(first.height, 16u);
-    EXPECT_EQ(build(desc).rgba8, first.rgba8);
+    EXPECT_EQ(build(desc).bytes, first.bytes);
   }
   TextureDesc reseeded = textureDesc(TextureKind::Noise);
   reseeded.seed = 4;
-  EXPECT_NE(build(reseeded).rgba8, build(textureDesc(TextureKind::Noise)).rgba8);
+  EXPECT_NE(build(reseeded).bytes, build(textureDesc(TextureKind::Noise)).bytes);
 }
 
 TEST(SceneResourcesTest, FileAndGltfTextures) {
@@ -238,7 +327,7 @@ TEST(SceneResourcesTest, FileAndGltfTextures) {
   TextureDesc file = textureDesc(TextureKind::File);
   file.file = dir.path() / "pixels.png";
   ASSERT_TRUE(writePng(file.file, makeTestPixels()));
-  EXPECT_EQ(build(file).rgba8, makeTestPixels().rgba8);
+  EXPECT_EQ(build(file).bytes, makeTestPixels().bytes);
 
   tinygltf::Model model = makeQuadModel({}, "");
   addBufferViewImage(model, pngBytes(makeSolid(2, Rgba8(9, 8, 7, 6))));
@@ -248,7 +337,7 @@ TEST(SceneResourcesTest, FileAndGltfTextures) {
   gltf.image = 1;
   Image image = build(gltf);
   EXPECT_EQ(image.width, 3u);
-  EXPECT_EQ(image.rgba8, makeTestPixels().rgba8);
+  EXPECT_EQ(image.bytes, makeTestPixels().bytes);
 }
 
 TEST(SceneResourcesTest, TextureErrors) {

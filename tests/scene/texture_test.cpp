@@ -1,5 +1,6 @@
 #include "scene/texture.h"
 
+#include "common/png16.h"
 #include "temp_dir.h"
 
 #include <gtest/gtest.h>
@@ -7,11 +8,13 @@
 #include <stb/stb_image_write.h>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/packing.hpp>
 #include <glm/vec3.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 namespace spire::scene {
 namespace {
@@ -25,7 +28,7 @@ TEST(TextureTest, CheckerExactPixels) {
   Image image = makeChecker(8, 4, kRed, kBlue);  // 2x2-pixel cells
   ASSERT_EQ(image.width, 8u);
   ASSERT_EQ(image.height, 8u);
-  ASSERT_EQ(image.rgba8.size(), 8u * 8u * 4u);
+  ASSERT_EQ(image.bytes.size(), 8u * 8u * 4u);
   for (uint32_t y = 0; y < 8; ++y) {
     for (uint32_t x = 0; x < 8; ++x) {
       Rgba8 expected = ((x / 2) + (y / 2)) % 2 == 0 ? kRed : kBlue;
@@ -59,8 +62,8 @@ TEST(TextureTest, NoiseStatisticsAndDeterminism) {
   EXPECT_GT(mean, 80.0);
   EXPECT_LT(mean, 175.0);
   EXPECT_GT(hi - lo, 60) << "noise should have contrast";
-  EXPECT_EQ(makeNoise(64, 11, 5).rgba8, image.rgba8);
-  EXPECT_NE(makeNoise(64, 12, 5).rgba8, image.rgba8);
+  EXPECT_EQ(makeNoise(64, 11, 5).bytes, image.bytes);
+  EXPECT_NE(makeNoise(64, 12, 5).bytes, image.bytes);
 }
 
 TEST(TextureTest, NormalMapDecodesToUnitUpwardNormals) {
@@ -131,10 +134,185 @@ TEST(TextureTest, GgxLutKeepsTheTailsThatEightBitsWouldLose) {
   EXPECT_GT(ggxLutValue(lut, 0, 255), 0.9999);
 }
 
+// What a shader's specularGGXLut decodes from a texel's R and G.
+double shaderDecodedGgx(const glm::vec4& texel) { return (texel.r * 65280.0 + texel.g * 255.0) / 65535.0; }
+
+TEST(TextureTest, FloatGgxLutHoldsTheValueItselfInRAndG) {
+  constexpr uint32_t kSize = 64;
+  const Image split = makeGgxLut(kSize);
+  for (PixelFormat format : {PixelFormat::RGBA32F, PixelFormat::RGBA16}) {
+    const Image lut = makeGgxLut(kSize, format);
+    ASSERT_EQ(lut.format, format);
+    ASSERT_TRUE(lut.consistent());
+    // Both round the double value to float, RGBA16 to 16 bits first.
+    const double step = (format == PixelFormat::RGBA32F ? 0.0 : 0.5 / 65535.0) + 1e-7;
+    for (uint32_t y = 0; y < kSize; ++y) {
+      const double roughness = (y + 0.5) / kSize;
+      const double alpha = std::max(roughness * roughness, static_cast<double>(kGgxMinAlpha));
+      for (uint32_t x = 0; x < kSize; ++x) {
+        const double sinTheta = (x + 0.5) / kSize;
+        const double expected =
+            ggxDistribution(std::sqrt(1.0 - sinTheta * sinTheta), alpha) / ggxDistribution(1.0, alpha);
+        const glm::vec4 texel = lut.texel(x, y);
+        EXPECT_NEAR(texel.r, expected, step) << x << "," << y;
+        EXPECT_EQ(texel.g, texel.r) << x << "," << y;
+        EXPECT_EQ(texel.b, 0.0F);
+        EXPECT_EQ(texel.a, 1.0F);
+        // The shader's split-byte decode reads the float table right too, and
+        // agrees with the 8-bit table to its 16-bit step.
+        EXPECT_NEAR(shaderDecodedGgx(texel), expected, step + 1e-6) << x << "," << y;
+        EXPECT_NEAR(shaderDecodedGgx(texel), ggxLutValue(split, x, y), step + 0.5 / 65535.0) << x << "," << y;
+      }
+    }
+  }
+  // The tails of smooth surfaces: at roughness 0.1, 60 degrees off the
+  // normal, D is 1.7e-8 of its peak, which 16 bits round to 0.
+  EXPECT_NEAR(makeGgxLut(256, PixelFormat::RGBA32F).texel(221, 25).r, 1.7e-8, 0.05e-8);
+  EXPECT_EQ(ggxLutValue(makeGgxLut(256), 221, 25), 0.0);
+}
+
+TEST(TextureTest, GgxLutInRgba8IsTheSplitTableWhetherAskedForOrNot) {
+  EXPECT_EQ(makeGgxLut(32, PixelFormat::RGBA8).bytes, makeGgxLut(32).bytes);
+}
+
+TEST(TextureTest, FloatGeneratorsKeepWhatEightBitsRound) {
+  const glm::vec4 color(0.123456F, 0.5F + 1.0F / 4096.0F, 1.0F / 3.0F, 0.75F);
+  const Image solid = makeSolid(4, color, PixelFormat::RGBA32F);
+  EXPECT_EQ(solid.texel(3, 2), color);
+  const Image checker = makeChecker(4, 2, color, glm::vec4(0.0F), PixelFormat::RGBA16F);
+  EXPECT_EQ(checker.texel(0, 0), glm::vec4(glm::unpackHalf4x16(glm::packHalf4x16(color))));
+  EXPECT_EQ(checker.texel(2, 0), glm::vec4(0.0F));
+  // Float noise is the 8-bit noise before rounding, and not all of it falls
+  // on 8-bit steps.
+  const Image grey = makeNoise(32, 7, 4);
+  const Image fine = makeNoise(32, 7, 4, PixelFormat::RGBA32F);
+  size_t between = 0;
+  for (uint32_t y = 0; y < 32; ++y) {
+    for (uint32_t x = 0; x < 32; ++x) {
+      const float v = fine.texel(x, y).r;
+      EXPECT_EQ(std::lround(v * 255.0F), grey.pixel(x, y).r) << x << "," << y;
+      between += std::abs(v * 255.0F - std::round(v * 255.0F)) > 0.01F ? 1 : 0;
+    }
+  }
+  EXPECT_GT(between, 500U);
+  const Image normals = makeNormalMap(16, 5, 2.0F, PixelFormat::RGBA32F);
+  for (uint32_t y = 0; y < 16; ++y) {
+    for (uint32_t x = 0; x < 16; ++x) {
+      EXPECT_NEAR(glm::length(glm::vec3(normals.texel(x, y)) * 2.0F - 1.0F), 1.0F, 1e-5F) << x << "," << y;
+    }
+  }
+}
+
+TEST(PixelFormatTest, EachFormatKeepsItsPrecision) {
+  const auto roundTrip = [](PixelFormat format, const glm::vec4& value) {
+    Image image = makeImage(1, 1, format);
+    image.setTexel(0, 0, value);
+    return image.texel(0, 0);
+  };
+  // Values 1/65535 apart stay apart in RGBA16 (and exact), not in RGBA8.
+  const glm::vec4 a(1000.0F / 65535.0F, 1001.0F / 65535.0F, 0.0F, 1.0F);
+  const glm::vec4 a16 = roundTrip(PixelFormat::RGBA16, a);
+  EXPECT_EQ(std::lround(a16.r * 65535.0F), 1000);
+  EXPECT_EQ(std::lround(a16.g * 65535.0F), 1001);
+  const glm::vec4 a8 = roundTrip(PixelFormat::RGBA8, a);
+  EXPECT_EQ(a8.r, a8.g);
+  // Floats above 1 survive in float formats; unorm clamps them, and NaN to 0.
+  const glm::vec4 bright(3.5F, 1000.125F, -2.0F, 1.0F);
+  EXPECT_EQ(roundTrip(PixelFormat::RGBA32F, bright), bright);
+  EXPECT_EQ(roundTrip(PixelFormat::RGBA16F, bright), glm::vec4(3.5F, 1000.0F, -2.0F, 1.0F));  // 11-bit mantissa
+  EXPECT_EQ(roundTrip(PixelFormat::RGBA16, bright), glm::vec4(1.0F, 1.0F, 0.0F, 1.0F));
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(roundTrip(PixelFormat::RGBA8, glm::vec4(nan, 0.5F, 2.0F, -1.0F)), glm::vec4(0.0F, 128 / 255.0F, 1, 0));
+  // Half clamps finite values to its range instead of overflowing.
+  EXPECT_EQ(roundTrip(PixelFormat::RGBA16F, glm::vec4(1e6F, -1e6F, 0, 1)), glm::vec4(65504.0F, -65504.0F, 0, 1));
+  // R32F keeps red only and reads like a one-channel texture.
+  EXPECT_EQ(roundTrip(PixelFormat::R32F, bright), glm::vec4(3.5F, 0.0F, 0.0F, 1.0F));
+  EXPECT_EQ(texelBytes(PixelFormat::R32F), 4U);
+  EXPECT_EQ(texelBytes(PixelFormat::RGBA16F), 8U);
+}
+
+TEST(PixelFormatTest, NamesAreTheSceneFilesAndTheBakeFormats) {
+  for (const PixelFormatName& entry : kPixelFormats) {
+    EXPECT_EQ(pixelFormatName(entry.format), entry.name);
+    EXPECT_EQ(pixelFormatNamed(entry.name), entry.format);
+  }
+  EXPECT_EQ(pixelFormatNamed("RGBA16F"), PixelFormat::RGBA16F);
+  EXPECT_FALSE(pixelFormatNamed("rgba16f"));
+}
+
+TEST(PixelFormatTest, WiderFormatHoldsBoth) {
+  using enum PixelFormat;
+  EXPECT_EQ(widerFormat(RGBA8, RGBA8), RGBA8);
+  EXPECT_EQ(widerFormat(RGBA8, RGBA16), RGBA16);
+  EXPECT_EQ(widerFormat(RGBA16, RGBA8), RGBA16);
+  EXPECT_EQ(widerFormat(RGBA16F, RGBA16F), RGBA16F);
+  EXPECT_EQ(widerFormat(RGBA8, RGBA16F), RGBA32F);
+  EXPECT_EQ(widerFormat(RGBA16, RGBA16F), RGBA32F);
+  EXPECT_EQ(widerFormat(R32F, R32F), RGBA32F);
+  EXPECT_EQ(widerFormat(RGBA32F, RGBA8), RGBA32F);
+}
+
+TEST(PixelFormatTest, ConversionIsLosslessIntoWiderFormats) {
+  const Image noise = makeNoise(17, 3, 4);
+  for (PixelFormat wider : {PixelFormat::RGBA16, PixelFormat::RGBA32F}) {
+    const Image converted = convertImage(noise, wider);
+    ASSERT_EQ(converted.format, wider);
+    ASSERT_TRUE(converted.consistent());
+    EXPECT_EQ(convertImage(converted, PixelFormat::RGBA8).bytes, noise.bytes) << pixelFormatName(wider);
+  }
+  // An 8-bit value k is k * 257 in 16 bits.
+  EXPECT_EQ(convertImage(makeSolid(1, Rgba8(1, 2, 255, 0)), PixelFormat::RGBA16).bytes,
+            (std::vector<uint8_t>{1, 1, 2, 2, 255, 255, 0, 0}));
+}
+
+TEST(ImageFileTest, HdrKeepsValuesAboveOneAsRgba32F) {
+  TempDir dir;
+  // RGBE stores a shared exponent and 8-bit mantissas: these are exact in it.
+  const std::vector<float> rgb = {3.5F, 0.25F, 1.0F, 100.0F, 64.0F, 32.0F, 0.0F, 0.0F, 0.0F, 0.5F, 0.5F, 0.5F};
+  const auto path = dir.path() / "bright.hdr";
+  ASSERT_NE(stbi_write_hdr(path.c_str(), 2, 2, 3, rgb.data()), 0);
+  auto loaded = loadImage(path);
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  EXPECT_EQ(loaded->format, PixelFormat::RGBA32F);
+  ASSERT_TRUE(loaded->consistent());
+  EXPECT_EQ(loaded->texel(0, 0), glm::vec4(3.5F, 0.25F, 1.0F, 1.0F));
+  EXPECT_EQ(loaded->texel(1, 0), glm::vec4(100.0F, 64.0F, 32.0F, 1.0F));
+  EXPECT_EQ(loaded->texel(1, 1), glm::vec4(0.5F, 0.5F, 0.5F, 1.0F));
+  // Asked for as RGBA8 it clamps, as documented.
+  EXPECT_EQ(convertImage(*loaded, PixelFormat::RGBA8).pixel(1, 0), Rgba8(255, 255, 255, 255));
+}
+
+TEST(ImageFileTest, SixteenBitPngKeepsEverySixteenBitValueAsRgba16) {
+  TempDir dir;
+  // Neighbours one 16-bit step apart, which 8 bits would merge.
+  const std::vector<uint16_t> rgba = {1000, 1001, 65535, 0, 1, 2, 3, 65534, 40000, 40001, 40002, 40003};
+  const auto path = dir.path() / "fine.png";
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << spire::testing_util::encodePng16(3, 1, rgba);
+  }
+  auto loaded = loadImage(path);
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  EXPECT_EQ(loaded->format, PixelFormat::RGBA16);
+  ASSERT_EQ(loaded->width, 3U);
+  ASSERT_TRUE(loaded->consistent());
+  for (uint32_t x = 0; x < 3; ++x) {
+    const glm::vec4 texel = loaded->texel(x, 0);
+    for (glm::length_t c = 0; c < 4; ++c) {
+      EXPECT_EQ(std::lround(texel[c] * 65535.0F), rgba[x * 4 + static_cast<size_t>(c)]) << x << "," << c;
+    }
+  }
+  EXPECT_NE(loaded->texel(0, 0).r, loaded->texel(0, 0).g);
+  // PNG output stays 8-bit: a 16-bit image is an error, not a silent cut.
+  auto encoded = encodePng(*loaded);
+  ASSERT_FALSE(encoded);
+  EXPECT_NE(encoded.error().message.find("RGBA16"), std::string::npos) << encoded.error().message;
+}
+
 TEST(ImageFileTest, PngRoundTripIsBitExact) {
   TempDir dir;
   Image original = makeNoise(33, 3, 4);  // odd size catches stride mistakes
-  original.rgba8[3] = 7;                 // non-opaque alpha must survive too
+  original.bytes[3] = 7;                 // non-opaque alpha must survive too
   auto path = dir.path() / "noise.png";
   auto written = writePng(path, original);
   ASSERT_TRUE(written) << written.error().message;
@@ -142,7 +320,7 @@ TEST(ImageFileTest, PngRoundTripIsBitExact) {
   ASSERT_TRUE(loaded) << loaded.error().message;
   EXPECT_EQ(loaded->width, 33u);
   EXPECT_EQ(loaded->height, 33u);
-  EXPECT_EQ(loaded->rgba8, original.rgba8);
+  EXPECT_EQ(loaded->bytes, original.bytes);
   // Only the target remains: the temporary file was renamed away.
   size_t files = 0;
   for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
@@ -154,7 +332,7 @@ TEST(ImageFileTest, LoadsJpeg) {
   // JPEG is lossy, so a solid colour checks decoding within a tolerance.
   Image solid = makeSolid(16, Rgba8(200, 100, 50, 255));
   auto path = dir.path() / "solid.jpg";
-  ASSERT_NE(stbi_write_jpg(path.c_str(), 16, 16, 4, solid.rgba8.data(), 100), 0);
+  ASSERT_NE(stbi_write_jpg(path.c_str(), 16, 16, 4, solid.bytes.data(), 100), 0);
   auto loaded = loadImage(path);
   ASSERT_TRUE(loaded) << loaded.error().message;
   ASSERT_EQ(loaded->width, 16u);
