@@ -46,17 +46,37 @@ SceneRenderer::SceneRenderer(SceneRenderer& other, DiagnosticList& diags, Textur
       assets_(other.assets_),
       readBindings_(other.scene_.instances.size()) {}
 
+namespace {
+
+// One library per source and retargeting: the same file retargeted to two
+// pipelines is two programs.
+std::string libraryKey(const scene::InstanceDesc& instance) {
+  return fmt::format("{}|{}|{}", instance.source.string(), instance.pipeline,
+                     instance.pipelineSource ? instance.pipelineSource->string() : "");
+}
+
+}  // namespace
+
 Expected<ShaderLibrary*> SceneRenderer::libraryFor(const scene::InstanceDesc& instance) {
-  const std::string key = instance.source.string();
+  const std::string source = instance.source.string();
+  const std::string pipelineSource = instance.pipelineSource ? instance.pipelineSource->string() : "";
+  const std::string key = libraryKey(instance);
   if (const auto it = assets_->libraries.find(key); it != assets_->libraries.end()) return it->second.get();
   FrontEndOptions options;
   for (const auto& dir : scene_.includePaths) options.includeDirs.push_back(dir.string());
+  options.pipeline = instance.pipeline;
   auto library = std::make_unique<ShaderLibrary>(options);
-  if (!library->addFile(key)) {
-    return Error{fmt::format("cannot read Spire source '{}'", key), instance.sourceRange, {}};
+  if (!library->addFile(source)) {
+    return Error{fmt::format("cannot read Spire source '{}'", source), instance.sourceRange, {}};
+  }
+  if (!pipelineSource.empty() && !library->addFile(pipelineSource)) {
+    return Error{fmt::format("cannot read pipeline source '{}'", pipelineSource), instance.pipelineRange, {}};
   }
   if (!library->compile()) {
-    return Error{fmt::format("'{}' does not compile", key), instance.sourceRange,
+    const std::string retargeted =
+        instance.pipeline.empty() ? "" : fmt::format(" against pipeline '{}'", instance.pipeline);
+    return Error{fmt::format("'{}' does not compile{}", source, retargeted),
+                 instance.pipeline.empty() ? instance.sourceRange : instance.pipelineRange,
                  renderDiagnostics(library->sources(), library->diagnostics(), DiagnosticFormat::Text)};
   }
   return assets_->libraries.emplace(key, std::move(library)).first->second.get();
@@ -78,7 +98,7 @@ Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDes
   }
   const std::optional<std::filesystem::path> decisionPath = decisions ? decisions : instance.decisions;
   const std::string key =
-      fmt::format("{}|{}|{}", instance.source.string(), instance.shader, decisionPath ? decisionPath->string() : "");
+      fmt::format("{}|{}|{}", libraryKey(instance), instance.shader, decisionPath ? decisionPath->string() : "");
   if (const auto it = programs_.find(key); it != programs_.end()) return it->second;
 
   auto library = libraryFor(instance);

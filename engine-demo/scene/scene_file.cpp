@@ -26,8 +26,9 @@ const KeyList kSceneKeys = {"resolution", "frames", "warmupFrames", "clearColor"
 const KeyList kCameraKeys = {"fovY", "near", "far", "up", "views"};
 const KeyList kViewKeys = {"position", "target"};
 const KeyList kLightKeys = {"direction", "color"};
-const KeyList kInstanceKeys = {"mesh",    "source",    "shader",   "decisions",
-                               "kernels", "transform", "material", "doubleSided"};
+const KeyList kInstanceKeys = {"mesh",     "source",    "shader",   "decisions",  "kernels",
+                               "pipeline", "transform", "material", "doubleSided"};
+const KeyList kPipelineKeys = {"name", "source"};
 const KeyList kTransformKeys = {"translate", "rotate", "scale"};
 const KeyList kVariantKeys = {"name", "decisions"};
 
@@ -498,6 +499,9 @@ class SceneReader {
       } else if (member.key == "kernels") {
         instance.kernelsRange = v.range;
         if (const std::optional<fs::path> kernels = path(v, "'kernels'")) instance.kernels = *kernels;
+      } else if (member.key == "pipeline") {
+        instance.pipelineRange = v.range;
+        readPipeline(v, instance);
       } else if (member.key == "transform") {
         assign(instance.transform, readTransform(v));
       } else if (member.key == "material") {
@@ -531,7 +535,27 @@ class SceneReader {
       check_.missing(instance, "an instance with a 'shader' needs the 'source' that defines it");
     } else if (instance.find("decisions") != nullptr && !hasSource) {
       check_.missing(instance, "'decisions' apply to a 'source' and 'shader', which this instance does not have");
+    } else if (instance.find("pipeline") != nullptr && !hasSource) {
+      check_.missing(instance, "'pipeline' retargets a 'source' and 'shader', which this instance does not have");
     }
+  }
+
+  // Retargeting: {"name": PIPELINE, "source": FILE}; the file is optional
+  // when the shader's own source already loads the pipeline.
+  void readPipeline(const JsonValue& value, InstanceDesc& instance) {
+    if (!check_.expectKind(value, JsonKind::Object, "'pipeline'")) return;
+    for (const JsonMember& member : value.members) {
+      if (member.key == "name") {
+        assign(instance.pipeline, check_.text(member.value, "the pipeline's 'name'"));
+      } else if (member.key == "source") {
+        if (const std::optional<fs::path> source = path(member.value, "the pipeline's 'source'")) {
+          instance.pipelineSource = *source;
+        }
+      } else {
+        check_.unknownKey(member, kPipelineKeys, "'pipeline'");
+      }
+    }
+    if (value.find("name") == nullptr) check_.missing(value, "'pipeline' needs the 'name' of the pipeline");
   }
 
   // Model matrix: scale, then rotate about X, Y and Z (degrees), then translate.

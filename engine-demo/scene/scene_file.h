@@ -108,6 +108,12 @@ struct InstanceDesc {
   // .spv kernels; used instead of compiling `source` when present.
   std::optional<std::filesystem::path> kernels;
   SourceRange kernelsRange;
+  // Retargeting: compile `shader` against the pipeline `pipeline` instead of
+  // the one it is written `using`; `pipelineSource` declares it, when the
+  // shader's source does not load it. Empty: no retargeting.
+  std::string pipeline;
+  std::optional<std::filesystem::path> pipelineSource;
+  SourceRange pipelineRange;
   // Model matrix from "transform": {"translate", "rotate" (Euler degrees,
   // applied X then Y then Z), "scale" (a number or a vec3)}.
   glm::mat4 transform{1.0F};

@@ -151,5 +151,51 @@ TEST_F(EdgeTest, AnEdgeTheEngineDoesNotImplementIsRefusedListingTheEdgesItDoes) 
   EXPECT_TRUE(render(planeScene("frame_into_bake.spire", "FrameIntoBake", "{}"), std::nullopt));
 }
 
+// A scene retargets an instance's shader (written for EnginePipeline) to
+// FiveWorldPipeline, whose extra worlds then take decisions: the same image
+// with texColor computed per vertex at load (PrebakeVertex) as computed by
+// the Vertex kernel.
+TEST_F(EdgeTest, AnInstanceRetargetedToAnotherPipelineRendersItsWorlds) {
+  const std::string retarget =
+      R"("pipeline": {"name": "FiveWorldPipeline", "source": "../../../pipelines/five_world.spire"}, )";
+  std::string scene = planeScene("tex_bake.spire", "TexBake", R"({"colorMap": "checker"})");
+  scene.replace(scene.find(R"("mesh": "plane")"), 0, retarget);
+  const auto write = [](const std::string& name, const std::string& text) {
+    const fs::path path = fs::path(::testing::TempDir()) / name;
+    std::ofstream(path) << text;
+    return path;
+  };
+  const auto perVertex = render(scene, write("retarget_vertex.decisions", "TexBake.texColor = Vertex\n"));
+  ASSERT_TRUE(perVertex);
+  EXPECT_EQ(perVertex->programs.at(0).pipeline, "FiveWorldPipeline");
+  const auto baked = render(scene, write("retarget_prebake.decisions", "TexBake.texColor = PrebakeVertex\n"));
+  ASSERT_TRUE(baked);
+  ASSERT_EQ(baked->prepared.bakes.size(), 1U);
+  EXPECT_EQ(baked->prepared.bakes[0].world, "PrebakeVertex");
+  EXPECT_GT(coveredFraction(baked->capture), 0.2);
+  EXPECT_LT(compare(perVertex->capture, baked->capture).maxError, 1e-5);
+
+  // Without retargeting the world does not exist: the decision is skipped.
+  const auto original = render(planeScene("tex_bake.spire", "TexBake", R"({"colorMap": "checker"})"), std::nullopt);
+  ASSERT_TRUE(original);
+  EXPECT_EQ(original->programs.at(0).pipeline, "EnginePipeline");
+}
+
+// A retargeting pipeline that no file declares is an error at the instance's
+// "pipeline", with the compiler's diagnostic.
+TEST_F(EdgeTest, AnUnknownRetargetingPipelineIsAnErrorAtTheSceneLine) {
+  std::string scene = planeScene("tex_bake.spire", "TexBake", R"({"colorMap": "checker"})");
+  scene.replace(scene.find(R"("mesh": "plane")"), 0, R"("pipeline": {"name": "FiveWorldPipelin"}, )");
+  ASSERT_TRUE(loadScene(scene));
+  renderer_ = std::make_unique<SceneRenderer>(ctx(), *scene_, *diags_);
+  const auto programs = renderer_->compile(std::nullopt);
+  ASSERT_FALSE(programs);
+  EXPECT_NE(programs.error().message.find("does not compile against pipeline 'FiveWorldPipelin'"), std::string::npos)
+      << programs.error().message;
+  EXPECT_NE(programs.error().details.find("cannot retarget 'TexBake' to pipeline 'FiveWorldPipelin'"),
+            std::string::npos)
+      << programs.error().details;
+}
+
 }  // namespace
 }  // namespace spire::engine

@@ -229,6 +229,30 @@ TEST(SceneFile, PathsResolveAgainstTheSceneDirectory) {
   EXPECT_EQ(included->scene->includePaths, (std::vector<fs::path>{"lib", "/usr/share/spire"}));
 }
 
+TEST(SceneFile, PipelineRetargetsTheInstancesShader) {
+  const auto loaded = parseScene(withInstance(
+      R"({"mesh": "ground", "source": "a.spire", "shader": "A",
+          "pipeline": {"name": "MultiRatePipeline", "source": "../pipelines/multi_rate.spire"}})"));
+  ASSERT_TRUE(loaded->scene) << loaded->rendered;
+  const InstanceDesc& instance = loaded->scene->instances[0];
+  EXPECT_EQ(instance.pipeline, "MultiRatePipeline");
+  EXPECT_EQ(instance.pipelineSource, fs::path("pipelines/multi_rate.spire"));
+  const auto nameOnly = parseScene(withInstance(
+      R"({"mesh": "ground", "source": "a.spire", "shader": "A", "pipeline": {"name": "MultiRatePipeline"}})"));
+  ASSERT_TRUE(nameOnly->scene) << nameOnly->rendered;
+  EXPECT_FALSE(nameOnly->scene->instances[0].pipelineSource);
+
+  expectError(withInstance(
+                  R"({"mesh": "ground", "source": "a.spire", "shader": "A", "pipeline": {"name": "P", "sourc": "p"}})"),
+              DiagCode::E7002, "unknown key 'sourc' in 'pipeline'; did you mean 'source'?");
+  expectError(withInstance(R"({"mesh": "ground", "source": "a.spire", "shader": "A", "pipeline": {}})"),
+              DiagCode::E7005, "'pipeline' needs the 'name' of the pipeline");
+  expectError(withInstance(R"({"mesh": "ground", "source": "a.spire", "shader": "A", "pipeline": "P"})"),
+              DiagCode::E7003, "'pipeline' must be an object, found a string");
+  expectError(withInstance(R"({"mesh": "ground", "kernels": "k", "pipeline": {"name": "P"}})"), DiagCode::E7005,
+              "'pipeline' retargets a 'source' and 'shader', which this instance does not have");
+}
+
 TEST(SceneFile, KernelsAloneNeedNoSource) {
   const auto loaded = parseScene(withInstance(R"({"mesh": "ground", "kernels": "out/Terrain"})"));
   ASSERT_TRUE(loaded->scene) << loaded->rendered;
