@@ -43,8 +43,16 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
   DrawItem item;
   item.mesh = sources.mesh;
   item.model = placement.model;
+  auto passes = createFramePasses(ctx, modules, program, sources,
+                                  {placement.screen, placement.objectTextureSize, placement.doubleSided});
+  if (!passes) return passes.error();
+  item.passes = std::move(passes).value();
+  PassTextures passTextures;
+  for (const auto& pass : item.passes) passTextures.insert(pass->textures().begin(), pass->textures().end());
+  BindingSources drawSources = sources;
+  drawSources.passTextures = &passTextures;
   for (const KernelProgram* kernel : {vertex, fragment}) {
-    auto bound = bindKernel(ctx, *kernel, sources);
+    auto bound = bindKernel(ctx, *kernel, drawSources);
     if (!bound) return bound.error();
     item.kernels.push_back(std::move(bound).value());
   }
@@ -76,6 +84,11 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
 
 void updateFrameValues(const DrawItem& item, const FrameState& frame) {
   for (const BoundKernel& kernel : item.kernels) writeFrameValues(kernel, frame, item.model);
+  for (const auto& pass : item.passes) pass->updateFrameValues(frame, item.model);
+}
+
+void recordPasses(const vk::Context& ctx, VkCommandBuffer cmd, const DrawItem& item) {
+  for (const auto& pass : item.passes) pass->record(ctx, cmd);
 }
 
 void recordDraw(VkCommandBuffer cmd, const DrawItem& item) {

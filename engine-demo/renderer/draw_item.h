@@ -5,6 +5,9 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <memory>
+
+#include "renderer/frame_pass.h"
 #include "renderer/kernel_bindings.h"
 #include "renderer/module_cache.h"
 #include "renderer/pipeline_descriptors.h"
@@ -22,7 +25,9 @@ struct TargetFormats {
 // Where and how an instance draws its mesh.
 struct DrawPlacement {
   glm::mat4 model{1.0F};
-  bool doubleSided = false;  // otherwise back faces (clockwise on screen) are culled
+  bool doubleSided = false;          // otherwise back faces (clockwise on screen) are culled
+  VkExtent2D screen{};               // the frame's resolution, which sizes a multi-rate pass
+  uint32_t objectTextureSize = 512;  // object-space targets without a TextureSize hint
 };
 
 struct DrawItem {
@@ -32,6 +37,7 @@ struct DrawItem {
   DescriptorBundle descriptors;
   VertexInputs vertexInputs;  // the mesh, and the vertex bake's records when Vertex reads them as inputs
   vk::Pipeline pipeline;
+  std::vector<std::unique_ptr<FramePass>> passes;  // rendered before the draw, every frame
 };
 
 // The Fragment kernel's color outputs by location (location 0 is the image
@@ -43,6 +49,8 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
                                   const TargetFormats& formats);
 
 void updateFrameValues(const DrawItem& item, const FrameState& frame);
+// The item's frame passes, outside the frame's render pass and before it.
+void recordPasses(const vk::Context& ctx, VkCommandBuffer cmd, const DrawItem& item);
 void recordDraw(VkCommandBuffer cmd, const DrawItem& item);
 
 }  // namespace spire::engine

@@ -174,7 +174,13 @@ class KernelBinder {
   Expected<void> bindImage(const KernelInput& input) {
     VkImageView view = VK_NULL_HANDLE;
     VkSampler sampler = VK_NULL_HANDLE;
-    if (input.kind == InputKind::Texture) {
+    if (input.kind == InputKind::Texture && roleOf(kernel_, input) != WorldRole::TextureBake) {
+      if (!sources_.passTextures) return missing(kernel_, input, "no pass of this frame renders it");
+      const auto it = sources_.passTextures->find(input.component);
+      if (it == sources_.passTextures->end()) return missing(kernel_, input, "its pass did not render it");
+      view = it->second.view;
+      sampler = it->second.sampler;
+    } else if (input.kind == InputKind::Texture) {
       if (!sources_.textureBake) return missing(kernel_, input, "no texture bake ran");
       const auto it = sources_.textureBake->textures.find(input.component);
       if (it == sources_.textureBake->textures.end())

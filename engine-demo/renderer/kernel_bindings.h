@@ -49,12 +49,21 @@ struct TextureBakeResult {
   std::vector<uint8_t> coverage;                              // 1 for texels a triangle covered (before dilation)
 };
 
+// A texture rendered earlier in the frame by a per-frame pass
+// (frame_pass.h), ready for a combined image sampler.
+struct SampledTexture {
+  VkImageView view = VK_NULL_HANDLE;
+  VkSampler sampler = VK_NULL_HANDLE;
+};
+using PassTextures = std::map<std::string, SampledTexture, std::less<>>;  // by component
+
 struct BindingSources {
   const GpuMesh* mesh = nullptr;
   const MaterialValues* material = nullptr;
   const UniformBakeResult* uniformBake = nullptr;
   const VertexBakeResult* vertexBake = nullptr;
   const TextureBakeResult* textureBake = nullptr;
+  const PassTextures* passTextures = nullptr;  // the frame passes' results, when the kernel samples them
 };
 
 // A uniform-block member refreshed every frame from FrameState.

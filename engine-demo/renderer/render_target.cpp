@@ -45,6 +45,8 @@ Expected<FrameTiming> RenderTarget::render(const vk::Context& ctx, std::span<con
     }
     depth_->transition(cmd, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
     timer_->begin(cmd);
+    // Per-frame passes are part of the frame's cost.
+    for (const DrawItem* item : items) recordPasses(ctx, cmd, *item);
     vk::beginRendering(ctx, cmd, extent(), colors, vk::DepthTarget{depth_->view(), 1.0F});
     for (const DrawItem* item : items) recordDraw(cmd, *item);
     vk::endRendering(ctx, cmd);

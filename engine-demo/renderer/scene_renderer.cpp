@@ -272,7 +272,8 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
     sources.uniformBake = baked->uniform;
     sources.vertexBake = baked->vertex;
     sources.textureBake = baked->texture;
-    const DrawPlacement placement{instance.transform, instance.doubleSided.value_or(meshes[i]->mesh.doubleSided)};
+    const DrawPlacement placement{instance.transform, instance.doubleSided.value_or(meshes[i]->mesh.doubleSided),
+                                  VkExtent2D{scene_.width, scene_.height}};
     auto item = createDrawItem(ctx_, modules_, programs[i], sources, placement, (*target)->formats());
     if (!item) return Error{item.error().message, instance.range, item.error().details};
     prepared.items.push_back(std::move(item).value());

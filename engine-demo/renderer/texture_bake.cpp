@@ -63,12 +63,6 @@ void dilate(std::vector<std::byte>& texels, uint32_t bytesPerTexel, uint32_t wid
   }
 }
 
-struct BakeTarget {
-  std::string component;
-  uint32_t location = 0;
-  VkFormat format = VK_FORMAT_UNDEFINED;
-};
-
 struct FormatName {
   std::string_view name;
   VkFormat format;
@@ -103,12 +97,6 @@ std::string bakeFormatNames() {
 
 namespace {
 
-// The bake's render targets in location order, and the one extent they share.
-struct BakeTargets {
-  std::vector<BakeTarget> targets;
-  uint32_t size = 0;
-};
-
 Expected<VkFormat> requestedFormat(const KernelOutput& output, VkFormat fallback) {
   const std::string* hint = output.hint("Format");
   if (!hint) return fallback;
@@ -135,32 +123,6 @@ Expected<uint32_t> requestedSize(const KernelOutput& output, uint32_t fallback) 
     }
   }
   return requested;
-}
-
-Expected<BakeTargets> collectBakeTargets(const KernelProgram& kernel, const TextureBakeOptions& options) {
-  // One render pass has one extent, so every output of the bake shares the
-  // largest size any of them asks for.
-  BakeTargets result;
-  for (const KernelOutput& output : kernel.outputs) {
-    if (output.kind != OutputKind::Varying) continue;
-    auto format = requestedFormat(output, options.defaultFormat);
-    if (!format) return format.error();
-    auto requested = requestedSize(output, options.defaultSize);
-    if (!requested) return requested.error();
-    BakeTarget target{output.component, output.location, options.forceFormat ? *options.forceFormat : *format};
-    result.size = std::max(result.size, *requested);
-    result.targets.push_back(std::move(target));
-  }
-  std::vector<BakeTarget>& targets = result.targets;
-  std::sort(targets.begin(), targets.end(),
-            [](const BakeTarget& a, const BakeTarget& b) { return a.location < b.location; });
-  for (size_t i = 0; i < targets.size(); ++i) {
-    if (targets[i].location != i) {
-      return Error{
-          fmt::format("the {} kernel's outputs must use locations 0 to {}", kernel.world, targets.size() - 1), {}, {}};
-    }
-  }
-  return result;
 }
 
 // The engine's vertex shader reads the UV after the kernel's varying inputs.
@@ -254,6 +216,32 @@ Expected<BakedTexture> finishTexture(const vk::Context& ctx, vk::Image& image, c
 }
 
 }  // namespace
+
+Expected<BakeTargets> collectBakeTargets(const KernelProgram& kernel, const TextureBakeOptions& options) {
+  // One render pass has one extent, so every output of the bake shares the
+  // largest size any of them asks for.
+  BakeTargets result;
+  for (const KernelOutput& output : kernel.outputs) {
+    if (output.kind != OutputKind::Varying) continue;
+    auto format = requestedFormat(output, options.defaultFormat);
+    if (!format) return format.error();
+    auto requested = requestedSize(output, options.defaultSize);
+    if (!requested) return requested.error();
+    BakeTarget target{output.component, output.location, options.forceFormat ? *options.forceFormat : *format};
+    result.size = std::max(result.size, *requested);
+    result.targets.push_back(std::move(target));
+  }
+  std::vector<BakeTarget>& targets = result.targets;
+  std::sort(targets.begin(), targets.end(),
+            [](const BakeTarget& a, const BakeTarget& b) { return a.location < b.location; });
+  for (size_t i = 0; i < targets.size(); ++i) {
+    if (targets[i].location != i) {
+      return Error{
+          fmt::format("the {} kernel's outputs must use locations 0 to {}", kernel.world, targets.size() - 1), {}, {}};
+    }
+  }
+  return result;
+}
 
 Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
                                            const BindingSources& sources, const TextureBakeOptions& options,

@@ -27,6 +27,21 @@ std::optional<VkFormat> bakeFormat(std::string_view hint);
 // The hint names, for messages.
 std::string bakeFormatNames();
 
+// The render targets of a kernel that renders into textures (the texture
+// bake, the per-frame passes): one per color output, in location order, in
+// the format and size its hints ask for, else `options`' defaults. One render
+// pass has one extent, so they share the largest size any output asks for.
+struct BakeTarget {
+  std::string component;
+  uint32_t location = 0;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+};
+struct BakeTargets {
+  std::vector<BakeTarget> targets;
+  uint32_t size = 0;
+};
+Expected<BakeTargets> collectBakeTargets(const KernelProgram& kernel, const TextureBakeOptions& options);
+
 Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
                                            const BindingSources& sources, const TextureBakeOptions& options,
                                            BakeTiming& timing);

@@ -25,19 +25,35 @@ constexpr std::array kTable = {
     WorldPass{"vertex", "Vertex", WorldRole::VertexStage, ShaderStage::Vertex, "vertex shader of each frame's draw"},
     WorldPass{"fragment", "Fragment", WorldRole::FragmentStage, ShaderStage::Fragment,
               "fragment shader of each frame's draw"},
+    WorldPass{"lowResVertex", "LowResVertex", WorldRole::ScreenPassVertex, ShaderStage::Vertex,
+              "vertex shader of each frame's low-resolution pass, at half width and height"},
+    WorldPass{"lowResFragment", "LowResFragment", WorldRole::ScreenPassFragment, ShaderStage::Fragment,
+              "fragment shader of the low-resolution pass, into screen-aligned textures"},
+    WorldPass{"objectSpaceVertex", "ObjSpaceVertex", WorldRole::ObjectPassVertex, ShaderStage::Vertex,
+              "vertex shader of each frame's object-space pass, in UV space"},
+    WorldPass{"objectSpaceFragment", "ObjSpaceFrag", WorldRole::ObjectPassFragment, ShaderStage::Fragment,
+              "fragment shader of the object-space pass, into the object's textures"},
 };
 
 using reflection::InputKind;
 constexpr uint32_t kBakes =
     roleBit(WorldRole::UniformBake) | roleBit(WorldRole::VertexBake) | roleBit(WorldRole::TextureBake);
-constexpr uint32_t kDraw = roleBit(WorldRole::VertexStage) | roleBit(WorldRole::FragmentStage);
-constexpr uint32_t kRasterized = roleBit(WorldRole::TextureBake) | roleBit(WorldRole::VertexStage);
+constexpr uint32_t kPassVertices = roleBit(WorldRole::ScreenPassVertex) | roleBit(WorldRole::ObjectPassVertex);
+constexpr uint32_t kPassFragments = roleBit(WorldRole::ScreenPassFragment) | roleBit(WorldRole::ObjectPassFragment);
+// Every kernel that runs each frame: the draw and the passes before it.
+constexpr uint32_t kDraw =
+    roleBit(WorldRole::VertexStage) | roleBit(WorldRole::FragmentStage) | kPassVertices | kPassFragments;
+constexpr uint32_t kRasterized = roleBit(WorldRole::TextureBake) | roleBit(WorldRole::VertexStage) | kPassVertices;
 
 constexpr std::array kEdges = {
     WorldEdge{InputKind::Varying, WorldRole::MeshAttributes, kRasterized, "the mesh's vertex buffer"},
     WorldEdge{InputKind::Varying, WorldRole::VertexBake, kRasterized,
               "the vertex bake's records as a second vertex buffer"},
     WorldEdge{InputKind::Varying, WorldRole::VertexStage, roleBit(WorldRole::FragmentStage),
+              "the rasterizer's interpolated outputs"},
+    WorldEdge{InputKind::Varying, WorldRole::ScreenPassVertex, roleBit(WorldRole::ScreenPassFragment),
+              "the rasterizer's interpolated outputs"},
+    WorldEdge{InputKind::Varying, WorldRole::ObjectPassVertex, roleBit(WorldRole::ObjectPassFragment),
               "the rasterizer's interpolated outputs"},
     WorldEdge{InputKind::UniformMember, WorldRole::MaterialParameters, kBakes | kDraw,
               "material bindings, written once"},
@@ -49,9 +65,13 @@ constexpr std::array kEdges = {
     WorldEdge{InputKind::BufferMember, WorldRole::MeshAttributes,
               roleBit(WorldRole::UniformBake) | roleBit(WorldRole::VertexBake),
               "std430 records of the mesh's vertices"},
-    WorldEdge{InputKind::BufferMember, WorldRole::VertexBake, roleBit(WorldRole::VertexStage),
+    WorldEdge{InputKind::BufferMember, WorldRole::VertexBake, roleBit(WorldRole::VertexStage) | kPassVertices,
               "the vertex bake's records, read at gl_VertexIndex"},
     WorldEdge{InputKind::Texture, WorldRole::TextureBake, kDraw, "the bake's render targets as sampled images"},
+    WorldEdge{InputKind::Texture, WorldRole::ScreenPassFragment, roleBit(WorldRole::FragmentStage),
+              "the low-resolution pass's targets, rendered earlier in the frame"},
+    WorldEdge{InputKind::Texture, WorldRole::ObjectPassFragment, roleBit(WorldRole::FragmentStage),
+              "the object-space pass's targets, rendered earlier in the frame"},
     WorldEdge{InputKind::Sampler, WorldRole::MaterialParameters, kBakes | kDraw, "the bound scene texture"},
 };
 

@@ -30,6 +30,13 @@ enum class WorldRole {
   TextureBake,    // rasterized in UV space into textures, once at load
   VertexStage,    // the vertex shader of every frame's draw
   FragmentStage,  // the fragment shader of every frame's draw
+  // Per-frame passes that run before an instance's draw and leave textures
+  // its Fragment kernel samples (frame_pass.h): the same topology, two
+  // meanings (paper section 7.3).
+  ScreenPassVertex,    // multi-rate shading: the mesh at a quarter of the pixels
+  ScreenPassFragment,  // ... its results in screen-aligned textures
+  ObjectPassVertex,    // object-space shading: the mesh in UV space
+  ObjectPassFragment,  // ... its results in the object's textures
 };
 
 struct WorldPass {

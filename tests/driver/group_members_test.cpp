@@ -143,7 +143,9 @@ struct SpirecRun {
 };
 
 SpirecRun spirecOnSource(const std::string& text, std::vector<std::string> args) {
-  const fs::path dir = fs::temp_directory_path() / "spire_shared_base";
+  // One folder per test: CTest runs the tests of this file in parallel processes.
+  const fs::path dir = fs::temp_directory_path() / (std::string("spire_shared_base_") +
+                                                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::create_directories(dir);
   std::ofstream(dir / "lit.spire") << text;
   std::ofstream(dir / "choice.decisions") << "Lit.nDotL = Vertex\n";

@@ -14,6 +14,7 @@
 
 #include "driver/shader_library.h"
 #include "engine/renderer_fixture.h"
+#include "renderer/frame_pass.h"
 
 namespace spire::engine {
 namespace {
@@ -195,6 +196,83 @@ TEST_F(EdgeTest, AnUnknownRetargetingPipelineIsAnErrorAtTheSceneLine) {
   EXPECT_NE(programs.error().details.find("cannot retarget 'TexBake' to pipeline 'FiveWorldPipelin'"),
             std::string::npos)
       << programs.error().details;
+}
+
+// The frame-pass scene: FramePasses retargeted to `pipeline`.
+std::string framePassScene(const std::string& pipeline, const std::string& file) {
+  std::string scene = planeScene("frame_passes.spire", "FramePasses", R"({"tint": [0.9, 0.5, 0.2]})");
+  scene.replace(scene.find(R"("mesh": "plane")"), 0,
+                fmt::format(R"("pipeline": {{"name": "{}", "source": "../../../pipelines/{}"}}, )", pipeline, file));
+  return scene;
+}
+
+// The fraction of pixels covered in both images whose RGB differ by at most `tolerance`.
+double matchingFraction(const Capture& a, const Capture& b, float tolerance) {
+  size_t both = 0;
+  size_t matching = 0;
+  for (size_t i = 0; i < a.coverage.size(); ++i) {
+    if (!a.coverage[i] || !b.coverage[i]) continue;
+    ++both;
+    bool same = true;
+    for (size_t c = 0; c < 3; ++c)
+      same = same && std::abs(a.color.rgba[i * 4 + c] - b.color.rgba[i * 4 + c]) <= tolerance;
+    matching += same ? 1 : 0;
+  }
+  return both == 0 ? 0.0 : static_cast<double>(matching) / static_cast<double>(both);
+}
+
+class FramePassTest : public testing::RendererTest {
+ protected:
+  std::optional<Rendered> renderWith(const std::string& scene, const std::string& name, const std::string& decisions) {
+    const fs::path path = fs::path(::testing::TempDir()) / (name + ".decisions");
+    std::ofstream(path) << decisions;
+    return render(scene, path);
+  }
+};
+
+// Multi-rate shading: LowResFragment runs at half the width and height, and
+// Fragment reads its results by screen position. A constant is the same
+// everywhere but at the silhouette; a UV ramp is close everywhere.
+TEST_F(FramePassTest, LowResFragmentShadesAQuarterOfThePixelsAndFragmentReadsThem) {
+  const std::string scene = framePassScene("MultiRatePipeline", "multi_rate.spire");
+  const auto reference = renderWith(scene, "multirate_reference", "");
+  ASSERT_TRUE(reference);
+  EXPECT_TRUE(reference->prepared.items.at(0).passes.empty()) << "no LowResFragment kernel, no pass";
+
+  const auto constant = renderWith(scene, "multirate_tinted", "FramePasses.tinted = LowResFragment\n");
+  ASSERT_TRUE(constant);
+  ASSERT_EQ(constant->prepared.items.at(0).passes.size(), 1U);
+  const FramePass& pass = *constant->prepared.items[0].passes[0];
+  EXPECT_EQ(pass.world(), "LowResFragment");
+  EXPECT_EQ(pass.extent().width, 48U);
+  EXPECT_EQ(pass.extent().height, 32U);
+  EXPECT_EQ(constant->capture.coverage, reference->capture.coverage);
+  // RGBA16F holds 0.72 to within 2.5e-4; the silhouette blends with the clear color.
+  EXPECT_GT(matchingFraction(reference->capture, constant->capture, 1e-3F), 0.8);
+
+  const auto ramp = renderWith(scene, "multirate_ramp", "FramePasses.ramp = LowResFragment\n");
+  ASSERT_TRUE(ramp);
+  const measure::ImageError error = compare(reference->capture, ramp->capture);
+  EXPECT_LT(error.rmse, 0.02);
+  EXPECT_GT(error.rmse, 1e-6) << "resampled at half resolution, the ramp cannot be exact";
+  expectGolden(ramp->capture, "frame_pass_multirate");
+}
+
+// Object-space shading: ObjSpaceFrag renders the mesh in UV space each
+// frame, and Fragment samples it at vert_uv, as it would a texture bake.
+TEST_F(FramePassTest, ObjSpaceFragRendersInUvSpaceEachFrameAndFragmentSamplesIt) {
+  const std::string scene = framePassScene("ObjectSpacePipeline", "object_space.spire");
+  const auto reference = renderWith(scene, "objspace_reference", "");
+  ASSERT_TRUE(reference);
+  const auto ramp = renderWith(scene, "objspace_ramp", "FramePasses.ramp = ObjSpaceFrag\n");
+  ASSERT_TRUE(ramp);
+  ASSERT_EQ(ramp->prepared.items.at(0).passes.size(), 1U);
+  EXPECT_EQ(ramp->prepared.items[0].passes[0]->world(), "ObjSpaceFrag");
+  EXPECT_EQ(ramp->prepared.items[0].passes[0]->extent().width, 512U);
+  EXPECT_TRUE(ramp->prepared.bakes.empty()) << "an object-space pass is not a load-time bake";
+  EXPECT_EQ(ramp->capture.coverage, reference->capture.coverage);
+  EXPECT_LT(compare(reference->capture, ramp->capture).rmse, 5e-3);
+  expectGolden(ramp->capture, "frame_pass_objspace");
 }
 
 }  // namespace
