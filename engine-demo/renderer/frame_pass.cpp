@@ -61,7 +61,7 @@ class FramePassBuilder {
   Expected<BakeTargets> targetsOf(const KernelProgram& fragment) const {
     TextureBakeOptions options;
     options.defaultSize = settings_.objectTextureSize;
-    return collectBakeTargets(fragment, options);
+    return collectBakeTargets(ctx_, fragment, options);
   }
 
   Expected<void> buildPipeline(FramePass& pass, const KernelProgram& vertex, const KernelProgram& fragment,

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cstring>
 
@@ -217,7 +218,18 @@ Expected<BakedTexture> finishTexture(const vk::Context& ctx, vk::Image& image, c
 
 }  // namespace
 
-Expected<BakeTargets> collectBakeTargets(const KernelProgram& kernel, const TextureBakeOptions& options) {
+Expected<BakeTargets> collectBakeTargets(const vk::Context& ctx, const KernelProgram& kernel,
+                                         const TextureBakeOptions& options) {
+  const uint32_t maxTargets = ctx.properties().limits.maxColorAttachments;
+  const auto outputs = std::count_if(kernel.outputs.begin(), kernel.outputs.end(),
+                                     [](const KernelOutput& o) { return o.kind == OutputKind::Varying; });
+  if (static_cast<uint32_t>(outputs) > maxTargets) {
+    return Error{fmt::format("the {} kernel writes {} textures, but this device renders at most {} in one pass; "
+                             "place fewer of the components it exports in {}",
+                             kernel.world, outputs, maxTargets, kernel.world),
+                 {},
+                 {}};
+  }
   // One render pass has one extent, so every output of the bake shares the
   // largest size any of them asks for.
   BakeTargets result;
@@ -247,7 +259,7 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
                                            const BindingSources& sources, const TextureBakeOptions& options,
                                            BakeTiming& timing) {
   timing.world = kernel.world;
-  auto collected = collectBakeTargets(kernel, options);
+  auto collected = collectBakeTargets(ctx, kernel, options);
   if (!collected) return collected.error();
   const std::vector<BakeTarget>& targets = collected->targets;
   const uint32_t size = collected->size;

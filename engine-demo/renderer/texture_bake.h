@@ -40,7 +40,10 @@ struct BakeTargets {
   std::vector<BakeTarget> targets;
   uint32_t size = 0;
 };
-Expected<BakeTargets> collectBakeTargets(const KernelProgram& kernel, const TextureBakeOptions& options);
+// More targets than the device renders in one pass (maxColorAttachments) is
+// an error naming the kernel: every output of a kernel goes to one pass.
+Expected<BakeTargets> collectBakeTargets(const vk::Context& ctx, const KernelProgram& kernel,
+                                         const TextureBakeOptions& options);
 
 Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
                                            const BindingSources& sources, const TextureBakeOptions& options,

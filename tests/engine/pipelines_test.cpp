@@ -198,6 +198,24 @@ TEST_F(EdgeTest, AnUnknownRetargetingPipelineIsAnErrorAtTheSceneLine) {
       << programs.error().details;
 }
 
+// A kernel that writes more textures than the device has color attachments
+// is refused with the kernel and the limit; it used to crash the driver.
+TEST_F(EdgeTest, MoreTexturesThanColorAttachmentsIsAnError) {
+  std::string decisions;
+  for (int i = 0; i < 9; ++i) decisions += fmt::format("ManyOutputs.c{} = PrebakeTex\n", i);
+  const fs::path path = fs::path(::testing::TempDir()) / "many_outputs.decisions";
+  std::ofstream(path) << decisions;
+  ASSERT_TRUE(loadScene(planeScene("many_outputs.spire", "ManyOutputs", "{}")));
+  renderer_ = std::make_unique<SceneRenderer>(ctx(), *scene_, *diags_);
+  auto programs = renderer_->compile(path);
+  ASSERT_TRUE(programs) << programs.error().message;
+  const auto prepared = renderer_->prepare(*programs);
+  ASSERT_FALSE(prepared);
+  EXPECT_NE(prepared.error().message.find("the PrebakeTex kernel writes 9 textures, but this device renders at most"),
+            std::string::npos)
+      << prepared.error().message;
+}
+
 // The frame-pass scene: FramePasses retargeted to `pipeline`.
 std::string framePassScene(const std::string& pipeline, const std::string& file) {
   std::string scene = planeScene("frame_passes.spire", "FramePasses", R"({"tint": [0.9, 0.5, 0.2]})");
