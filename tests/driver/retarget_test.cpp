@@ -151,5 +151,45 @@ pipeline P {
   EXPECT_NE(twiceText.find("E3003"), std::string::npos) << twiceText;
 }
 
+// screenTextureImport samples at the fragment's screen position, which only a
+// fragment kernel has: into a vertex world it is a compile error naming both.
+TEST(Retarget, ScreenTextureImportIntoAVertexWorldIsAnError) {
+  ShaderLibrary library;
+  library.addSource("screen.spire", R"(
+pipeline P {
+    abstract world Frame;
+    abstract world Mesh;
+    world Low : "GLSL" export standardExport;
+    world Vertex : "GLSL" export vertexExport(projPos);
+    world Fragment : "GLSL" export standardExport;
+    import Frame->Low using uniformImport;
+    import Frame->Vertex using uniformImport;
+    import Mesh->Vertex using standardImport;
+    import Low->Vertex using screenTextureImport(size);
+    import Vertex->Fragment using standardImport;
+    @Mesh vec3 vert_pos;
+    @Frame mat4 matMVP;
+    @Frame vec2 size;
+    abstract @Vertex vec4 projPos;
+    abstract export @Fragment vec4 output;
+}
+shader S using P {
+    @Frame float level;
+    float shade = level * 0.5;
+    vec4 projPos = matMVP * vec4(vert_pos, shade + 1.0);
+    vec4 output = vec4(shade);
+}
+)");
+  ASSERT_TRUE(library.compile()) << renderDiagnostics(library.sources(), library.diagnostics(), DiagnosticFormat::Text);
+  const auto compiled = compileVariant(library, "S", Decisions{{{"shade", "Low"}}, {}});
+  ASSERT_FALSE(compiled);
+  std::string text = compiled.error().message;
+  for (const Diagnostic& d : compiled.error().diagnostics) text += "\n" + d.message;
+  EXPECT_NE(text.find("screenTextureImport reads the screen position, so it can only import into a fragment world, "
+                      "not into 'Vertex'"),
+            std::string::npos)
+      << text;
+}
+
 }  // namespace
 }  // namespace spire

@@ -293,5 +293,26 @@ TEST_F(FramePassTest, ObjSpaceFragRendersInUvSpaceEachFrameAndFragmentSamplesIt)
   expectGolden(ramp->capture, "frame_pass_objspace");
 }
 
+// The object-space pass runs every frame with that frame's values: a
+// component of the camera position shaded in ObjSpaceFrag follows the camera
+// exactly as it does shaded per fragment.
+TEST_F(FramePassTest, ObjSpaceFragSeesEachFramesCamera) {
+  std::string scene = framePassScene("ObjectSpacePipeline", "object_space.spire");
+  scene.replace(scene.find(R"("FramePasses")"), 13, R"("FramePassesEye")");
+  std::string moved = scene;
+  moved.replace(moved.find("[0, 2.2, 0.01]"), 14, "[0.3, 2.1, 0.2]");
+  std::vector<std::array<double, 4>> means;
+  for (const std::string* s : {&scene, &moved}) {
+    const auto perFragment = renderWith(*s, "eye_fragment", "FramePassesEye.eye = Fragment\n");
+    const auto objectSpace = renderWith(*s, "eye_objspace", "FramePassesEye.eye = ObjSpaceFrag\n");
+    ASSERT_TRUE(perFragment && objectSpace);
+    ASSERT_EQ(objectSpace->prepared.items.at(0).passes.size(), 1U);
+    EXPECT_LT(compare(perFragment->capture, objectSpace->capture).maxError, 1e-3);
+    means.push_back(coveredMean(objectSpace->capture));
+  }
+  EXPECT_GT(std::abs(means[0][0] - means[1][0]) + std::abs(means[0][2] - means[1][2]), 0.05)
+      << "the two cameras should give different colors";
+}
+
 }  // namespace
 }  // namespace spire::engine
