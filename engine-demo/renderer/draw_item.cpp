@@ -87,8 +87,10 @@ void updateFrameValues(const DrawItem& item, const FrameState& frame) {
   for (const auto& pass : item.passes) pass->updateFrameValues(frame, item.model);
 }
 
-void recordPasses(const vk::Context& ctx, VkCommandBuffer cmd, const DrawItem& item) {
-  for (const auto& pass : item.passes) pass->record(ctx, cmd);
+void recordPasses(const vk::Context& ctx, VkCommandBuffer cmd, const DrawItem& item, const FrameWork& work) {
+  for (const auto& pass : item.passes) {
+    if (pass->objectSpace() ? work.objectPasses : work.screenPasses) pass->record(ctx, cmd);
+  }
 }
 
 void recordDraw(VkCommandBuffer cmd, const DrawItem& item) {

@@ -49,8 +49,17 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
                                   const TargetFormats& formats);
 
 void updateFrameValues(const DrawItem& item, const FrameState& frame);
-// The item's frame passes, outside the frame's render pass and before it.
-void recordPasses(const vk::Context& ctx, VkCommandBuffer cmd, const DrawItem& item);
+// Which of a frame's work one submission records: a stereo frame renders
+// shared object-space passes once, then each eye's screen passes and draw.
+struct FrameWork {
+  bool screenPasses = true;
+  bool objectPasses = true;
+  bool draw = true;
+};
+
+// The item's frame passes that `work` selects, outside the frame's render
+// pass and before it.
+void recordPasses(const vk::Context& ctx, VkCommandBuffer cmd, const DrawItem& item, const FrameWork& work);
 void recordDraw(VkCommandBuffer cmd, const DrawItem& item);
 
 }  // namespace spire::engine

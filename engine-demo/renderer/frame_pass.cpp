@@ -35,6 +35,7 @@ class FramePassBuilder {
                                              const BindingSources& sources) {
     auto pass = std::make_unique<FramePass>();
     pass->mesh_ = sources.mesh;
+    pass->objectSpace_ = !kind_.screen;
     auto targets = targetsOf(fragment);
     if (!targets) return targets.error();
     pass->extent_ = kind_.screen ? VkExtent2D{std::max(1U, (settings_.screen.width + 1) / 2),

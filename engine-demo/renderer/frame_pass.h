@@ -36,6 +36,9 @@ class FramePass {
   // The world of the pass's fragment kernel, for messages and reports.
   const std::string& world() const { return kernels_.back().world; }
   VkExtent2D extent() const { return extent_; }
+  // Rendered in UV space, so independent of where the camera's eye is: a
+  // stereo frame may run it once for both eyes.
+  bool objectSpace() const { return objectSpace_; }
   // What the draw's Fragment kernel samples, by component.
   const PassTextures& textures() const { return textures_; }
 
@@ -48,6 +51,7 @@ class FramePass {
   friend class FramePassBuilder;
   const GpuMesh* mesh_ = nullptr;
   VkExtent2D extent_{};
+  bool objectSpace_ = false;
   std::vector<BoundKernel> kernels_;  // vertex, fragment
   DescriptorBundle descriptors_;
   VertexInputs vertexInputs_;

@@ -32,10 +32,17 @@ Expected<RenderTarget> RenderTarget::create(const vk::Context& ctx, uint32_t wid
 }
 
 Expected<FrameTiming> RenderTarget::render(const vk::Context& ctx, std::span<const DrawItem* const> items,
-                                           const FrameState& frame, const glm::vec4& clearColor) {
+                                           const FrameState& frame, const glm::vec4& clearColor,
+                                           const FrameWork& work) {
   for (const DrawItem* item : items) updateFrameValues(*item, frame);
   const vk::HostTimer host;
   auto submitted = ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    if (!work.draw) {
+      timer_->begin(cmd);
+      for (const DrawItem* item : items) recordPasses(ctx, cmd, *item, work);
+      timer_->end(cmd);
+      return;
+    }
     std::vector<vk::ColorTarget> colors;
     for (vk::Image& image : colors_) {
       image.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
@@ -46,7 +53,7 @@ Expected<FrameTiming> RenderTarget::render(const vk::Context& ctx, std::span<con
     depth_->transition(cmd, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
     timer_->begin(cmd);
     // Per-frame passes are part of the frame's cost.
-    for (const DrawItem* item : items) recordPasses(ctx, cmd, *item);
+    for (const DrawItem* item : items) recordPasses(ctx, cmd, *item, work);
     vk::beginRendering(ctx, cmd, extent(), colors, vk::DepthTarget{depth_->view(), 1.0F});
     for (const DrawItem* item : items) recordDraw(cmd, *item);
     vk::endRendering(ctx, cmd);

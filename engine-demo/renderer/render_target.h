@@ -28,10 +28,11 @@ class RenderTarget {
   // nullptr when there are no color targets.
   vk::Image* color() { return colors_.empty() ? nullptr : &colors_.front(); }
 
-  // Writes this frame's values into every item, then draws them all in one
+  // Writes this frame's values into every item, then records the work
+  // selects (by default the items' passes and their draws) in one
   // submission and waits for it.
   Expected<FrameTiming> render(const vk::Context& ctx, std::span<const DrawItem* const> items, const FrameState& frame,
-                               const glm::vec4& clearColor);
+                               const glm::vec4& clearColor, const FrameWork& work = {});
 
   // Color target 0 as read back, rows top to bottom.
   Expected<measure::FloatImage> readColor(const vk::Context& ctx);

@@ -1,5 +1,7 @@
 #include "renderer/scene_renderer.h"
 
+#include "renderer/stereo.h"
+
 #include <fmt/format.h>
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
@@ -311,9 +313,46 @@ Expected<FrameTiming> SceneRenderer::renderFrame(const PreparedScene& prepared, 
 
 Expected<FrameTiming> SceneRenderer::renderView(const PreparedScene& prepared, const scene::CameraView& view,
                                                 float time) {
+  if (scene_.camera.stereo) return renderEyes(prepared, view, time, nullptr);
   auto items = drawList(prepared);
   if (!items) return items.error();
   return target_->render(ctx_, *items, frameState(view, time), scene_.clearColor);
+}
+
+Expected<FrameTiming> SceneRenderer::renderEyes(const PreparedScene& prepared, const scene::CameraView& view,
+                                                float time, std::vector<Capture>* captures) {
+  auto items = drawList(prepared);
+  if (!items) return items.error();
+  const scene::StereoDesc& stereo = *scene_.camera.stereo;
+  FrameTiming total;
+  const auto add = [&](const FrameTiming& t) {
+    total.gpuMs += t.gpuMs;
+    total.hostMs += t.hostMs;
+  };
+  if (stereo.shareObjectSpace) {
+    auto shared = target_->render(ctx_, *items, frameState(view, time), scene_.clearColor, {false, true, false});
+    if (!shared) return shared.error();
+    add(*shared);
+  }
+  for (const scene::CameraView& eye : eyeViews(view, scene_.camera.up, stereo.eyeSeparation)) {
+    auto timing =
+        target_->render(ctx_, *items, frameState(eye, time), scene_.clearColor, {true, !stereo.shareObjectSpace, true});
+    if (!timing) return timing.error();
+    add(*timing);
+    if (!captures) continue;
+    auto read = readBack(*timing);
+    if (!read) return read.error();
+    captures->push_back(std::move(read).value());
+  }
+  return total;
+}
+
+Expected<Capture> SceneRenderer::readBack(const FrameTiming& timing) {
+  auto color = target_->readColor(ctx_);
+  if (!color) return color.error();
+  auto coverage = target_->readCoverage(ctx_);
+  if (!coverage) return coverage.error();
+  return Capture{std::move(color).value(), std::move(coverage).value(), timing};
 }
 
 Expected<FrameStats> SceneRenderer::measure(const PreparedScene& prepared, uint32_t warmup, uint32_t frames) {
@@ -342,15 +381,18 @@ FrameStats summarizeFrames(double firstFrameMs, const std::vector<FrameTiming>& 
 }
 
 Expected<Capture> SceneRenderer::capture(const PreparedScene& prepared, const scene::CameraView& view) {
+  if (scene_.camera.stereo) {
+    std::vector<Capture> eyes;
+    auto timing = renderEyes(prepared, view, 0.0F, &eyes);
+    if (!timing) return timing.error();
+    return Capture{sideBySide(eyes[0].color, eyes[1].color),
+                   sideBySide(eyes[0].coverage, eyes[1].coverage, eyes[0].color.width), *timing};
+  }
   auto items = drawList(prepared);
   if (!items) return items.error();
   auto timing = target_->render(ctx_, *items, frameState(view, 0.0F), scene_.clearColor);
   if (!timing) return timing.error();
-  auto color = target_->readColor(ctx_);
-  if (!color) return color.error();
-  auto coverage = target_->readCoverage(ctx_);
-  if (!coverage) return coverage.error();
-  return Capture{std::move(color).value(), std::move(coverage).value(), *timing};
+  return readBack(*timing);
 }
 
 }  // namespace spire::engine

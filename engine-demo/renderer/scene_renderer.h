@@ -116,6 +116,11 @@ class SceneRenderer {
   FrameState frameState(const scene::CameraView& view, float time) const;
 
  private:
+  // A stereo frame: shared object-space passes (when the scene shares them),
+  // then each eye's passes and draw; with `captures`, each eye read back.
+  Expected<FrameTiming> renderEyes(const PreparedScene& prepared, const scene::CameraView& view, float time,
+                                   std::vector<Capture>* captures);
+  Expected<Capture> readBack(const FrameTiming& timing);
   Expected<VariantProgram> compileInstance(const scene::InstanceDesc& instance,
                                            const std::optional<std::filesystem::path>& decisions);
   Expected<ShaderLibrary*> libraryFor(const scene::InstanceDesc& instance);

@@ -23,7 +23,8 @@ namespace fs = std::filesystem;
 // get a "did you mean" from these.
 const KeyList kSceneKeys = {"resolution", "frames", "warmupFrames", "clearColor", "includePaths", "camera",
                             "light",      "meshes", "textures",     "instances",  "variants"};
-const KeyList kCameraKeys = {"fovY", "near", "far", "up", "views"};
+const KeyList kCameraKeys = {"fovY", "near", "far", "up", "views", "stereo"};
+const KeyList kStereoKeys = {"eyeSeparation", "shareObjectSpace"};
 const KeyList kViewKeys = {"position", "target"};
 const KeyList kLightKeys = {"direction", "color"};
 const KeyList kInstanceKeys = {"mesh",     "source",    "shader",   "decisions",  "kernels",
@@ -231,6 +232,21 @@ class SceneReader {
     }
   }
 
+  std::optional<StereoDesc> readStereo(const JsonValue& value) {
+    if (!check_.expectKind(value, JsonKind::Object, "'stereo'")) return std::nullopt;
+    StereoDesc stereo;
+    for (const JsonMember& member : value.members) {
+      if (member.key == "eyeSeparation") {
+        assign(stereo.eyeSeparation, check_.real(member.value, "'eyeSeparation'", greaterThan(0.0)));
+      } else if (member.key == "shareObjectSpace") {
+        assign(stereo.shareObjectSpace, check_.flag(member.value, "'shareObjectSpace'"));
+      } else {
+        check_.unknownKey(member, kStereoKeys, "'stereo'");
+      }
+    }
+    return stereo;
+  }
+
   void readCamera(const JsonValue& value, CameraDesc& camera) {
     if (!check_.expectKind(value, JsonKind::Object, "'camera'")) return;
     const JsonValue* farValue = nullptr;
@@ -260,6 +276,8 @@ class SceneReader {
             views.push_back(&view);
           }
         });
+      } else if (member.key == "stereo") {
+        camera.stereo = readStereo(v);
       } else {
         check_.unknownKey(member, kCameraKeys, "'camera'");
       }

@@ -130,6 +130,16 @@ struct CameraView {
   SourceRange range;
 };
 
+// Stereo rendering: every image holds both eyes side by side, the left eye
+// on the left. Each eye is the camera moved by half `eyeSeparation` along its
+// right vector, looking parallel to it (its target moves likewise).
+struct StereoDesc {
+  float eyeSeparation = 0.064F;
+  // Object-space passes run once per frame, from the centre camera, and both
+  // eyes sample their results; otherwise each eye runs its own.
+  bool shareObjectSpace = true;
+};
+
 struct CameraDesc {
   float fovYDegrees = 45.0F;
   float nearPlane = 0.1F;
@@ -138,6 +148,7 @@ struct CameraDesc {
   // At least one. Frame timing renders views[0]; image error is measured over
   // every view; window mode moves the camera through them in a loop.
   std::vector<CameraView> views;
+  std::optional<StereoDesc> stereo;
 };
 
 struct LightDesc {

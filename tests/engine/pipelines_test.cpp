@@ -314,5 +314,69 @@ TEST_F(FramePassTest, ObjSpaceFragSeesEachFramesCamera) {
       << "the two cameras should give different colors";
 }
 
+// Stereo: `scene` with both eyes (0.4 apart) side by side.
+std::string stereoScene(std::string scene, bool shareObjectSpace) {
+  scene.replace(scene.find(R"("camera": {)") + 11, 0,
+                fmt::format(R"("stereo": {{"eyeSeparation": 0.4, "shareObjectSpace": {}}}, )", shareObjectSpace));
+  return scene;
+}
+
+// `scene` seen from one eye: the camera above the plane moved along x (its
+// right vector) by `dx`, target included.
+std::string monoEye(std::string scene, float dx) {
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    scene.replace(scene.find(from), from.size(), to);
+  };
+  replace("[0, 2.2, 0.01]", fmt::format("[{}, 2.2, 0.01]", dx));
+  replace(R"("target": [0, 0, 0])", fmt::format(R"("target": [{}, 0, 0])", dx));
+  return scene;
+}
+
+// The left (0) or right (1) half of a side-by-side capture.
+Capture half(const Capture& stereo, int eye) {
+  Capture out;
+  const uint32_t width = stereo.color.width / 2;
+  out.color.width = width;
+  out.color.height = stereo.color.height;
+  for (uint32_t y = 0; y < stereo.color.height; ++y) {
+    const size_t row = size_t{y} * stereo.color.width + size_t{width} * static_cast<size_t>(eye);
+    out.color.rgba.insert(out.color.rgba.end(), stereo.color.rgba.begin() + static_cast<std::ptrdiff_t>(row * 4),
+                          stereo.color.rgba.begin() + static_cast<std::ptrdiff_t>((row + width) * 4));
+    out.coverage.insert(out.coverage.end(), stereo.coverage.begin() + static_cast<std::ptrdiff_t>(row),
+                        stereo.coverage.begin() + static_cast<std::ptrdiff_t>(row + width));
+  }
+  return out;
+}
+
+// Each half of a stereo image is that eye's own frame, and the object-space
+// pass runs once for both eyes (from the centre camera) or once per eye.
+TEST_F(FramePassTest, StereoDrawsEachEyeAndSharesObjectSpaceWork) {
+  std::string scene = framePassScene("ObjectSpacePipeline", "object_space.spire");
+  scene.replace(scene.find(R"("FramePasses")"), 13, R"("FramePassesEye")");
+  const std::string decisions = "FramePassesEye.eye = ObjSpaceFrag\n";
+  const auto left = renderWith(monoEye(scene, -0.2F), "stereo_left", decisions);
+  const auto right = renderWith(monoEye(scene, 0.2F), "stereo_right", decisions);
+  const auto centre = renderWith(scene, "stereo_centre", decisions);
+  const auto perEye = renderWith(stereoScene(scene, false), "stereo_per_eye", decisions);
+  const auto shared = renderWith(stereoScene(scene, true), "stereo_shared", decisions);
+  ASSERT_TRUE(left && right && centre && perEye && shared);
+  ASSERT_EQ(perEye->capture.color.width, 192U);
+  ASSERT_EQ(perEye->capture.coverage.size(), 192U * 64U);
+  // Per eye, each half is exactly that eye's frame.
+  EXPECT_LT(compare(left->capture, half(perEye->capture, 0)).maxError, 1e-6);
+  EXPECT_LT(compare(right->capture, half(perEye->capture, 1)).maxError, 1e-6);
+  EXPECT_NE(left->capture.coverage, right->capture.coverage) << "the eyes should see the plane from two places";
+  // Shared, the eyes keep their own geometry but sample the centre camera's
+  // object-space result.
+  EXPECT_EQ(half(shared->capture, 0).coverage, left->capture.coverage);
+  const auto centreColor = coveredMean(centre->capture);
+  for (int eye = 0; eye < 2; ++eye) {
+    const auto mean = coveredMean(half(shared->capture, eye));
+    for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], centreColor[c], 1e-3) << "eye " << eye << " channel " << c;
+  }
+  EXPECT_GT(compare(left->capture, half(shared->capture, 0)).maxError, 1e-2);
+  expectGolden(shared->capture, "frame_pass_stereo_shared");
+}
+
 }  // namespace
 }  // namespace spire::engine

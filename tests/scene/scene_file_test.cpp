@@ -253,6 +253,22 @@ TEST(SceneFile, PipelineRetargetsTheInstancesShader) {
               "'pipeline' retargets a 'source' and 'shader', which this instance does not have");
 }
 
+TEST(SceneFile, StereoIsOptionalWithDefaults) {
+  const auto mono = parseScene(withInstance(R"({"mesh": "ground", "kernels": "k"})"));
+  ASSERT_TRUE(mono->scene) << mono->rendered;
+  EXPECT_FALSE(mono->scene->camera.stereo);
+  const auto stereo = parseScene(
+      scene(R"("camera": {"stereo": {"shareObjectSpace": false}, "views": [{"position": [0, 2, 5]}]})", false));
+  ASSERT_TRUE(stereo->scene) << stereo->rendered;
+  ASSERT_TRUE(stereo->scene->camera.stereo);
+  EXPECT_FLOAT_EQ(stereo->scene->camera.stereo->eyeSeparation, 0.064F);
+  EXPECT_FALSE(stereo->scene->camera.stereo->shareObjectSpace);
+  expectError(scene(R"("camera": {"stereo": {"eyeSeparation": 0}, "views": [{"position": [0, 2, 5]}]})", false),
+              DiagCode::E7004, "'eyeSeparation' must be greater than 0, found 0");
+  expectError(scene(R"("camera": {"stereo": {"separation": 1}, "views": [{"position": [0, 2, 5]}]})", false),
+              DiagCode::E7002, "unknown key 'separation' in 'stereo'; did you mean 'eyeSeparation'?");
+}
+
 TEST(SceneFile, KernelsAloneNeedNoSource) {
   const auto loaded = parseScene(withInstance(R"({"mesh": "ground", "kernels": "out/Terrain"})"));
   ASSERT_TRUE(loaded->scene) << loaded->rendered;
