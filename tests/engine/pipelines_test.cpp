@@ -274,6 +274,18 @@ TEST_F(FramePassTest, LowResFragmentShadesAQuarterOfThePixelsAndFragmentReadsThe
   EXPECT_LT(error.rmse, 0.02);
   EXPECT_GT(error.rmse, 1e-6) << "resampled at half resolution, the ramp cannot be exact";
   expectGolden(ramp->capture, "frame_pass_multirate");
+
+  // A vertex bake's records reach the low-resolution pass as they reach Vertex.
+  const auto fromBake = renderWith(scene, "multirate_from_bake",
+                                   "FramePasses.tinted = PrebakeVertex\nFramePasses.ramp = LowResFragment\n");
+  ASSERT_TRUE(fromBake);
+  EXPECT_TRUE(readsVaryingFrom(fromBake->programs.at(0), "LowResFragment", "LowResVertex"));
+  const KernelProgram* lowResVertex = fromBake->programs[0].kernel("LowResVertex");
+  ASSERT_NE(lowResVertex, nullptr);
+  EXPECT_TRUE(std::any_of(lowResVertex->inputs.begin(), lowResVertex->inputs.end(), [](const KernelInput& input) {
+    return input.kind == InputKind::BufferMember && input.from == "PrebakeVertex";
+  }));
+  EXPECT_LT(compare(ramp->capture, fromBake->capture).maxError, 1e-3);
 }
 
 // Object-space shading: ObjSpaceFrag renders the mesh in UV space each
