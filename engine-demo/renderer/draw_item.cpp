@@ -44,7 +44,7 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
   item.mesh = sources.mesh;
   item.model = placement.model;
   auto passes = createFramePasses(ctx, modules, program, sources,
-                                  {placement.screen, placement.objectTextureSize, placement.doubleSided});
+                                  {.screen = placement.screen, .doubleSided = placement.doubleSided});
   if (!passes) return passes.error();
   item.passes = std::move(passes).value();
   PassTextures passTextures;

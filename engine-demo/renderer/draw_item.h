@@ -25,9 +25,8 @@ struct TargetFormats {
 // Where and how an instance draws its mesh.
 struct DrawPlacement {
   glm::mat4 model{1.0F};
-  bool doubleSided = false;          // otherwise back faces (clockwise on screen) are culled
-  VkExtent2D screen{};               // the frame's resolution, which sizes a multi-rate pass
-  uint32_t objectTextureSize = 512;  // object-space targets without a TextureSize hint
+  bool doubleSided = false;  // otherwise back faces (clockwise on screen) are culled
+  VkExtent2D screen{};       // the frame's resolution, which sizes a multi-rate pass
 };
 
 struct DrawItem {

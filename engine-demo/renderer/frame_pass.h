@@ -27,8 +27,8 @@ namespace spire::engine {
 
 struct FramePassSettings {
   VkExtent2D screen{};               // the frame's full resolution
-  uint32_t objectTextureSize = 512;  // object-space targets without a TextureSize hint
   bool doubleSided = false;          // the instance's culling, for the screen pass
+  uint32_t objectTextureSize = 512;  // object-space targets without a TextureSize hint
 };
 
 class FramePass {

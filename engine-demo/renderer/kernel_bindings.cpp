@@ -32,9 +32,8 @@ Error missing(const KernelProgram& kernel, const KernelInput& input, std::string
 }
 
 WorldRole roleOf(const KernelProgram& kernel, const KernelInput& input) {
-  const WorldPass* pass = kernel.sourcePass(input);
   // resolveMaterial rejected unknown worlds before any kernel is bound.
-  return pass ? pass->kind : WorldRole::MaterialParameters;
+  return kernel.sourceRole(input).value_or(WorldRole::MaterialParameters);
 }
 
 class KernelBinder {

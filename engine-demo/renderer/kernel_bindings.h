@@ -1,7 +1,7 @@
 // Feeding one kernel: every descriptor binding its reflection names, filled
 // from where the value's world says it comes from (world_roles.h): material
-// values, per-frame values, mesh vertices as storage records, and the results
-// of the bakes that ran before it. The same code binds bake kernels and the
+// values, per-frame values, mesh vertices as storage records, the results of
+// the bakes that ran before it, and the textures of the frame's passes. The same code binds bake kernels and the
 // kernels of each frame's draw.
 #pragma once
 

@@ -29,6 +29,11 @@ const WorldPass* KernelProgram::sourcePass(const KernelInput& input) const {
   return index < inputPasses.size() ? inputPasses[index] : nullptr;
 }
 
+std::optional<WorldRole> KernelProgram::sourceRole(const KernelInput& input) const {
+  const WorldPass* source = sourcePass(input);
+  return source ? std::optional(source->kind) : std::nullopt;
+}
+
 std::string VariantProgram::fingerprint() const {
   std::string key;
   for (const KernelProgram& k : kernels) key += fmt::format("{}={};", k.world, k.hash);

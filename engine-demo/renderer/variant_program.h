@@ -40,6 +40,8 @@ struct KernelProgram : reflection::Kernel {
 
   // The pass of the world `input` (one of `inputs`) comes from, or nullptr.
   const WorldPass* sourcePass(const KernelInput& input) const;
+  // Its role; nullopt for a world this engine does not know.
+  std::optional<WorldRole> sourceRole(const KernelInput& input) const;
 };
 
 struct VariantProgram {

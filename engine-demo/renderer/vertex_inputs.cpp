@@ -27,21 +27,9 @@ Expected<VertexInputs::Attribute> meshAttribute(const KernelProgram& kernel, con
   return VertexInputs::Attribute{input.location, kMeshBinding, attribute->format, attribute->offset};
 }
 
-Expected<VertexInputs::Attribute> bakedAttribute(const KernelProgram& kernel, const KernelInput& input,
-                                                 const VertexBakeResult* bake) {
-  if (!bake) return unsupplied(kernel, input, "no vertex bake ran before it");
-  const BlockMember* member = bake->layout.member(input.component);
-  if (!member) return unsupplied(kernel, input, "the vertex bake's records do not hold it");
-  if (member->type != input.type) {
-    return unsupplied(kernel, input, fmt::format("the vertex bake writes it as {}", member->type.name));
-  }
-  const auto format = vertexFormat(input.type);
-  if (!format) return unsupplied(kernel, input, "the engine binds only scalar and vector vertex inputs");
-  return VertexInputs::Attribute{input.location, kVertexBakeBinding, *format, member->offset};
-}
-
-}  // namespace
-
+// The vertex format that holds one `type` (float, int and uint scalars and
+// vectors), or nullopt: GLSL has no bool inputs, and a matrix input would
+// take one location per column.
 std::optional<VkFormat> vertexFormat(const ValueType& type) {
   if (!type.isNumeric() || type.isMatrix() || type.arrayLength != 0 || type.rows < 1 || type.rows > 4) {
     return std::nullopt;
@@ -61,6 +49,21 @@ std::optional<VkFormat> vertexFormat(const ValueType& type) {
   }
   return std::nullopt;
 }
+
+Expected<VertexInputs::Attribute> bakedAttribute(const KernelProgram& kernel, const KernelInput& input,
+                                                 const VertexBakeResult* bake) {
+  if (!bake) return unsupplied(kernel, input, "no vertex bake ran before it");
+  const BlockMember* member = bake->layout.member(input.component);
+  if (!member) return unsupplied(kernel, input, "the vertex bake's records do not hold it");
+  if (member->type != input.type) {
+    return unsupplied(kernel, input, fmt::format("the vertex bake writes it as {}", member->type.name));
+  }
+  const auto format = vertexFormat(input.type);
+  if (!format) return unsupplied(kernel, input, "the engine binds only scalar and vector vertex inputs");
+  return VertexInputs::Attribute{input.location, kVertexBakeBinding, *format, member->offset};
+}
+
+}  // namespace
 
 void VertexInputs::addMeshAttribute(uint32_t location, VkFormat format, uint32_t offset) {
   attributes.push_back({location, kMeshBinding, format, offset});

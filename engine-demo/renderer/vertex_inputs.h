@@ -36,11 +36,6 @@ struct VertexInputs {
   void bind(VkCommandBuffer cmd) const;
 };
 
-// The vertex format that holds one `type` (float, int and uint scalars and
-// vectors), or nullopt: GLSL has no bool inputs, and a matrix input would
-// take one location per column.
-std::optional<VkFormat> vertexFormat(const ValueType& type);
-
 // The vertex inputs of `kernel`'s Varying inputs from the mesh and vertex
 // bake roles; any other source is an error naming the kernel and the input.
 Expected<VertexInputs> vertexInputs(const KernelProgram& kernel, const BindingSources& sources);

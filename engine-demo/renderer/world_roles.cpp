@@ -36,6 +36,17 @@ constexpr std::array kTable = {
 };
 
 using reflection::InputKind;
+
+// Inputs of `kind` from a world of role `from` into kernels of the roles in `into`.
+struct WorldEdge {
+  InputKind kind;
+  WorldRole from;
+  uint32_t into;         // one bit per WorldRole (roleBit)
+  std::string_view how;  // how the engine binds it, for readers of the table
+};
+
+constexpr uint32_t roleBit(WorldRole role) { return 1U << static_cast<uint32_t>(role); }
+
 constexpr uint32_t kBakes =
     roleBit(WorldRole::UniformBake) | roleBit(WorldRole::VertexBake) | roleBit(WorldRole::TextureBake);
 constexpr uint32_t kPassVertices = roleBit(WorldRole::ScreenPassVertex) | roleBit(WorldRole::ObjectPassVertex);
@@ -75,6 +86,13 @@ constexpr std::array kEdges = {
     WorldEdge{InputKind::Sampler, WorldRole::MaterialParameters, kBakes | kDraw, "the bound scene texture"},
 };
 
+const WorldEdge* findEdge(InputKind kind, WorldRole from, WorldRole into) {
+  const auto it = std::find_if(kEdges.begin(), kEdges.end(), [&](const WorldEdge& e) {
+    return e.kind == kind && e.from == from && (e.into & roleBit(into)) != 0;
+  });
+  return it == kEdges.end() ? nullptr : &*it;
+}
+
 // "varying into vertex and prebakeTexture; uniform into ...": the edges out of `from`.
 std::string edgesFrom(WorldRole from) {
   std::string text;
@@ -90,15 +108,6 @@ std::string edgesFrom(WorldRole from) {
 }
 
 }  // namespace
-
-std::span<const WorldEdge> worldEdgeTable() { return kEdges; }
-
-const WorldEdge* findEdge(reflection::InputKind kind, WorldRole from, WorldRole into) {
-  const auto it = std::find_if(kEdges.begin(), kEdges.end(), [&](const WorldEdge& e) {
-    return e.kind == kind && e.from == from && (e.into & roleBit(into)) != 0;
-  });
-  return it == kEdges.end() ? nullptr : &*it;
-}
 
 spire::Expected<void, Failure> checkEdges(const reflection::Kernel& kernel, const WorldPass& pass,
                                           const std::vector<const WorldPass*>& inputPasses) {

@@ -65,25 +65,13 @@ std::string roleList(bool kernelsOnly = false);
 using WorldPasses = std::map<std::string, const WorldPass*, std::less<>>;
 spire::Expected<WorldPasses, Failure> resolveWorldPasses(const std::vector<reflection::World>& worlds);
 
-// An edge the engine implements: inputs of `kind` (the import strategy's
-// reflected kind) from a world of role `from` into kernels of the roles in
-// `into`. Anything else a variant reads is refused when it is loaded, with
-// the edges the engine does implement, instead of binding nothing.
-struct WorldEdge {
-  reflection::InputKind kind;
-  WorldRole from;
-  uint32_t into;  // one bit per WorldRole (roleBit)
-  std::string_view how;
-};
-
-constexpr uint32_t roleBit(WorldRole role) { return 1U << static_cast<uint32_t>(role); }
-
-std::span<const WorldEdge> worldEdgeTable();
-const WorldEdge* findEdge(reflection::InputKind kind, WorldRole from, WorldRole into);
-
 // Every input of `kernel` (of role `pass`, its inputs' roles `inputPasses`)
-// arrives over an edge of the table. Inputs from worlds without a role are
-// left to the caller, which reports unknown worlds.
+// arrives over an edge the engine implements: an input kind (the import
+// strategy's reflected kind) from a world of one role into a kernel of
+// another, one table in world_roles.cpp. Anything else is refused when the
+// variant is loaded, naming the edges the engine does implement, instead of
+// being bound to nothing. Inputs from worlds without a role are left to the
+// caller, which reports unknown worlds.
 spire::Expected<void, Failure> checkEdges(const reflection::Kernel& kernel, const WorldPass& pass,
                                           const std::vector<const WorldPass*>& inputPasses);
 

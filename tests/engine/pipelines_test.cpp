@@ -56,21 +56,16 @@ class Figure4Test : public testing::RendererTest {
   void SetUp() override {
     RendererTest::SetUp();
     if (IsSkipped() || HasFatalFailure()) return;
-    dir_ = fs::path(::testing::TempDir()) / "figure4_decisions";
-    fs::create_directories(dir_);
     reference_ = render(figure4Scene(), std::nullopt);
     ASSERT_TRUE(reference_);
     ASSERT_GT(coveredFraction(reference_->capture), 0.2);
   }
 
   // Renders Figure4Shade with `decisions` ("Figure4Shade.shade = Vertex" lines).
-  std::optional<Rendered> renderWith(const std::string& name, const std::string& decisions) {
-    const fs::path path = dir_ / (name + ".decisions");
-    std::ofstream(path) << decisions;
-    return render(figure4Scene(), path);
+  std::optional<Rendered> renderFigure4(const std::string& name, const std::string& decisions) {
+    return renderWith(figure4Scene(), "figure4_" + name, decisions);
   }
 
-  fs::path dir_;
   std::optional<Rendered> reference_;
 };
 
@@ -86,7 +81,7 @@ TEST_F(Figure4Test, EveryWorldChoiceRendersWhatItsPlacementMeans) {
     ASSERT_EQ(choice.names.size(), 5U) << choice.key;
     for (const std::string& world : choice.names) {
       SCOPED_TRACE(choice.key + " = " + world);
-      const auto variant = renderWith(component + "_" + world, fmt::format("{} = {}\n", choice.key, world));
+      const auto variant = renderFigure4(component + "_" + world, fmt::format("{} = {}\n", choice.key, world));
       ASSERT_TRUE(variant);
       ++rendered;
       EXPECT_EQ(variant->capture.coverage, reference_->capture.coverage);
@@ -112,14 +107,15 @@ TEST_F(Figure4Test, EveryWorldChoiceRendersWhatItsPlacementMeans) {
 // PrebakeVertex's records reach Vertex and PrebakeTex as vertex attributes
 // (standardImport), and values computed from them match the reference.
 TEST_F(Figure4Test, VertexBakeRecordsAreVertexAttributesOfVertexAndPrebakeTex) {
-  const auto intoVertex = renderWith("into_vertex", "Figure4Shade.shade = PrebakeVertex\nFigure4Shade.ramp = Vertex\n");
+  const auto intoVertex =
+      renderFigure4("into_vertex", "Figure4Shade.shade = PrebakeVertex\nFigure4Shade.ramp = Vertex\n");
   ASSERT_TRUE(intoVertex);
   ASSERT_EQ(intoVertex->programs.size(), 1U);
   EXPECT_TRUE(readsVaryingFrom(intoVertex->programs[0], "Vertex", "PrebakeVertex"));
   EXPECT_LT(compare(reference_->capture, intoVertex->capture).maxError, 1e-5);
 
   const auto intoTexture =
-      renderWith("into_texture", "Figure4Shade.shade = PrebakeVertex\nFigure4Shade.ramp = PrebakeTex\n");
+      renderFigure4("into_texture", "Figure4Shade.shade = PrebakeVertex\nFigure4Shade.ramp = PrebakeTex\n");
   ASSERT_TRUE(intoTexture);
   EXPECT_TRUE(readsVaryingFrom(intoTexture->programs[0], "PrebakeTex", "PrebakeVertex"));
   std::vector<std::string> bakes;
@@ -135,8 +131,7 @@ TEST_F(Figure4Test, VertexBakeRecordsAreVertexAttributesOfVertexAndPrebakeTex) {
 class EdgeTest : public testing::RendererTest {};
 
 TEST_F(EdgeTest, AnEdgeTheEngineDoesNotImplementIsRefusedListingTheEdgesItDoes) {
-  const fs::path decisions = fs::path(::testing::TempDir()) / "frame_into_bake.decisions";
-  std::ofstream(decisions) << "FrameIntoBake.pulse = PrebakeTex\n";
+  const fs::path decisions = writeDecisions("frame_into_bake", "FrameIntoBake.pulse = PrebakeTex\n");
   ASSERT_TRUE(loadScene(planeScene("frame_into_bake.spire", "FrameIntoBake", "{}")));
   renderer_ = std::make_unique<SceneRenderer>(ctx(), *scene_, *diags_);
   const auto programs = renderer_->compile(decisions);
@@ -161,15 +156,10 @@ TEST_F(EdgeTest, AnInstanceRetargetedToAnotherPipelineRendersItsWorlds) {
       R"("pipeline": {"name": "FiveWorldPipeline", "source": "../../../pipelines/five_world.spire"}, )";
   std::string scene = planeScene("tex_bake.spire", "TexBake", R"({"colorMap": "checker"})");
   scene.replace(scene.find(R"("mesh": "plane")"), 0, retarget);
-  const auto write = [](const std::string& name, const std::string& text) {
-    const fs::path path = fs::path(::testing::TempDir()) / name;
-    std::ofstream(path) << text;
-    return path;
-  };
-  const auto perVertex = render(scene, write("retarget_vertex.decisions", "TexBake.texColor = Vertex\n"));
+  const auto perVertex = renderWith(scene, "retarget_vertex", "TexBake.texColor = Vertex\n");
   ASSERT_TRUE(perVertex);
   EXPECT_EQ(perVertex->programs.at(0).pipeline, "FiveWorldPipeline");
-  const auto baked = render(scene, write("retarget_prebake.decisions", "TexBake.texColor = PrebakeVertex\n"));
+  const auto baked = renderWith(scene, "retarget_prebake", "TexBake.texColor = PrebakeVertex\n");
   ASSERT_TRUE(baked);
   ASSERT_EQ(baked->prepared.bakes.size(), 1U);
   EXPECT_EQ(baked->prepared.bakes[0].world, "PrebakeVertex");
@@ -203,8 +193,7 @@ TEST_F(EdgeTest, AnUnknownRetargetingPipelineIsAnErrorAtTheSceneLine) {
 TEST_F(EdgeTest, MoreTexturesThanColorAttachmentsIsAnError) {
   std::string decisions;
   for (int i = 0; i < 9; ++i) decisions += fmt::format("ManyOutputs.c{} = PrebakeTex\n", i);
-  const fs::path path = fs::path(::testing::TempDir()) / "many_outputs.decisions";
-  std::ofstream(path) << decisions;
+  const fs::path path = writeDecisions("many_outputs", decisions);
   ASSERT_TRUE(loadScene(planeScene("many_outputs.spire", "ManyOutputs", "{}")));
   renderer_ = std::make_unique<SceneRenderer>(ctx(), *scene_, *diags_);
   auto programs = renderer_->compile(path);
@@ -239,14 +228,7 @@ double matchingFraction(const Capture& a, const Capture& b, float tolerance) {
   return both == 0 ? 0.0 : static_cast<double>(matching) / static_cast<double>(both);
 }
 
-class FramePassTest : public testing::RendererTest {
- protected:
-  std::optional<Rendered> renderWith(const std::string& scene, const std::string& name, const std::string& decisions) {
-    const fs::path path = fs::path(::testing::TempDir()) / (name + ".decisions");
-    std::ofstream(path) << decisions;
-    return render(scene, path);
-  }
-};
+class FramePassTest : public testing::RendererTest {};
 
 // Multi-rate shading: LowResFragment runs at half the width and height, and
 // Fragment reads its results by screen position. A constant is the same

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -62,6 +63,18 @@ class RendererTest : public vk::testing::DeviceTest {
     scene_ = scene::parseSceneFile("test_scene.json", json, kDataDir, *sources_, *diags_);
     if (!scene_) ADD_FAILURE() << renderDiagnostics(*sources_, *diags_, DiagnosticFormat::Text);
     return scene_.has_value();
+  }
+
+  // `text` as the decision file NAME.decisions in the test's temporary folder.
+  static fs::path writeDecisions(const std::string& name, const std::string& text) {
+    const fs::path path = fs::path(::testing::TempDir()) / (name + ".decisions");
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  // render() with the decision file `decisions` written as NAME.decisions.
+  std::optional<Rendered> renderWith(const std::string& json, const std::string& name, const std::string& decisions) {
+    return render(json, writeDecisions(name, decisions));
   }
 
   // Loads `json` (loadScene) and renders view 0 with `decisions` applied to
