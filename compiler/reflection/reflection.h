@@ -106,6 +106,7 @@ struct KernelInput {
   std::string uv;         // Texture: GLSL expression in this kernel
   uint32_t channels = 0;  // Texture: components kept, 1 to 4
   std::string index;      // BufferMember: gl_VertexIndex or gl_GlobalInvocationID.x
+  std::string layer;      // Texture: GLSL expression of the array layer; empty for a sampler2D
   bool operator==(const KernelInput&) const = default;
 };
 

@@ -22,6 +22,24 @@ Expected<std::vector<std::string>> fragmentOutputs(const KernelProgram& fragment
   return outputs;
 }
 
+namespace {
+
+// A draw of one object whose kernels sample texture bakes as arrays
+// (instanced pipelines) gets arrays of one layer, its own bakes.
+Expected<void> addBakeArrays(const vk::Context& ctx, const KernelProgram& vertex, const KernelProgram& fragment,
+                             BindingSources& sources, DrawItem& item) {
+  if (sources.textureArrays || !(readsBakeArrays(vertex) || readsBakeArrays(fragment))) return {};
+  const KernelProgram* kernels[] = {&vertex, &fragment};
+  const TextureBakeResult* layers[] = {sources.textureBake};
+  auto arrays = buildBakeArrays(ctx, kernels, layers);
+  if (!arrays) return arrays.error();
+  item.bakeArrays = std::make_unique<BakeArrays>(std::move(arrays).value());
+  sources.textureArrays = &item.bakeArrays->textures;
+  return {};
+}
+
+}  // namespace
+
 Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
                                   const BindingSources& sources, const DrawPlacement& placement,
                                   const TargetFormats& formats) {
@@ -51,6 +69,7 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
   for (const auto& pass : item.passes) passTextures.insert(pass->textures().begin(), pass->textures().end());
   BindingSources drawSources = sources;
   drawSources.passTextures = &passTextures;
+  if (auto arrays = addBakeArrays(ctx, *vertex, *fragment, drawSources, item); !arrays) return arrays.error();
   for (const KernelProgram* kernel : {vertex, fragment}) {
     auto bound = bindKernel(ctx, *kernel, drawSources);
     if (!bound) return bound.error();

@@ -7,6 +7,7 @@
 
 #include <memory>
 
+#include "renderer/bake_arrays.h"
 #include "renderer/frame_pass.h"
 #include "renderer/kernel_bindings.h"
 #include "renderer/module_cache.h"
@@ -37,6 +38,7 @@ struct DrawItem {
   VertexInputs vertexInputs;  // the mesh, and the vertex bake's records when Vertex reads them as inputs
   vk::Pipeline pipeline;
   std::vector<std::unique_ptr<FramePass>> passes;  // rendered before the draw, every frame
+  std::unique_ptr<BakeArrays> bakeArrays;          // the object's texture bakes as one-layer arrays, when sampled so
 };
 
 // The Fragment kernel's color outputs by location (location 0 is the image

@@ -111,7 +111,37 @@ class KernelBinder {
     return it == sources_.material->end() ? nullptr : &it->second;
   }
 
+  bool readPerInstance(const Block& block) const {
+    return std::any_of(kernel_.inputs.begin(), kernel_.inputs.end(), [&](const KernelInput& input) {
+      return input.kind == InputKind::BufferMember && input.slot == block.slot && input.index == "gl_InstanceIndex";
+    });
+  }
+
+  Expected<void> bindInstanceBlock(const Block& block) {
+    const uint32_t capacity = std::max(sources_.instanceCapacity, 1U);
+    auto buffer = newBuffer(VkDeviceSize{capacity} * block.recordStride, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!buffer) return buffer.error();
+    InstanceBlock records{*buffer, block.recordStride, capacity, {}};
+    for (const KernelInput& input : kernel_.inputs) {
+      if (input.kind != InputKind::BufferMember || input.slot != block.slot) continue;
+      const BlockMember* member = block.member(input.component);
+      if (!member || !member->type.isNumeric()) {
+        return missing(kernel_, input, "its record member or type is not in the reflection");
+      }
+      const bool baked = roleOf(kernel_, input) == WorldRole::UniformBake;
+      if (baked && !bakedUniform(input.component))
+        return missing(kernel_, input, "the uniform bake did not produce it");
+      records.fields.push_back({*member, input.component, baked});
+    }
+    for (uint32_t i = 0; i < capacity; ++i) writeInstanceRecord(records, i, InstanceState{}, sources_.uniformBake);
+    bound_.instanceBlocks.push_back(std::move(records));
+    bound_.descriptors.push_back({block.slot, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, (*buffer)->handle(), VK_NULL_HANDLE,
+                                  VK_NULL_HANDLE, fmt::format("per-instance storage block '{}'", block.name)});
+    return {};
+  }
+
   Expected<void> bindStorage(const Block& block) {
+    if (readPerInstance(block)) return bindInstanceBlock(block);
     if (!sources_.mesh)
       return Error{fmt::format("the {} kernel reads vertex records but has no mesh", kernel_.world), {}, {}};
     const uint32_t records = sources_.mesh->vertexCount();
@@ -173,7 +203,13 @@ class KernelBinder {
   Expected<void> bindImage(const KernelInput& input) {
     VkImageView view = VK_NULL_HANDLE;
     VkSampler sampler = VK_NULL_HANDLE;
-    if (input.kind == InputKind::Texture && roleOf(kernel_, input) != WorldRole::TextureBake) {
+    if (input.kind == InputKind::Texture && !input.layer.empty()) {
+      const auto* arrays = sources_.textureArrays;
+      const auto it = arrays ? arrays->find(input.component) : PassTextures::const_iterator{};
+      if (!arrays || it == arrays->end()) return missing(kernel_, input, "no texture array holds its bakes");
+      view = it->second.view;
+      sampler = it->second.sampler;
+    } else if (input.kind == InputKind::Texture && roleOf(kernel_, input) != WorldRole::TextureBake) {
       if (!sources_.passTextures) return missing(kernel_, input, "no pass of this frame renders it");
       const auto it = sources_.passTextures->find(input.component);
       if (it == sources_.passTextures->end()) return missing(kernel_, input, "its pass did not render it");
@@ -210,12 +246,27 @@ Expected<BoundKernel> bindKernel(const vk::Context& ctx, const KernelProgram& ke
   return KernelBinder(ctx, kernel, sources).bind();
 }
 
+void writeInstanceRecord(const InstanceBlock& block, uint32_t index, const InstanceState& instance,
+                         const UniformBakeResult* bake) {
+  const std::span<std::byte> record = bytesOf(*block.buffer).subspan(size_t{index} * block.stride, block.stride);
+  for (const InstanceField& field : block.fields) {
+    if (field.baked) {
+      if (!bake) continue;
+      const auto it = bake->values.find(field.component);
+      if (it != bake->values.end()) writeValue(record, field.member, it->second);
+    } else if (const auto value = instanceValue(field.component, instance)) {
+      writeValue(record, field.member, value->numbers);
+    }
+  }
+}
+
 void writeFrameValues(const BoundKernel& kernel, const FrameState& frame, const glm::mat4& model) {
   for (const FrameWrite& write : kernel.frameWrites) {
     if (const auto value = frameValue(write.component, frame, model)) {
       writeValue(bytesOf(*write.buffer), write.member, value->numbers);
     }
   }
+  for (const InstanceBlock& block : kernel.instanceBlocks) writeInstanceRecord(block, 0, {.model = model}, nullptr);
 }
 
 }  // namespace spire::engine

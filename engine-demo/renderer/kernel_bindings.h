@@ -64,7 +64,35 @@ struct BindingSources {
   const VertexBakeResult* vertexBake = nullptr;
   const TextureBakeResult* textureBake = nullptr;
   const PassTextures* passTextures = nullptr;  // the frame passes' results, when the kernel samples them
+  // Texture-bake results as texture arrays (bake_arrays.h), by component,
+  // for kernels that sample them as sampler2DArray (textureArrayImport).
+  const PassTextures* textureArrays = nullptr;
+  // Records of each per-instance storage block (instanceImport): 1 for a
+  // draw of one object, the batch's size for an instanced draw.
+  uint32_t instanceCapacity = 1;
 };
+
+// One member of a per-instance record and where its value comes from.
+struct InstanceField {
+  BlockMember member;
+  std::string component;
+  bool baked = false;  // the object's uniform-bake average; otherwise an instance value (instanceValue)
+};
+
+// A storage block read at gl_InstanceIndex: `capacity` records of `stride`
+// bytes, rewritten by whoever draws the instances.
+struct InstanceBlock {
+  vk::Buffer* buffer = nullptr;
+  uint32_t stride = 0;
+  uint32_t capacity = 0;
+  std::vector<InstanceField> fields;
+};
+
+// Writes record `index` of `block`: its instance values from `instance`,
+// and, when `bake` is given, its baked values from `bake` (which must hold
+// them: bindKernel checked the bound object's).
+void writeInstanceRecord(const InstanceBlock& block, uint32_t index, const InstanceState& instance,
+                         const UniformBakeResult* bake);
 
 // A uniform-block member refreshed every frame from FrameState.
 struct FrameWrite {
@@ -97,6 +125,7 @@ struct BoundKernel {
   std::vector<std::unique_ptr<vk::Buffer>> buffers;
   std::vector<FrameWrite> frameWrites;
   std::map<DescriptorSlot, vk::Buffer*> outputs;  // storage blocks the kernel writes
+  std::vector<InstanceBlock> instanceBlocks;      // storage blocks read per instance
 };
 
 // Creates and fills the buffers of `kernel`'s bindings. Values are assumed
@@ -104,7 +133,9 @@ struct BoundKernel {
 // not a crash.
 Expected<BoundKernel> bindKernel(const vk::Context& ctx, const KernelProgram& kernel, const BindingSources& sources);
 
-// Writes this frame's values into the kernel's per-frame uniform members.
+// Writes this frame's values into the kernel's per-frame uniform members,
+// and the instance values of record 0 of its per-instance blocks (a draw of
+// one object at `model`).
 void writeFrameValues(const BoundKernel& kernel, const FrameState& frame, const glm::mat4& model);
 
 }  // namespace spire::engine

@@ -69,6 +69,7 @@ class MaterialResolver {
       case WorldRole::MaterialParameters: bindMaterial(input, /*engineValue=*/false); break;
       case WorldRole::FrameParameters: bindMaterial(input, /*engineValue=*/true); break;
       case WorldRole::MeshAttributes: checkMeshAttribute(kernel, input); break;
+      case WorldRole::InstanceParameters: checkInstanceValue(input); break;
       default: break;  // produced by a bake of this variant
     }
   }
@@ -84,6 +85,23 @@ class MaterialResolver {
       diags_.reportOnce(DiagCode::E7103, shaderRange(),
                         fmt::format("mesh attribute '{}' is a {}, but '{}' declares it as {}", input.component,
                                     meshAttributeTypes(input.component), program_.shader, input.type.name));
+    }
+  }
+
+  // Per-instance values differ between the objects of one draw, so a
+  // material cannot bind them: the engine supplies every one.
+  void checkInstanceValue(const KernelInput& input) {
+    const auto supplied = instanceValue(input.component, InstanceState{});
+    if (!supplied) {
+      diags_.reportOnce(
+          DiagCode::E7102, shaderRange(),
+          fmt::format("'{}' reads '{}' ({} from {}), which is not a per-instance engine value; the "
+                      "engine supplies {}",
+                      program_.shader, input.component, input.type.name, input.from, instanceValueNames()));
+    } else if (supplied->type != input.type.name) {
+      diags_.reportOnce(DiagCode::E7103, shaderRange(),
+                        fmt::format("the engine supplies '{}' as {}, but '{}' declares it as {}", input.component,
+                                    supplied->type, program_.shader, input.type.name));
     }
   }
 

@@ -112,4 +112,33 @@ std::optional<SuppliedValue> frameValue(std::string_view component, const FrameS
   return SuppliedValue{info->type, std::move(numbers)};
 }
 
+namespace {
+
+constexpr std::array kInstanceValues = {
+    FrameValueInfo{"matModel", "mat4", "model to world, the instance's transform"},
+    FrameValueInfo{"bakeLayer", "float", "the layer of the instance's texture bakes in the draw's texture arrays"},
+    FrameValueInfo{"lodFade", "float",
+                   "level-of-detail transition: 1 fully this level; f in (0, 1) keeps the fraction f of pixels "
+                   "whose dither threshold is below f, -f the complementary pixels"},
+};
+
+}  // namespace
+
+std::span<const FrameValueInfo> instanceValues() { return kInstanceValues; }
+
+std::optional<SuppliedValue> instanceValue(std::string_view component, const InstanceState& instance) {
+  if (component == "matModel") return SuppliedValue{"mat4", flatten(instance.model)};
+  if (component == "bakeLayer") return SuppliedValue{"float", {instance.bakeLayer}};
+  if (component == "lodFade") return SuppliedValue{"float", {instance.fade}};
+  return std::nullopt;
+}
+
+std::string instanceValueNames() {
+  std::string text;
+  for (const FrameValueInfo& v : kInstanceValues) {
+    text += fmt::format("{}{} ({})", text.empty() ? "" : ", ", v.component, v.type);
+  }
+  return text;
+}
+
 }  // namespace spire::engine

@@ -10,6 +10,7 @@
 
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -61,6 +62,21 @@ struct FrameValueInfo {
 };
 // Every per-frame value, for documentation and "did you mean" notes.
 std::span<const FrameValueInfo> frameValues();
+
+// What the engine knows of one instance of an instanced draw (the "instance"
+// role): values that differ between the objects one draw call renders.
+struct InstanceState {
+  glm::mat4 model{1.0F};
+  float bakeLayer = 0.0F;  // the layer of the object's texture bakes in the draw's texture arrays
+  float fade = 1.0F;       // level-of-detail transition weight (lod_policy.h): 1 fully this level
+};
+
+// Every per-instance value, for documentation and messages.
+std::span<const FrameValueInfo> instanceValues();
+// The per-instance value named `component`; nullopt for unknown names.
+std::optional<SuppliedValue> instanceValue(std::string_view component, const InstanceState& instance);
+// "matModel (mat4), ...": the names instanceValue knows.
+std::string instanceValueNames();
 
 // The per-frame value named `component` for an instance with model matrix
 // `model`; model-space values (cameraPos, lightDir) are transformed so that

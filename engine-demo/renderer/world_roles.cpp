@@ -16,6 +16,8 @@ constexpr std::array kTable = {
     WorldPass{"frame", "FrameUniform", WorldRole::FrameParameters, std::nullopt, "per-frame engine values"},
     WorldPass{"material", "MaterialUniform", WorldRole::MaterialParameters, std::nullopt,
               "scene-file material bindings"},
+    WorldPass{"instance", "InstanceUniform", WorldRole::InstanceParameters, std::nullopt,
+              "per-instance engine values, one record per instance"},
     WorldPass{"prebakeUniform", "PrebakeUniform", WorldRole::UniformBake, ShaderStage::Compute,
               "compute over vertices at load, averaged into a per-mesh uniform"},
     WorldPass{"prebakeVertex", "PrebakeVertex", WorldRole::VertexBake, ShaderStage::Compute,
@@ -41,9 +43,12 @@ using reflection::InputKind;
 struct WorldEdge {
   InputKind kind;
   WorldRole from;
-  uint32_t into;         // one bit per WorldRole (roleBit)
-  std::string_view how;  // how the engine binds it, for readers of the table
+  uint32_t into;             // one bit per WorldRole (roleBit)
+  std::string_view how;      // how the engine binds it, for readers of the table
+  bool perInstance = false;  // buffer records read at gl_InstanceIndex, not per vertex or invocation
 };
+
+constexpr std::string_view kInstanceIndex = "gl_InstanceIndex";
 
 constexpr uint32_t roleBit(WorldRole role) { return 1U << static_cast<uint32_t>(role); }
 
@@ -78,6 +83,12 @@ constexpr std::array kEdges = {
               "std430 records of the mesh's vertices"},
     WorldEdge{InputKind::BufferMember, WorldRole::VertexBake, roleBit(WorldRole::VertexStage) | kPassVertices,
               "the vertex bake's records, read at gl_VertexIndex"},
+    // Instanced drawing: one record per instance, read at gl_InstanceIndex,
+    // so that objects with different values share one draw.
+    WorldEdge{InputKind::BufferMember, WorldRole::InstanceParameters, roleBit(WorldRole::VertexStage),
+              "per-instance engine values, one record per instance", true},
+    WorldEdge{InputKind::BufferMember, WorldRole::UniformBake, roleBit(WorldRole::VertexStage),
+              "the uniform bake's averages of each instance's object, one record per instance", true},
     WorldEdge{InputKind::Texture, WorldRole::TextureBake, kDraw, "the bake's render targets as sampled images"},
     WorldEdge{InputKind::Texture, WorldRole::ScreenPassFragment, roleBit(WorldRole::FragmentStage),
               "the low-resolution pass's targets, rendered earlier in the frame"},
@@ -86,9 +97,10 @@ constexpr std::array kEdges = {
     WorldEdge{InputKind::Sampler, WorldRole::MaterialParameters, kBakes | kDraw, "the bound scene texture"},
 };
 
-const WorldEdge* findEdge(InputKind kind, WorldRole from, WorldRole into) {
+const WorldEdge* findEdge(const reflection::KernelInput& input, WorldRole from, WorldRole into) {
+  const bool perInstance = input.kind == InputKind::BufferMember && input.index == kInstanceIndex;
   const auto it = std::find_if(kEdges.begin(), kEdges.end(), [&](const WorldEdge& e) {
-    return e.kind == kind && e.from == from && (e.into & roleBit(into)) != 0;
+    return e.kind == input.kind && e.from == from && (e.into & roleBit(into)) != 0 && e.perInstance == perInstance;
   });
   return it == kEdges.end() ? nullptr : &*it;
 }
@@ -102,7 +114,8 @@ std::string edgesFrom(WorldRole from) {
     for (const WorldPass& p : kTable) {
       if (edge.into & roleBit(p.kind)) into += fmt::format("{}{}", into.empty() ? "" : ", ", p.role);
     }
-    text += fmt::format("{}{} into {}", text.empty() ? "" : "; ", reflection::inputKindName(edge.kind), into);
+    text += fmt::format("{}{}{} into {}", text.empty() ? "" : "; ", reflection::inputKindName(edge.kind),
+                        edge.perInstance ? " (per instance)" : "", into);
   }
   return text.empty() ? "nothing" : text;
 }
@@ -114,12 +127,13 @@ spire::Expected<void, Failure> checkEdges(const reflection::Kernel& kernel, cons
   for (size_t i = 0; i < kernel.inputs.size() && i < inputPasses.size(); ++i) {
     const reflection::KernelInput& input = kernel.inputs[i];
     const WorldPass* from = inputPasses[i];
-    if (!from || findEdge(input.kind, from->kind, pass.kind)) continue;
+    if (!from || findEdge(input, from->kind, pass.kind)) continue;
+    const bool perInstance = input.kind == InputKind::BufferMember && input.index == kInstanceIndex;
     return Failure{fmt::format(
-        "the {} kernel ({}) reads '{}' from world '{}' ({}) as a {} input ({}), an edge this engine does not "
+        "the {} kernel ({}) reads '{}' from world '{}' ({}) as a {}{} input ({}), an edge this engine does not "
         "implement; out of {} it implements: {}",
         kernel.world, pass.role, input.component, input.from, from->role, reflection::inputKindName(input.kind),
-        input.strategy, from->role, edgesFrom(from->kind))};
+        perInstance ? " (per instance)" : "", input.strategy, from->role, edgesFrom(from->kind))};
   }
   return {};
 }

@@ -24,6 +24,7 @@ enum class WorldRole {
   MeshAttributes,      // per-vertex attributes of the mesh (vertex buffer, or records for compute)
   FrameParameters,     // per-frame values: matrices, camera, light (FrameValues), or material overrides
   MaterialParameters,  // per-material values from the scene file's bindings
+  InstanceParameters,  // per-instance values (model matrix, bake layer, transition fade), one record per instance
   // Concrete worlds: kernels the engine runs.
   UniformBake,    // compute over the mesh's vertices, averaged into a per-mesh uniform, once at load
   VertexBake,     // compute per vertex into a buffer read as vertex data, once at load

@@ -1,5 +1,7 @@
 #include "vk/image.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 namespace spire::vk {
@@ -71,10 +73,15 @@ Expected<Image> Image::create(const Context& ctx, const ImageDesc& desc) {
       result != VK_SUCCESS) {
     return VkError{result, "vkGetPhysicalDeviceImageFormatProperties", {}};
   }
+  if (desc.arrayLayers > formatProps.maxArrayLayers) {
+    return VkError{VK_ERROR_FORMAT_NOT_SUPPORTED, "Image::create",
+                   fmt::format("{} array layers, the device allows {}", desc.arrayLayers, formatProps.maxArrayLayers)};
+  }
 
   Image image;
   image.format_ = desc.format;
   image.extent_ = {desc.width, desc.height};
+  image.layers_ = std::max(desc.arrayLayers, 1U);
 
   VkImageCreateInfo info{};
 
@@ -83,7 +90,7 @@ Expected<Image> Image::create(const Context& ctx, const ImageDesc& desc) {
   info.format = desc.format;
   info.extent = {desc.width, desc.height, 1};
   info.mipLevels = 1;
-  info.arrayLayers = 1;
+  info.arrayLayers = image.layers_;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = desc.usage;
@@ -107,9 +114,9 @@ Expected<Image> Image::create(const Context& ctx, const ImageDesc& desc) {
 
   viewInfo.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
   viewInfo.image = raw;
-  viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  viewInfo.viewType = desc.arrayLayers > 0 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   viewInfo.format = desc.format;
-  viewInfo.subresourceRange = {image.aspect(), 0, 1, 0, 1};
+  viewInfo.subresourceRange = {image.aspect(), 0, 1, 0, image.layers_};
   VkImageView view = VK_NULL_HANDLE;
   if (auto result = vkCreateImageView(ctx.device(), &viewInfo, nullptr, &view); result != VK_SUCCESS) {
     return VkError{result, "vkCreateImageView", {}};
@@ -130,7 +137,7 @@ void Image::transition(VkCommandBuffer cmd, VkImageLayout newLayout) {
   barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image_.get();
-  barrier.subresourceRange = {aspect(), 0, 1, 0, 1};
+  barrier.subresourceRange = {aspect(), 0, 1, 0, layers_};
   vkCmdPipelineBarrier(cmd, src.stage, dst.stage, 0, 0, nullptr, 0, nullptr, 1, &barrier);
   layout_ = newLayout;
 }
@@ -166,6 +173,25 @@ Expected<void> Image::copyFromBuffer(VkCommandBuffer cmd, const Buffer& src) {
   region.imageSubresource = {aspect(), 0, 0, 1};
   region.imageExtent = {extent_.width, extent_.height, 1};
   vkCmdCopyBufferToImage(cmd, src.handle(), image_.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+  return {};
+}
+
+Expected<void> Image::copyLayerFrom(VkCommandBuffer cmd, Image& src, uint32_t layer) {
+  if (layer >= layers_ || src.format_ != format_ || src.extent_.width != extent_.width ||
+      src.extent_.height != extent_.height || src.layers_ != 1) {
+    return VkError{VK_ERROR_FORMAT_NOT_SUPPORTED, "Image::copyLayerFrom",
+                   fmt::format("a {}x{} image of format {} does not fit layer {} of a {}x{}x{} array of format {}",
+                               src.extent_.width, src.extent_.height, static_cast<int>(src.format_), layer,
+                               extent_.width, extent_.height, layers_, static_cast<int>(format_))};
+  }
+  src.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  VkImageCopy region{};
+  region.srcSubresource = {aspect(), 0, 0, 1};
+  region.dstSubresource = {aspect(), 0, layer, 1};
+  region.extent = {extent_.width, extent_.height, 1};
+  vkCmdCopyImage(cmd, src.image_.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image_.get(),
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
   return {};
 }
 

@@ -1,5 +1,5 @@
-// 2D device-local images (render targets, textures, depth buffers) with a
-// view, tracked layout transitions and copy-to-buffer readback; samplers.
+// 2D device-local images (render targets, textures, depth buffers, texture
+// arrays) with a view, tracked layout transitions and copy-to-buffer readback; samplers.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -24,6 +24,9 @@ struct ImageDesc {
   uint32_t height = 0;
   VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
   VkImageUsageFlags usage = 0;
+  // More than 0: an array of that many layers whose view is a 2D array
+  // (sampler2DArray); 0: one layer with a 2D view.
+  uint32_t arrayLayers = 0;
 };
 
 class Image {
@@ -36,6 +39,7 @@ class Image {
   VkImageView view() const { return view_.get(); }
   VkFormat format() const { return format_; }
   VkExtent2D extent() const { return extent_; }
+  uint32_t layerCount() const { return layers_; }
   VkImageAspectFlags aspect() const {
     return isDepthFormat(format_) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
   }
@@ -59,6 +63,10 @@ class Image {
   // byteSize() tightly packed bytes from `src` into the whole image. `src`
   // must have TRANSFER_SRC usage.
   Expected<void> copyFromBuffer(VkCommandBuffer cmd, const Buffer& src);
+  // Transitions both images and copies the whole of `src` (one layer, same
+  // extent and format) into layer `layer` of this image; for texture arrays
+  // assembled from separately baked textures.
+  Expected<void> copyLayerFrom(VkCommandBuffer cmd, Image& src, uint32_t layer);
 
  private:
   Image() = default;
@@ -69,6 +77,7 @@ class Image {
   VkFormat format_ = VK_FORMAT_UNDEFINED;
   VkExtent2D extent_{};
   VkImageLayout layout_ = VK_IMAGE_LAYOUT_UNDEFINED;
+  uint32_t layers_ = 1;
 };
 
 struct SamplerDesc {

@@ -29,10 +29,11 @@ ALLOWED = {
     "vk": {"support"},
     "scene": {"support"},
     "measure": {"support", "scene"},
-    "renderer": {"support", "reflection", "graph", "codegen", "driver", "vk", "scene", "measure"},
-    "tool": {"support", "driver", "renderer", "vk", "scene", "measure"},
-    "tune": {"support", "graph", "driver", "renderer", "tool", "vk", "scene", "measure"},
-    "demo": {"support", "driver", "renderer", "tool", "vk", "scene", "measure"},
+    "lod": {"support", "scene"},
+    "renderer": {"support", "reflection", "graph", "codegen", "driver", "vk", "scene", "measure", "lod"},
+    "tool": {"support", "driver", "renderer", "vk", "scene", "measure", "lod"},
+    "tune": {"support", "graph", "driver", "renderer", "tool", "vk", "scene", "measure", "lod"},
+    "demo": {"support", "driver", "renderer", "tool", "vk", "scene", "measure", "lod"},
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/')

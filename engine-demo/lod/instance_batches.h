@@ -1,0 +1,96 @@
+// Culling and batching of a scene's instances for one frame. Each instance
+// is drawn at the levels its LodSelector state gives; a level of an object
+// type (a "prototype") belongs to a draw group: objects whose programs have
+// the same Vertex and Fragment kernel keys and read the same shared values
+// share one pipeline and its descriptors, whatever their shader is called.
+// A batch is one group's objects in one spatial block (the paper's engine
+// pre-records one command list per block and kernel pair): one pipeline
+// bind, then one instanced draw per mesh.
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "lod/lod_selection.h"
+
+namespace spire::lod {
+
+struct SceneInstance {
+  glm::vec3 center{0.0F};  // of the bounding sphere, world space
+  float radius = 0.0F;
+  uint32_t prototype = 0;
+  uint32_t block = 0;
+};
+
+// What the batcher knows of the object types: the group of each
+// (prototype, level), and each prototype's mesh.
+struct DrawGroups {
+  std::vector<std::vector<uint32_t>> groupOf;  // [prototype][level]
+  std::vector<uint32_t> meshOf;                // [prototype]
+  uint32_t groupCount = 0;
+};
+
+// One instance in a group's record buffer.
+struct InstanceRecord {
+  uint32_t instance = 0;
+  float fade = 1.0F;
+};
+
+struct MeshDraw {
+  uint32_t mesh = 0;
+  uint32_t firstInstance = 0;  // into the group's records
+  uint32_t instanceCount = 0;
+};
+
+struct Batch {
+  uint32_t block = 0;
+  uint32_t group = 0;
+  uint32_t firstDraw = 0;  // into FrameBatches::draws
+  uint32_t drawCount = 0;
+};
+
+struct FrameBatches {
+  std::vector<Batch> batches;                        // by block, then group
+  std::vector<MeshDraw> draws;                       // of every batch, in order
+  std::vector<std::vector<InstanceRecord>> records;  // per group, in draw order
+  uint32_t visibleInstances = 0;
+};
+
+// The six planes (xyz normal, w offset) of the view frustum of `viewProj`,
+// for Vulkan's [0, 1] depth; a point p is inside when dot(plane, (p, 1)) >= 0
+// for all six.
+std::array<glm::vec4, 6> frustumPlanes(const glm::mat4& viewProj);
+bool sphereVisible(const std::array<glm::vec4, 6>& planes, const glm::vec3& center, float radius);
+
+class InstanceBatcher {
+ public:
+  InstanceBatcher(DrawGroups groups, uint32_t blockCount);
+
+  // Culls `instances` against `viewProj` and batches the visible ones at
+  // the levels `selector` gives. `out` is reused from frame to frame.
+  void build(std::span<const SceneInstance> instances, const LodSelector& selector, const glm::mat4& viewProj,
+             FrameBatches& out);
+
+  const DrawGroups& groups() const { return groups_; }
+
+ private:
+  struct Entry {
+    uint32_t bucket;  // block * groupCount + group
+    uint32_t mesh;
+    InstanceRecord record;
+  };
+  void emit(FrameBatches& out) const;
+  DrawGroups groups_;
+  uint32_t blockCount_;
+  std::vector<Entry> entries_;
+  std::vector<Entry> sorted_;
+  std::vector<uint32_t> counts_;
+};
+
+}  // namespace spire::lod

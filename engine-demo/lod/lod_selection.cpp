@@ -1,0 +1,56 @@
+#include "lod/lod_selection.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+
+namespace spire::lod {
+
+uint32_t levelFor(const LodPolicy& policy, float distance, uint32_t current) {
+  const auto last = static_cast<uint32_t>(policy.levels.size() - 1);
+  uint32_t level = std::min(current, last);
+  while (level < last && distance > policy.levels[level].until * (1.0F + policy.hysteresis)) ++level;
+  while (level > 0 && distance < policy.levels[level - 1].until * (1.0F - policy.hysteresis)) --level;
+  return level;
+}
+
+LodSelector::LodSelector(LodPolicy policy, size_t instances) : policy_(std::move(policy)), states_(instances) {}
+
+void LodSelector::reset(std::span<const glm::vec3> centers, const glm::vec3& camera) {
+  for (size_t i = 0; i < states_.size(); ++i) {
+    // Without hysteresis: the band the distance is in.
+    const float d = glm::distance(centers[i], camera);
+    uint32_t level = 0;
+    while (level + 1 < policy_.levels.size() && d > policy_.levels[level].until) ++level;
+    states_[i] = {static_cast<uint8_t>(level), static_cast<uint8_t>(level), 0};
+  }
+}
+
+void LodSelector::update(std::span<const glm::vec3> centers, const glm::vec3& camera) {
+  const auto frames = static_cast<uint16_t>(policy_.transitionFrames);
+  for (size_t i = 0; i < states_.size(); ++i) {
+    LodState& s = states_[i];
+    if (s.fadeLeft > 0) --s.fadeLeft;
+    const uint32_t level = levelFor(policy_, glm::distance(centers[i], camera), s.level);
+    if (level == s.level) continue;
+    s.from = s.level;
+    s.level = static_cast<uint8_t>(level);
+    s.fadeLeft = frames;
+  }
+}
+
+uint32_t LodSelector::draws(size_t instance, LevelDraw out[2]) const {
+  const LodState& s = states_[instance];
+  if (s.fadeLeft == 0 || s.from == s.level) {
+    out[0] = {s.level, 1.0F};
+    return 1;
+  }
+  // The new level covers a growing share of the pixels: 1/(T+1) on the
+  // switch's frame, all of them T frames later.
+  const float f = 1.0F - static_cast<float>(s.fadeLeft) / static_cast<float>(policy_.transitionFrames + 1);
+  out[0] = {s.level, f};
+  out[1] = {s.from, -f};
+  return 2;
+}
+
+}  // namespace spire::lod

@@ -1,0 +1,58 @@
+// Per-instance level selection, every frame: the band of the object's
+// distance from the camera, with hysteresis at band edges, and a dithered
+// cross-fade of transitionFrames frames after each switch (He et al. 2015,
+// section 6.3), during which the object is drawn at both levels with
+// complementary pixel masks, so that it neither pops nor doubles.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "lod/lod_policy.h"
+
+namespace spire::lod {
+
+// The level for an object at `distance` that is now at `current`: one band
+// farther only beyond the band's edge times (1 + hysteresis), one nearer
+// only within the nearer band's edge times (1 - hysteresis); repeated, so a
+// jump across several bands lands in the right one.
+uint32_t levelFor(const LodPolicy& policy, float distance, uint32_t current);
+
+struct LodState {
+  uint8_t level = 0;      // the level switched to
+  uint8_t from = 0;       // the level switched from, while fading
+  uint16_t fadeLeft = 0;  // frames of the cross-fade still to come; 0: not fading
+};
+
+// One level an instance is drawn at this frame, with its lodFade value:
+// 1 draws every pixel; f in (0, 1) the pixels whose dither threshold is
+// below f; -f the others. The two draws of a fading object carry f and -f.
+struct LevelDraw {
+  uint32_t level = 0;
+  float fade = 1.0F;
+};
+
+class LodSelector {
+ public:
+  LodSelector(LodPolicy policy, size_t instances);
+
+  // Starts every instance at the level of its distance, without fading (the
+  // first frame of a camera path).
+  void reset(std::span<const glm::vec3> centers, const glm::vec3& camera);
+  // One frame: each instance's level from its distance, fades advanced.
+  void update(std::span<const glm::vec3> centers, const glm::vec3& camera);
+
+  const LodState& state(size_t instance) const { return states_[instance]; }
+  // The draws of `instance` this frame: one, or two while it fades.
+  uint32_t draws(size_t instance, LevelDraw out[2]) const;
+  const LodPolicy& policy() const { return policy_; }
+
+ private:
+  LodPolicy policy_;
+  std::vector<LodState> states_;
+};
+
+}  // namespace spire::lod

@@ -1,0 +1,133 @@
+#include "lod/instance_batches.h"
+
+#include <gtest/gtest.h>
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+
+#include <map>
+#include <random>
+#include <set>
+
+namespace spire::lod {
+namespace {
+
+LodPolicy twoLevels() {
+  LodPolicy policy;
+  policy.levels = {{"HQ", 10.0F, {}}, {"LQ", std::numeric_limits<float>::infinity(), {}}};
+  policy.hysteresis = 0.0F;
+  policy.transitionFrames = 0;
+  return policy;
+}
+
+glm::mat4 viewProj(const glm::vec3& eye, const glm::vec3& target) {
+  glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(60.0F), 1.0F, 0.1F, 1000.0F);
+  projection[1][1] *= -1.0F;
+  return projection * glm::lookAt(eye, target, glm::vec3(0, 1, 0));
+}
+
+TEST(InstanceBatchesTest, FrustumKeepsWhatIsInFrontAndDropsWhatIsBehind) {
+  const auto planes = frustumPlanes(viewProj(glm::vec3(0), glm::vec3(0, 0, -1)));
+  EXPECT_TRUE(sphereVisible(planes, {0, 0, -5}, 0.5F));
+  EXPECT_FALSE(sphereVisible(planes, {0, 0, 5}, 0.5F));
+  EXPECT_FALSE(sphereVisible(planes, {100, 0, -5}, 0.5F));
+  EXPECT_TRUE(sphereVisible(planes, {3.3F, 0, -5}, 0.5F));  // straddles the right plane
+  EXPECT_FALSE(sphereVisible(planes, {0, 0, -2000}, 1.0F));
+}
+
+// Two prototypes whose far level shares a group (locked kernels), one
+// whose far level does not: the shared group's instances of different
+// prototypes land in one batch per block, one draw per mesh.
+TEST(InstanceBatchesTest, PrototypesSharingAGroupLandInOneBatchPerBlock) {
+  DrawGroups groups;
+  groups.groupOf = {{0, 3}, {1, 3}, {2, 4}};  // [prototype][level]: groups 3 shared by prototypes 0 and 1
+  groups.meshOf = {0, 1, 2};
+  groups.groupCount = 5;
+  std::vector<SceneInstance> instances;
+  for (uint32_t block = 0; block < 2; ++block) {
+    for (uint32_t p = 0; p < 3; ++p) {
+      for (int k = 0; k < 4; ++k) instances.push_back({{float(k), 0, -50.0F - float(block)}, 1.0F, p, block});
+    }
+  }
+  LodSelector selector(twoLevels(), instances.size());
+  std::vector<glm::vec3> centers;
+  for (const auto& i : instances) centers.push_back(i.center);
+  selector.reset(centers, glm::vec3(0));
+  InstanceBatcher batcher(groups, 2);
+  FrameBatches out;
+  batcher.build(instances, selector, viewProj(glm::vec3(0), glm::vec3(0, 0, -1)), out);
+  EXPECT_EQ(out.visibleInstances, instances.size());
+  ASSERT_EQ(out.batches.size(), 4U);  // per block: group 3 (prototypes 0 and 1) and group 4
+  for (const Batch& batch : out.batches) {
+    EXPECT_EQ(batch.drawCount, batch.group == 3 ? 2U : 1U);
+    for (uint32_t d = batch.firstDraw; d < batch.firstDraw + batch.drawCount; ++d) {
+      const MeshDraw& draw = out.draws[d];
+      EXPECT_EQ(draw.instanceCount, 4U);
+      for (uint32_t r = draw.firstInstance; r < draw.firstInstance + draw.instanceCount; ++r) {
+        const SceneInstance& instance = instances[out.records[batch.group][r].instance];
+        EXPECT_EQ(instance.block, batch.block);
+        EXPECT_EQ(groups.meshOf[instance.prototype], draw.mesh);
+      }
+    }
+  }
+  EXPECT_EQ(out.records[3].size(), 16U);
+  EXPECT_EQ(out.records[4].size(), 8U);
+}
+
+// Property over random scenes: every visible instance is drawn exactly once
+// per level it is drawn at, in the group of its (prototype, level), in a
+// batch of its block and a draw of its mesh; no batch repeats a (block,
+// group) pair.
+TEST(InstanceBatchesTest, RandomScenesDrawEveryVisibleInstanceOnceInItsGroup) {
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 20; ++trial) {
+    const uint32_t prototypes = 1 + rng() % 5;
+    const uint32_t blocks = 1 + rng() % 9;
+    DrawGroups groups;
+    groups.groupCount = 1 + rng() % 6;
+    for (uint32_t p = 0; p < prototypes; ++p) {
+      groups.groupOf.push_back(
+          {static_cast<uint32_t>(rng() % groups.groupCount), static_cast<uint32_t>(rng() % groups.groupCount)});
+      groups.meshOf.push_back(rng() % 3);
+    }
+    std::uniform_real_distribution<float> pos(-40.0F, 40.0F);
+    std::vector<SceneInstance> instances(200 + rng() % 300);
+    std::vector<glm::vec3> centers;
+    for (auto& i : instances) {
+      i = {{pos(rng), 0.0F, pos(rng)},
+           1.0F,
+           static_cast<uint32_t>(rng() % prototypes),
+           static_cast<uint32_t>(rng() % blocks)};
+      centers.push_back(i.center);
+    }
+    LodSelector selector(twoLevels(), instances.size());
+    selector.reset(centers, glm::vec3(0, 5, 30));
+    const glm::mat4 vp = viewProj(glm::vec3(0, 5, 30), glm::vec3(0));
+    InstanceBatcher batcher(groups, blocks);
+    FrameBatches out;
+    batcher.build(instances, selector, vp, out);
+    const auto planes = frustumPlanes(vp);
+    std::multiset<uint32_t> drawn;
+    std::set<std::pair<uint32_t, uint32_t>> seen;
+    for (const Batch& batch : out.batches) {
+      ASSERT_TRUE(seen.insert({batch.block, batch.group}).second);
+      for (uint32_t d = batch.firstDraw; d < batch.firstDraw + batch.drawCount; ++d) {
+        for (uint32_t r = out.draws[d].firstInstance; r < out.draws[d].firstInstance + out.draws[d].instanceCount;
+             ++r) {
+          const uint32_t index = out.records[batch.group][r].instance;
+          const SceneInstance& i = instances[index];
+          ASSERT_EQ(i.block, batch.block);
+          ASSERT_EQ(groups.meshOf[i.prototype], out.draws[d].mesh);
+          ASSERT_EQ(groups.groupOf[i.prototype][selector.state(index).level], batch.group);
+          drawn.insert(index);
+        }
+      }
+    }
+    for (uint32_t i = 0; i < instances.size(); ++i) {
+      const bool visible = sphereVisible(planes, instances[i].center, instances[i].radius);
+      ASSERT_EQ(drawn.count(i), visible ? 1U : 0U) << "instance " << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace spire::lod

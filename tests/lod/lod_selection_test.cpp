@@ -1,0 +1,86 @@
+#include "lod/lod_selection.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace spire::lod {
+namespace {
+
+LodPolicy threeLevels(float hysteresis = 0.1F, uint32_t transitionFrames = 0) {
+  LodPolicy policy;
+  policy.levels = {{"HQ", 10.0F, {}}, {"MQ", 30.0F, {}}, {"LQ", std::numeric_limits<float>::infinity(), {}}};
+  policy.hysteresis = hysteresis;
+  policy.transitionFrames = transitionFrames;
+  return policy;
+}
+
+TEST(LodSelectionTest, BandsWithHysteresisAtEachEdge) {
+  const LodPolicy policy = threeLevels(0.1F);
+  EXPECT_EQ(levelFor(policy, 5.0F, 0), 0U);
+  EXPECT_EQ(levelFor(policy, 10.5F, 0), 0U);  // within the band's edge * 1.1: stays
+  EXPECT_EQ(levelFor(policy, 11.5F, 0), 1U);
+  EXPECT_EQ(levelFor(policy, 9.5F, 1), 1U);  // within edge * 0.9 of the nearer band: stays
+  EXPECT_EQ(levelFor(policy, 8.5F, 1), 0U);
+  EXPECT_EQ(levelFor(policy, 100.0F, 0), 2U);  // several bands at once
+  EXPECT_EQ(levelFor(policy, 1.0F, 2), 0U);
+}
+
+// Property: over random walks of distances, a level only changes when the
+// distance has left the current band by more than the hysteresis margin,
+// and the level is always one whose band (widened by the margin) holds the
+// distance.
+TEST(LodSelectionTest, RandomWalksSwitchOnlyBeyondTheMargin) {
+  const LodPolicy policy = threeLevels(0.15F);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> step(-2.0F, 2.0F);
+  for (int walk = 0; walk < 50; ++walk) {
+    float d = 20.0F;
+    uint32_t level = levelFor(policy, d, 1);
+    for (int i = 0; i < 500; ++i) {
+      d = std::max(0.0F, d + step(rng));
+      const uint32_t next = levelFor(policy, d, level);
+      const float lo = next == 0 ? 0.0F : policy.levels[next - 1].until * (1.0F - policy.hysteresis);
+      const float hi = policy.levels[next].until * (1.0F + policy.hysteresis);
+      ASSERT_GE(d, lo);
+      ASSERT_LE(d, hi);
+      if (next > level) {
+        ASSERT_GT(d, policy.levels[level].until * (1.0F + policy.hysteresis));
+      }
+      if (next < level) {
+        ASSERT_LT(d, policy.levels[level - 1].until * (1.0F - policy.hysteresis));
+      }
+      level = next;
+    }
+  }
+}
+
+TEST(LodSelectionTest, ASwitchCrossFadesWithComplementaryMasks) {
+  LodSelector selector(threeLevels(0.0F, 3), 1);
+  std::vector<glm::vec3> centers = {{0.0F, 0.0F, 5.0F}};
+  selector.reset(centers, glm::vec3(0.0F));
+  LevelDraw draws[2];
+  ASSERT_EQ(selector.draws(0, draws), 1U);
+  EXPECT_EQ(draws[0].level, 0U);
+  centers[0].z = 20.0F;  // into MQ
+  std::vector<float> fades;
+  for (int frame = 0; frame < 5; ++frame) {
+    selector.update(centers, glm::vec3(0.0F));
+    const uint32_t n = selector.draws(0, draws);
+    if (n == 1) {
+      EXPECT_EQ(draws[0].level, 1U);
+      EXPECT_EQ(draws[0].fade, 1.0F);
+      fades.push_back(1.0F);
+      continue;
+    }
+    EXPECT_EQ(draws[0].level, 1U);
+    EXPECT_EQ(draws[1].level, 0U);
+    EXPECT_EQ(draws[1].fade, -draws[0].fade);
+    fades.push_back(draws[0].fade);
+  }
+  // 1/4, 2/4, 3/4 of the pixels, then the new level alone.
+  EXPECT_EQ(fades, (std::vector<float>{0.25F, 0.5F, 0.75F, 1.0F, 1.0F}));
+}
+
+}  // namespace
+}  // namespace spire::lod
