@@ -83,7 +83,7 @@ enum class InputKind {
   Varying,        // an `in` variable at `location`
   UniformMember,  // a member of uniform block `block` at `offset`
   Sampler,        // an opaque uniform of its own at `slot`
-  Texture,        // a sampler2D at `slot`, fetched at `uv`
+  Texture,        // a sampler2D (sampler2DArray with a `layer`) at `slot`, fetched at `uv`
   BufferMember,   // a member of the records of storage block `block`, read at `index`
   PushConstant,   // a member of the kernel's push-constant block at `offset`
 };
@@ -104,9 +104,9 @@ struct KernelInput {
   uint32_t offset = 0;    // UniformMember, BufferMember, PushConstant
   std::string sampler;    // Texture
   std::string uv;         // Texture: GLSL expression in this kernel
-  uint32_t channels = 0;  // Texture: components kept, 1 to 4
-  std::string index;      // BufferMember: gl_VertexIndex or gl_GlobalInvocationID.x
   std::string layer;      // Texture: GLSL expression of the array layer; empty for a sampler2D
+  uint32_t channels = 0;  // Texture: components kept, 1 to 4
+  std::string index;      // BufferMember: gl_VertexIndex, gl_InstanceIndex or gl_GlobalInvocationID.x
   bool operator==(const KernelInput&) const = default;
 };
 

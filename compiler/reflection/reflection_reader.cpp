@@ -94,6 +94,7 @@ Result readInputFields(const Json& json, const std::string& what, KernelInput& i
   if (input.kind == InputKind::Texture) {
     input.sampler = json.at("sampler").get<std::string>();
     input.uv = json.at("uv").get<std::string>();
+    if (json.contains("layer")) input.layer = json.at("layer").get<std::string>();
     if (auto r = readNumber(json, "channels", what, input.channels); !r) return r;
     if (input.channels < 1 || input.channels > 4) return fmt::format("{}: \"channels\" must be 1 to 4", what);
   }

@@ -48,6 +48,7 @@ Json inputJson(const KernelInput& in) {
   if (in.kind == InputKind::Texture) {
     entry["sampler"] = in.sampler;
     entry["uv"] = in.uv;
+    if (!in.layer.empty()) entry["layer"] = in.layer;
     entry["channels"] = in.channels;
   } else if (in.kind == InputKind::UniformMember || in.kind == InputKind::BufferMember) {
     entry["block"] = in.block;

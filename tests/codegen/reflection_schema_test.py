@@ -8,7 +8,8 @@ without decisions and with every examples/decisions/*.decisions file, over
 examples/terrain_five_world.spire without decisions and with every
 examples/decisions/five_world/*.decisions file, over examples/couch.spire
 without decisions and with every examples/decisions/couch/*.decisions file,
-over examples/lod_library.spire, over the engine's test shaders
+over examples/lod_library.spire and examples/lod_materials.spire
+(instanceImport, textureArrayImport's "layer"), over the engine's test shaders
 tests/data/engine/NAME.spire without decisions and with every
 tests/data/engine/NAME_*.decisions file, and over a small pipeline written into SCRATCH_DIR
 that exercises what the examples do not (bufferImport, bufferExport, hints,
@@ -263,6 +264,7 @@ def main(argv):
         for name in decision_files(decisions_dir):
             runs.append((f"{case}-{name}", [source, "--decisions", f"{decisions_dir}/{name}.decisions"]))
     runs.append(("lod_library", ["examples/lod_library.spire"]))
+    runs.append(("lod_materials", ["examples/lod_materials.spire"]))
     # The engine's test shaders: NAME.spire with each NAME_*.decisions.
     engine_dir = "tests/data/engine"
     engine_sources = sorted(name[:-len(".spire")] for name in os.listdir(os.path.join(root, engine_dir))

@@ -33,10 +33,18 @@ const std::vector<Target> kTargets = {
     {"object_space.spire", "ObjectSpacePipeline", {"ObjSpaceVertex", "ObjSpaceFrag"}},
 };
 
+// The examples written for InstancedPipeline read its per-instance values
+// (matModel, lodFade), which no other pipeline provides: they are not
+// retargeted.
+bool readsInstanceValues(const fs::path& example) {
+  const std::string name = example.filename().string();
+  return name == "lod_levels.spire" || name == "lod_materials.spire";
+}
+
 std::vector<fs::path> exampleFiles() {
   std::vector<fs::path> files;
   for (const auto& entry : fs::directory_iterator(kRoot / "examples")) {
-    if (entry.path().extension() == ".spire") files.push_back(entry.path());
+    if (entry.path().extension() == ".spire" && !readsInstanceValues(entry.path())) files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
   return files;

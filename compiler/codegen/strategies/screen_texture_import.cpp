@@ -22,7 +22,8 @@ class ScreenTextureImport final : public Strategy {
                       "fragment world, not into '{}'",
                       site.consumer.world())};
     }
-    return emitTextureFetches(site, fmt::format("(gl_FragCoord.xy / {})", site.args.at(0)), "screenTextureImport");
+    const std::string uv = fmt::format("(gl_FragCoord.xy / {})", site.args.at(0));
+    return emitTextureFetches(site, {"sampler2D", uv, uv, ""}, "screenTextureImport");
   }
 
  private:

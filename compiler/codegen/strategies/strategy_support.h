@@ -38,10 +38,25 @@ struct BlockDeclaration {
 BlockDeclaration declareBlock(KernelBuilder& kernel, const std::string& hint, const std::vector<KernelValue>& values,
                               BlockLayout layout, std::string_view qualifier, std::string_view strategy);
 
-// One sampler per value of `site`, each fetched at the GLSL expression `uv`
-// in the consuming kernel and reflected as a texture input of `strategy`.
-// Float scalars and vectors only; honours [Encoding: "signed"].
-Expected<void, Failure> emitTextureFetches(ImportSite& site, const std::string& uv, std::string_view strategy);
+// How emitTextureFetches samples: the sampler type it declares, the GLSL
+// coordinate expression it passes to texture(), and what it reflects.
+struct TextureFetch {
+  std::string samplerType = "sampler2D";
+  std::string coordinate;  // e.g. "vert_uv" or "vec3(vert_uv, bakeLayer)"
+  std::string uv;          // reflected `uv`: the 2D part of `coordinate`
+  std::string layer;       // reflected `layer` (sampler2DArray only)
+};
+
+// One sampler per value of `site`, each fetched at `at.coordinate` in the
+// consuming kernel and reflected as a texture input of `strategy`. Float
+// scalars and vectors only; honours [Encoding: "signed"].
+Expected<void, Failure> emitTextureFetches(ImportSite& site, const TextureFetch& at, std::string_view strategy);
+
+// The values of `site` read from a std430 `readonly buffer` of the
+// producer's records (site.producerOutputs) at the GLSL expression `index`,
+// reflected as buffer members of `strategy`; shared by bufferImport and
+// instanceImport.
+void emitRecordFetches(ImportSite& site, const std::string& index, std::string_view strategy);
 
 // `flat` where GLSL requires it for integer varyings.
 bool needsFlat(const sem::Type* type);
