@@ -37,13 +37,14 @@ void InstanceBatcher::build(std::span<const SceneInstance> instances, const LodS
     const uint32_t n = selector.draws(i, draws);
     for (uint32_t d = 0; d < n; ++d) {
       const uint32_t group = groups_.groupOf[instance.prototype][draws[d].level];
-      const uint32_t bucket = instance.block * groups_.groupCount + group;
+      const uint32_t block = draws[d].fade < 1.0F ? blockCount_ + instance.block : instance.block;
+      const uint32_t bucket = block * groups_.groupCount + group;
       entries_.push_back({bucket, groups_.meshOf[instance.prototype], {i, draws[d].fade}});
     }
   }
   // A counting sort by (block, group), then by mesh within each: the
   // buckets are few, so this is linear where a comparison sort is not.
-  counts_.assign(size_t{blockCount_} * groups_.groupCount + 1, 0);
+  counts_.assign(size_t{2} * blockCount_ * groups_.groupCount + 1, 0);
   for (const Entry& e : entries_) ++counts_[e.bucket + 1];
   for (size_t b = 1; b < counts_.size(); ++b) counts_[b] += counts_[b - 1];
   sorted_.resize(entries_.size());
@@ -71,7 +72,10 @@ void InstanceBatcher::emit(FrameBatches& out) const {
     const uint32_t group = e.bucket % groups_.groupCount;
     const bool newBatch = i == 0 || sorted_[i - 1].bucket != e.bucket;
     if (newBatch) {
-      out.batches.push_back({e.bucket / groups_.groupCount, group, static_cast<uint32_t>(out.draws.size()), 0});
+      const uint32_t block = e.bucket / groups_.groupCount;
+      const bool overlay = block >= blockCount_;
+      out.batches.push_back(
+          {overlay ? block - blockCount_ : block, group, overlay, static_cast<uint32_t>(out.draws.size()), 0});
     }
     if (newBatch || sorted_[i - 1].mesh != e.mesh) {
       out.draws.push_back({e.mesh, static_cast<uint32_t>(out.records[group].size()), 0});

@@ -51,6 +51,9 @@ struct MeshDraw {
 struct Batch {
   uint32_t block = 0;
   uint32_t group = 0;
+  // Instances fading into this level (fade < 1), drawn blended after every
+  // opaque batch so that the level they leave is already in the image.
+  bool overlay = false;
   uint32_t firstDraw = 0;  // into FrameBatches::draws
   uint32_t drawCount = 0;
 };
@@ -81,7 +84,7 @@ class InstanceBatcher {
 
  private:
   struct Entry {
-    uint32_t bucket;  // block * groupCount + group
+    uint32_t bucket;  // (overlay * blockCount + block) * groupCount + group
     uint32_t mesh;
     InstanceRecord record;
   };

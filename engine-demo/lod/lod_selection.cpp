@@ -48,8 +48,8 @@ uint32_t LodSelector::draws(size_t instance, LevelDraw out[2]) const {
   // The new level covers a growing share of the pixels: 1/(T+1) on the
   // switch's frame, all of them T frames later.
   const float f = 1.0F - static_cast<float>(s.fadeLeft) / static_cast<float>(policy_.transitionFrames + 1);
-  out[0] = {s.level, f};
-  out[1] = {s.from, -f};
+  out[0] = {s.from, 1.0F};
+  out[1] = {s.level, f};
   return 2;
 }
 

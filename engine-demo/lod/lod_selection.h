@@ -1,8 +1,9 @@
 // Per-instance level selection, every frame: the band of the object's
-// distance from the camera, with hysteresis at band edges, and a dithered
-// cross-fade of transitionFrames frames after each switch (He et al. 2015,
-// section 6.3), during which the object is drawn at both levels with
-// complementary pixel masks, so that it neither pops nor doubles.
+// distance from the camera, with hysteresis at band edges, and a cross-fade
+// of transitionFrames frames after each switch (He et al. 2015, section
+// 6.3): the object is drawn at the level it leaves, opaque, and at the level
+// it enters blended over it with a weight that grows to 1, so that the
+// switch does not pop.
 #pragma once
 
 #include <glm/vec3.hpp>
@@ -28,8 +29,8 @@ struct LodState {
 };
 
 // One level an instance is drawn at this frame, with its lodFade value:
-// 1 draws every pixel; f in (0, 1) the pixels whose dither threshold is
-// below f; -f the others. The two draws of a fading object carry f and -f.
+// 1 opaque; f in (0, 1) blended over what is drawn (the level the object
+// leaves) with weight f, so the image is f * new + (1 - f) * old.
 struct LevelDraw {
   uint32_t level = 0;
   float fade = 1.0F;
@@ -46,7 +47,8 @@ class LodSelector {
   void update(std::span<const glm::vec3> centers, const glm::vec3& camera);
 
   const LodState& state(size_t instance) const { return states_[instance]; }
-  // The draws of `instance` this frame: one, or two while it fades.
+  // The draws of `instance` this frame: one, or two while it fades (the
+  // level it leaves, opaque, then the one it enters, blended).
   uint32_t draws(size_t instance, LevelDraw out[2]) const;
   const LodPolicy& policy() const { return policy_; }
 

@@ -38,6 +38,31 @@ Expected<void> addBakeArrays(const vk::Context& ctx, const KernelProgram& vertex
   return {};
 }
 
+Expected<vk::Pipeline> buildPipeline(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& vertex,
+                                     const KernelProgram& fragment, const DrawItem& item,
+                                     const DrawPlacement& placement, const TargetFormats& formats, bool overlay) {
+  auto vertexModule = modules.get(ctx, vertex.hash, vertex.spirv);
+  if (!vertexModule) return vertexModule.error();
+  auto fragmentModule = modules.get(ctx, fragment.hash, fragment.spirv);
+  if (!fragmentModule) return fragmentModule.error();
+  vk::GraphicsPipelineBuilder builder;
+  builder.vertexShader(*vertexModule).fragmentShader(*fragmentModule);
+  item.vertexInputs.applyTo(builder);
+  for (VkFormat format : formats.colors) builder.colorFormat(format);
+  if (overlay) {
+    builder.depthFormat(formats.depth, false, VK_COMPARE_OP_LESS_OR_EQUAL).alphaBlend();
+  } else {
+    builder.depthFormat(formats.depth);
+  }
+  builder.descriptorSetLayouts(item.descriptors.layoutHandles());
+  // Meshes are wound counter-clockwise seen from the front, and the
+  // projection's y flip keeps that winding on screen.
+  builder.cullMode(placement.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT, VK_FRONT_FACE_COUNTER_CLOCKWISE);
+  auto pipeline = builder.build(ctx);
+  if (!pipeline) return Error::fromVk(pipeline.error());
+  return std::move(pipeline).value();
+}
+
 }  // namespace
 
 Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
@@ -69,6 +94,8 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
   for (const auto& pass : item.passes) passTextures.insert(pass->textures().begin(), pass->textures().end());
   BindingSources drawSources = sources;
   drawSources.passTextures = &passTextures;
+  drawSources.instanceCapacity = placement.instanceCapacity;
+  if (placement.textureArrays) drawSources.textureArrays = placement.textureArrays;
   if (auto arrays = addBakeArrays(ctx, *vertex, *fragment, drawSources, item); !arrays) return arrays.error();
   for (const KernelProgram* kernel : {vertex, fragment}) {
     auto bound = bindKernel(ctx, *kernel, drawSources);
@@ -80,25 +107,22 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
   if (!descriptors) return descriptors.error();
   item.descriptors = std::move(descriptors).value();
 
-  auto vertexModule = modules.get(ctx, vertex->hash, vertex->spirv);
-  if (!vertexModule) return vertexModule.error();
-  auto fragmentModule = modules.get(ctx, fragment->hash, fragment->spirv);
-  if (!fragmentModule) return fragmentModule.error();
   auto vertexInput = vertexInputs(*vertex, sources);
   if (!vertexInput) return vertexInput.error();
   item.vertexInputs = std::move(vertexInput).value();
-  vk::GraphicsPipelineBuilder builder;
-  builder.vertexShader(*vertexModule).fragmentShader(*fragmentModule);
-  item.vertexInputs.applyTo(builder);
-  for (VkFormat format : formats.colors) builder.colorFormat(format);
-  builder.depthFormat(formats.depth).descriptorSetLayouts(item.descriptors.layoutHandles());
-  // Meshes are wound counter-clockwise seen from the front, and the
-  // projection's y flip keeps that winding on screen.
-  builder.cullMode(placement.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT, VK_FRONT_FACE_COUNTER_CLOCKWISE);
-  auto pipeline = builder.build(ctx);
-  if (!pipeline) return Error::fromVk(pipeline.error());
+  auto pipeline = buildPipeline(ctx, modules, *vertex, *fragment, item, placement, formats, false);
+  if (!pipeline) return pipeline.error();
   item.pipeline = std::move(pipeline).value();
   return item;
+}
+
+Expected<vk::Pipeline> createOverlayPipeline(const vk::Context& ctx, ModuleCache& modules,
+                                             const VariantProgram& program, const DrawItem& item,
+                                             const DrawPlacement& placement, const TargetFormats& formats) {
+  const KernelProgram* vertex = program.kernelWithRole(WorldRole::VertexStage);
+  const KernelProgram* fragment = program.kernelWithRole(WorldRole::FragmentStage);
+  if (!vertex || !fragment) return Error{fmt::format("'{}' has no kernels to draw with", program.shader), {}, {}};
+  return buildPipeline(ctx, modules, *vertex, *fragment, item, placement, formats, true);
 }
 
 void updateFrameValues(const DrawItem& item, const FrameState& frame) {

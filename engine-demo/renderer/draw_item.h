@@ -28,6 +28,12 @@ struct DrawPlacement {
   glm::mat4 model{1.0F};
   bool doubleSided = false;  // otherwise back faces (clockwise on screen) are culled
   VkExtent2D screen{};       // the frame's resolution, which sizes a multi-rate pass
+  // Records of each per-instance block (instanceImport): the most instances
+  // one draw of this item renders.
+  uint32_t instanceCapacity = 1;
+  // Texture bakes as arrays with one layer per object the item draws
+  // (bake_arrays.h); null: the item's own bakes, as arrays of one layer.
+  const PassTextures* textureArrays = nullptr;
 };
 
 struct DrawItem {
@@ -48,6 +54,13 @@ Expected<std::vector<std::string>> fragmentOutputs(const KernelProgram& fragment
 Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
                                   const BindingSources& sources, const DrawPlacement& placement,
                                   const TargetFormats& formats);
+
+// The item's pipeline again, over the same descriptor set layouts, blended
+// by alpha and depth-tested LESS_OR_EQUAL without writing depth: a second
+// draw of the same surfaces over the first (level-of-detail cross-fades).
+Expected<vk::Pipeline> createOverlayPipeline(const vk::Context& ctx, ModuleCache& modules,
+                                             const VariantProgram& program, const DrawItem& item,
+                                             const DrawPlacement& placement, const TargetFormats& formats);
 
 void updateFrameValues(const DrawItem& item, const FrameState& frame);
 // Which of a frame's work one submission records: a stereo frame renders

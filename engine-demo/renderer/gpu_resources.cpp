@@ -62,7 +62,9 @@ Expected<vk::Image> uploadImage(const vk::Context& ctx, uint32_t width, uint32_t
   desc.width = width;
   desc.height = height;
   desc.format = format;
-  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  // TRANSFER_SRC: a baked texture is also copied into the layer of a
+  // texture array (bake_arrays.h).
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   auto image = vk::Image::create(ctx, desc);
   if (!image) return Error::fromVk(image.error());
   auto staging = vk::Buffer::create(ctx, std::max<VkDeviceSize>(bytes.size(), 1), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);

@@ -35,30 +35,51 @@ Expected<FrameTiming> RenderTarget::render(const vk::Context& ctx, std::span<con
                                            const FrameState& frame, const glm::vec4& clearColor,
                                            const FrameWork& work) {
   for (const DrawItem* item : items) updateFrameValues(*item, frame);
-  const vk::HostTimer host;
-  auto submitted = ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    if (!work.draw) {
+  if (!work.draw) {
+    return submitTimed(ctx, [&](VkCommandBuffer cmd) {
       timer_->begin(cmd);
       for (const DrawItem* item : items) recordPasses(ctx, cmd, *item, work);
       timer_->end(cmd);
-      return;
-    }
-    std::vector<vk::ColorTarget> colors;
-    for (vk::Image& image : colors_) {
-      image.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-      VkClearColorValue clear{};
-      std::memcpy(clear.float32, &clearColor[0], sizeof clear.float32);
-      colors.push_back({image.view(), clear});
-    }
-    depth_->transition(cmd, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
-    timer_->begin(cmd);
-    // Per-frame passes are part of the frame's cost.
+    });
+  }
+  // Per-frame passes are part of the frame's cost.
+  const auto passes = [&](VkCommandBuffer cmd) {
     for (const DrawItem* item : items) recordPasses(ctx, cmd, *item, work);
-    vk::beginRendering(ctx, cmd, extent(), colors, vk::DepthTarget{depth_->view(), 1.0F});
+  };
+  const auto draws = [&](VkCommandBuffer cmd) {
     for (const DrawItem* item : items) recordDraw(cmd, *item);
-    vk::endRendering(ctx, cmd);
-    timer_->end(cmd);
-  });
+  };
+  return submitTimed(ctx, [&](VkCommandBuffer cmd) { recordFrame(ctx, cmd, clearColor, passes, draws); });
+}
+
+Expected<FrameTiming> RenderTarget::renderWith(const vk::Context& ctx, const glm::vec4& clearColor,
+                                               const std::function<void(VkCommandBuffer)>& draw) {
+  return submitTimed(ctx, [&](VkCommandBuffer cmd) { recordFrame(ctx, cmd, clearColor, {}, draw); });
+}
+
+void RenderTarget::recordFrame(const vk::Context& ctx, VkCommandBuffer cmd, const glm::vec4& clearColor,
+                               const std::function<void(VkCommandBuffer)>& before,
+                               const std::function<void(VkCommandBuffer)>& draw) {
+  std::vector<vk::ColorTarget> colors;
+  for (vk::Image& image : colors_) {
+    image.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    VkClearColorValue clear{};
+    std::memcpy(clear.float32, &clearColor[0], sizeof clear.float32);
+    colors.push_back({image.view(), clear});
+  }
+  depth_->transition(cmd, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+  timer_->begin(cmd);
+  if (before) before(cmd);
+  vk::beginRendering(ctx, cmd, extent(), colors, vk::DepthTarget{depth_->view(), 1.0F});
+  draw(cmd);
+  vk::endRendering(ctx, cmd);
+  timer_->end(cmd);
+}
+
+Expected<FrameTiming> RenderTarget::submitTimed(const vk::Context& ctx,
+                                                const std::function<void(VkCommandBuffer)>& record) {
+  const vk::HostTimer host;
+  auto submitted = ctx.submitAndWait(record);
   FrameTiming timing;
   timing.hostMs = host.elapsedMs();
   if (!submitted) return Error::fromVk(submitted.error());

@@ -3,6 +3,7 @@
 // whose coverage tells which pixels a mesh touched.
 #pragma once
 
+#include <functional>
 #include <span>
 
 #include "measure/image_metrics.h"
@@ -34,6 +35,12 @@ class RenderTarget {
   Expected<FrameTiming> render(const vk::Context& ctx, std::span<const DrawItem* const> items, const FrameState& frame,
                                const glm::vec4& clearColor, const FrameWork& work = {});
 
+  // One timed submission that clears the targets and records `draw` inside
+  // the frame's render pass: for renderers that record their own draws
+  // (instanced batches).
+  Expected<FrameTiming> renderWith(const vk::Context& ctx, const glm::vec4& clearColor,
+                                   const std::function<void(VkCommandBuffer)>& draw);
+
   // Color target 0 as read back, rows top to bottom.
   Expected<measure::FloatImage> readColor(const vk::Context& ctx);
   // 1 where the depth buffer was written (depth < 1), else 0.
@@ -41,6 +48,13 @@ class RenderTarget {
 
  private:
   RenderTarget() = default;
+  // Clears the targets, then records `before` (per-frame passes) and, inside
+  // the render pass, `draw`, between the timer's timestamps.
+  void recordFrame(const vk::Context& ctx, VkCommandBuffer cmd, const glm::vec4& clearColor,
+                   const std::function<void(VkCommandBuffer)>& before,
+                   const std::function<void(VkCommandBuffer)>& draw);
+  // Submits `record`, waits, and reads the timer.
+  Expected<FrameTiming> submitTimed(const vk::Context& ctx, const std::function<void(VkCommandBuffer)>& record);
   TargetFormats formats_;
   std::vector<vk::Image> colors_;
   std::optional<vk::Image> depth_;  // always set once created

@@ -165,6 +165,12 @@ Expected<VariantProgram> SceneRenderer::compileVariant(size_t index,
   return program;
 }
 
+Expected<VariantProgram> SceneRenderer::compileShader(size_t index, const std::string& shader) {
+  scene::InstanceDesc instance = scene_.instances.at(index);
+  instance.shader = shader;
+  return compileInstance(instance, std::nullopt);
+}
+
 Expected<std::vector<VariantProgram>> SceneRenderer::compile(const std::optional<std::filesystem::path>& decisions) {
   std::vector<VariantProgram> programs;
   for (const scene::InstanceDesc& instance : scene_.instances) {
@@ -268,6 +274,7 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
     if (!baked) return Error{baked.error().message, instance.range, baked.error().details};
     prepared.bakes.insert(prepared.bakes.end(), baked->records.begin(), baked->records.end());
     prepared.textureBakes.push_back(baked->texture);
+    prepared.uniformBakes.push_back(baked->uniform);
     BindingSources sources;
     sources.mesh = meshes[i];
     sources.material = &prepared.materials[i];

@@ -26,6 +26,7 @@ struct PreparedScene {
   std::vector<BakeRecord> bakes;                       // every bake world the variants use, run or reused
   std::vector<std::string> fingerprints;               // per instance: its kernels' hashes
   std::vector<const TextureBakeResult*> textureBakes;  // per instance: its PrebakeTex result, or null
+  std::vector<const UniformBakeResult*> uniformBakes;  // per instance: its PrebakeUniform result, or null
 };
 
 struct FrameStats {
@@ -68,6 +69,9 @@ class SceneRenderer {
   Expected<VariantProgram> compileVariant(size_t index, const std::map<std::string, std::string>& decisions,
                                           std::vector<std::string>* skipped = nullptr,
                                           const ShaderLibrary::Attributes& attributes = {});
+  // Instance `index`'s source compiled as another of its shaders, e.g. a
+  // member of a group (`Rock<LodMQ>`), with the instance's own decisions.
+  Expected<VariantProgram> compileShader(size_t index, const std::string& shader);
   // The library compiled for instance `index` (compiling it on first use).
   Expected<ShaderLibrary*> library(size_t index) { return libraryFor(scene_.instances.at(index)); }
 
@@ -107,6 +111,9 @@ class SceneRenderer {
 
   const std::string& compilerWarnings() const { return compilerWarnings_; }
   const vk::Context& context() const { return ctx_; }
+  ModuleCache& modules() { return modules_; }
+  // The frame's target; nullptr before prepare().
+  RenderTarget* target() { return target_ ? &*target_ : nullptr; }
   const scene::SceneFile& scene() const { return scene_; }
   size_t shaderModuleCount() const { return modules_.size(); }
   size_t bakeCount() const { return bakes_.size(); }

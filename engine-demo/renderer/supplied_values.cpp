@@ -118,8 +118,8 @@ constexpr std::array kInstanceValues = {
     FrameValueInfo{"matModel", "mat4", "model to world, the instance's transform"},
     FrameValueInfo{"bakeLayer", "float", "the layer of the instance's texture bakes in the draw's texture arrays"},
     FrameValueInfo{"lodFade", "float",
-                   "level-of-detail transition: 1 fully this level; f in (0, 1) keeps the fraction f of pixels "
-                   "whose dither threshold is below f, -f the complementary pixels"},
+                   "level-of-detail transition weight: 1 opaque; f in (0, 1) while the instance fades into this "
+                   "level, drawn blended with weight f over the level it leaves"},
 };
 
 }  // namespace

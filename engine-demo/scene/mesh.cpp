@@ -104,11 +104,22 @@ Mesh makeSphere(float radius, uint32_t rings, uint32_t segments) {
   return mesh;
 }
 
+namespace {
+constexpr float kTerrainFeatures = 4.0f;  // noise lattice cells across the terrain
+constexpr uint32_t kTerrainOctaves = 5;
+}  // namespace
+
+float terrainHeight(float size, float height, uint32_t seed, float x, float z) {
+  const float u = x / size + 0.5f;
+  const float v = z / size + 0.5f;
+  return height * fbm(u * kTerrainFeatures, v * kTerrainFeatures, seed, kTerrainOctaves);
+}
+
 Mesh makeTerrain(float size, uint32_t resolution, float height, uint32_t seed) {
   resolution = std::max(resolution, 1u);
-  constexpr float kFeatures = 4.0f;  // noise lattice cells across the terrain
-  constexpr uint32_t kOctaves = 5;
-  auto heightAt = [&](float u, float v) { return height * fbm(u * kFeatures, v * kFeatures, seed, kOctaves); };
+  auto heightAt = [&](float u, float v) {
+    return height * fbm(u * kTerrainFeatures, v * kTerrainFeatures, seed, kTerrainOctaves);
+  };
 
   Mesh mesh;
   mesh.name = "terrain";
@@ -129,6 +140,99 @@ Mesh makeTerrain(float size, uint32_t resolution, float height, uint32_t seed) {
     }
   }
   appendGridIndices(mesh.indices, resolution, resolution);
+  computeTangents(mesh);
+  return mesh;
+}
+
+namespace {
+
+// One flat quad: corners a, b, c, d counter-clockwise seen from the front,
+// UVs (0,0), (1,0), (1,1), (0,1).
+void appendQuad(Mesh& mesh, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec3& d) {
+  const auto base = static_cast<uint32_t>(mesh.vertices.size());
+  const glm::vec3 n = glm::normalize(glm::cross(b - a, d - a));
+  const glm::vec3 corners[] = {a, b, c, d};
+  const glm::vec2 uvs[] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
+  for (int i = 0; i < 4; ++i) mesh.vertices.push_back({corners[i], n, uvs[i], {}});
+  mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+}
+
+}  // namespace
+
+Mesh makeBox(float size, float height) {
+  Mesh mesh;
+  mesh.name = "box";
+  const float s = size * 0.5f;
+  const auto p = [&](float x, float y, float z) { return glm::vec3(x * s, y * height, z * s); };
+  appendQuad(mesh, p(-1, 0, 1), p(1, 0, 1), p(1, 1, 1), p(-1, 1, 1));      // +Z
+  appendQuad(mesh, p(1, 0, -1), p(-1, 0, -1), p(-1, 1, -1), p(1, 1, -1));  // -Z
+  appendQuad(mesh, p(1, 0, 1), p(1, 0, -1), p(1, 1, -1), p(1, 1, 1));      // +X
+  appendQuad(mesh, p(-1, 0, -1), p(-1, 0, 1), p(-1, 1, 1), p(-1, 1, -1));  // -X
+  appendQuad(mesh, p(-1, 1, 1), p(1, 1, 1), p(1, 1, -1), p(-1, 1, -1));    // +Y
+  appendQuad(mesh, p(-1, 0, -1), p(1, 0, -1), p(1, 0, 1), p(-1, 0, 1));    // -Y
+  computeTangents(mesh);
+  return mesh;
+}
+
+Mesh makeCylinder(float radius, float height, uint32_t segments) {
+  segments = std::max(segments, 3u);
+  Mesh mesh;
+  mesh.name = "cylinder";
+  for (uint32_t row = 0; row <= 1; ++row) {
+    for (uint32_t s = 0; s <= segments; ++s) {
+      const float u = static_cast<float>(s) / static_cast<float>(segments);
+      const float phi = u * glm::two_pi<float>();
+      const glm::vec3 n(std::cos(phi), 0.0f, -std::sin(phi));
+      mesh.vertices.push_back({n * radius + glm::vec3(0.0f, height * static_cast<float>(row), 0.0f),
+                               n,
+                               glm::vec2(u, static_cast<float>(row)),
+                               {}});
+    }
+  }
+  appendGridIndices(mesh.indices, segments, 1);
+  // appendGridIndices winds for rows along +Z seen from +Y; the side's rows
+  // go up and its columns turn counter-clockwise seen from +Y, which faces
+  // the quads inwards, so flip them.
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+  for (int cap = 0; cap < 2; ++cap) {
+    const float y = cap == 0 ? 0.0f : height;
+    const glm::vec3 n(0.0f, cap == 0 ? -1.0f : 1.0f, 0.0f);
+    const auto centre = static_cast<uint32_t>(mesh.vertices.size());
+    mesh.vertices.push_back({glm::vec3(0.0f, y, 0.0f), n, glm::vec2(0.5f), {}});
+    for (uint32_t s = 0; s <= segments; ++s) {
+      const float phi = static_cast<float>(s) / static_cast<float>(segments) * glm::two_pi<float>();
+      const glm::vec2 dir(std::cos(phi), -std::sin(phi));
+      mesh.vertices.push_back({glm::vec3(dir.x * radius, y, dir.y * radius), n, dir * 0.5f + 0.5f, {}});
+      if (s == 0) continue;
+      const uint32_t a = centre + s;
+      const uint32_t b = centre + s + 1;
+      // Angles grow counter-clockwise seen from +Y.
+      if (cap == 0) {
+        mesh.indices.insert(mesh.indices.end(), {centre, b, a});
+      } else {
+        mesh.indices.insert(mesh.indices.end(), {centre, a, b});
+      }
+    }
+  }
+  computeTangents(mesh);
+  return mesh;
+}
+
+Mesh makeRock(float radius, uint32_t rings, uint32_t segments, uint32_t seed, float roughness) {
+  Mesh mesh = makeSphere(1.0f, rings, segments);
+  mesh.name = "rock";
+  float lowest = 0.0f;
+  for (Vertex& v : mesh.vertices) {
+    const glm::vec3 d = v.position;
+    // Noise of the direction (not of the UV) so that the seam and the poles,
+    // whose vertices are duplicated, move together.
+    const float n = fbm(d.x * 1.7f + d.y * 0.6f + 11.0f, d.z * 1.7f - d.y * 0.9f + 5.0f, seed, 4);
+    v.position = d * radius * (1.0f + roughness * (2.0f * n - 1.0f));
+    v.position.y *= 0.7f;  // rocks are wider than tall
+    lowest = std::min(lowest, v.position.y);
+  }
+  for (Vertex& v : mesh.vertices) v.position.y -= lowest;
+  computeNormals(mesh);
   computeTangents(mesh);
   return mesh;
 }

@@ -43,6 +43,23 @@ Mesh makeSphere(float radius, uint32_t rings, uint32_t segments);
 // heights in [0, height] from fBm noise. A given seed gives identical bytes.
 Mesh makeTerrain(float size, uint32_t resolution, float height, uint32_t seed);
 
+// The height of makeTerrain's surface at world (x, z), which may lie between
+// its vertices or outside it; for placing objects on the terrain.
+float terrainHeight(float size, float height, uint32_t seed, float x, float z);
+
+// Box of `size` x `height` x `size` standing on the XZ plane, centred on the
+// Y axis; each face has its own vertices and UVs over [0, 1].
+Mesh makeBox(float size, float height);
+
+// Closed cylinder of `radius` standing on the XZ plane, `height` tall, with
+// `segments` around; the side's u goes around, v up, the caps' UVs map the
+// disc into [0, 1].
+Mesh makeCylinder(float radius, float height, uint32_t segments);
+
+// A rock: a sphere whose radius varies by fBm noise of `seed` by up to
+// `roughness` of it, resting on the XZ plane.
+Mesh makeRock(float radius, uint32_t rings, uint32_t segments, uint32_t seed, float roughness);
+
 // Area-weighted smooth normals from the triangles (for meshes without them).
 void computeNormals(Mesh& mesh);
 

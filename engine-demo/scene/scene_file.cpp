@@ -22,13 +22,15 @@ namespace fs = std::filesystem;
 // Keys of each object, in the order docs/scene.md lists them; unknown keys
 // get a "did you mean" from these.
 const KeyList kSceneKeys = {"resolution", "frames", "warmupFrames", "clearColor", "includePaths", "camera",
-                            "light",      "meshes", "textures",     "instances",  "variants"};
+                            "light",      "meshes", "textures",     "instances",  "variants",     "lod"};
+const KeyList kScatterKeys = {"count", "seed", "on", "scale"};
+const KeyList kLodKeys = {"policy", "blocks"};
 const KeyList kCameraKeys = {"fovY", "near", "far", "up", "views", "stereo"};
 const KeyList kStereoKeys = {"eyeSeparation", "shareObjectSpace"};
 const KeyList kViewKeys = {"position", "target"};
 const KeyList kLightKeys = {"direction", "color"};
-const KeyList kInstanceKeys = {"mesh",     "source",    "shader",   "decisions",  "kernels",
-                               "pipeline", "transform", "material", "doubleSided"};
+const KeyList kInstanceKeys = {"mesh",     "source",    "shader",   "decisions",   "kernels",
+                               "pipeline", "transform", "material", "doubleSided", "scatter"};
 const KeyList kPipelineKeys = {"name", "source"};
 const KeyList kTransformKeys = {"translate", "rotate", "scale"};
 const KeyList kVariantKeys = {"name", "decisions"};
@@ -46,6 +48,9 @@ const std::vector<KindKeys<MeshKind>> kMeshKinds = {
     {MeshKind::Sphere, "sphere", {"type", "radius", "rings", "segments"}},
     {MeshKind::Plane, "plane", {"type", "size", "resolution"}},
     {MeshKind::Gltf, "gltf", {"type", "file"}},
+    {MeshKind::Box, "box", {"type", "size", "height"}},
+    {MeshKind::Cylinder, "cylinder", {"type", "radius", "height", "segments"}},
+    {MeshKind::Rock, "rock", {"type", "radius", "rings", "segments", "seed", "roughness"}},
 };
 
 const std::vector<KindKeys<TextureKind>> kTextureKinds = {
@@ -151,6 +156,8 @@ class SceneReader {
                [&](const JsonValue& instance) { scene.instances.push_back(readInstance(instance)); });
     } else if (key == "variants") {
       readVariants(value, scene.variants);
+    } else if (key == "lod") {
+      scene.lod = readLod(value);
     } else {
       check_.unknownKey(member, kSceneKeys, "the scene");
     }
@@ -394,6 +401,7 @@ class SceneReader {
       if (member.key == "radius") assign(mesh.radius, check_.real(v, "'radius'", greaterThan(0.0)));
       if (member.key == "rings") assign(mesh.rings, check_.integer(v, "'rings'", 2, kMaxGridResolution));
       if (member.key == "segments") assign(mesh.segments, check_.integer(v, "'segments'", 3, kMaxGridResolution));
+      if (member.key == "roughness") assign(mesh.roughness, check_.real(v, "'roughness'", between(0.0, 0.9)));
       if (member.key == "file") assign(mesh.file, path(v, "'file'"));
     }
     if (kind != nullptr && kind->kind == MeshKind::Gltf && named.value.find("file") == nullptr) {
@@ -527,12 +535,65 @@ class SceneReader {
         readMaterial(v, instance.material);
       } else if (member.key == "doubleSided") {
         instance.doubleSided = check_.flag(v, "'doubleSided'");
+      } else if (member.key == "scatter") {
+        instance.scatter = readScatter(v);
       } else {
         check_.unknownKey(member, kInstanceKeys, "an instance");
       }
     }
     checkShaderSource(value);
     return instance;
+  }
+
+  ScatterDesc readScatter(const JsonValue& value) {
+    ScatterDesc scatter;
+    if (!check_.expectKind(value, JsonKind::Object, "'scatter'")) return scatter;
+    for (const JsonMember& member : value.members) {
+      const JsonValue& v = member.value;
+      if (member.key == "count") {
+        assign(scatter.count, check_.integer(v, "'count'", 1, 1000000));
+      } else if (member.key == "seed") {
+        assign(scatter.seed, check_.integer(v, "'seed'", 0, kMaxUint32));
+      } else if (member.key == "on") {
+        scatter.onRange = v.range;
+        if (const std::optional<std::string> on = check_.text(v, "'on'")) {
+          scatter.on = *on;
+          checkReference(v, meshNames_, "mesh", "meshes");
+        }
+      } else if (member.key == "scale") {
+        if (!check_.expectArray(v, "'scale'", 2, 2, "[min, max]")) continue;
+        const auto lo = check_.real(v.elements[0], "the smallest scale", greaterThan(0.0));
+        const auto hi = check_.real(v.elements[1], "the largest scale", greaterThan(0.0));
+        if (lo && hi && *hi < *lo) {
+          diags_.report(DiagCode::E7004, v.range, "the largest scale is smaller than the smallest");
+        } else if (lo && hi) {
+          scatter.scaleMin = *lo;
+          scatter.scaleMax = *hi;
+        }
+      } else {
+        check_.unknownKey(member, kScatterKeys, "'scatter'");
+      }
+    }
+    if (!value.find("on")) check_.missing(value, "'scatter' needs 'on', the terrain mesh to place the copies on");
+    return scatter;
+  }
+
+  LodDesc readLod(const JsonValue& value) {
+    LodDesc lod;
+    lod.range = value.openingRange();
+    if (!check_.expectKind(value, JsonKind::Object, "'lod'")) return lod;
+    for (const JsonMember& member : value.members) {
+      if (member.key == "policy") {
+        lod.policyRange = member.value.range;
+        assign(lod.policy, path(member.value, "'policy'"));
+      } else if (member.key == "blocks") {
+        assign(lod.blocks, check_.integer(member.value, "'blocks'", 1, 256));
+      } else {
+        check_.unknownKey(member, kLodKeys, "'lod'");
+      }
+    }
+    if (!value.find("policy")) check_.missing(value, "'lod' needs a 'policy' file");
+    return lod;
   }
 
   // Either the library path (source + shader, optionally decisions) or the

@@ -26,7 +26,7 @@
 
 namespace spire::scene {
 
-enum class MeshKind { Terrain, Sphere, Plane, Gltf };
+enum class MeshKind { Terrain, Sphere, Plane, Gltf, Box, Cylinder, Rock };
 
 struct MeshDesc {
   std::string name;
@@ -38,10 +38,12 @@ struct MeshDesc {
   uint32_t resolution = 64;
   float height = 1.0F;
   uint32_t seed = 1;
-  // Sphere.
+  // Sphere, cylinder (radius, height, segments), rock (radius, rings,
+  // segments, seed, roughness); box: size x height x size.
   float radius = 1.0F;
   uint32_t rings = 32;
   uint32_t segments = 64;
+  float roughness = 0.3F;
   // glTF: the file, absolute or resolved against the scene file's directory.
   std::filesystem::path file;
 };
@@ -92,6 +94,19 @@ struct MaterialBinding {
   std::vector<double> numbers;  // when neither texture nor engineValue is set
 };
 
+// "scatter": `count` copies of an instance at seeded random places on the
+// terrain mesh `on`, each turned by a random angle about +Y and scaled by a
+// random factor in [scaleMin, scaleMax]; the instance's transform is applied
+// first.
+struct ScatterDesc {
+  uint32_t count = 1;
+  uint32_t seed = 1;
+  std::string on;  // a terrain mesh of "meshes"
+  SourceRange onRange;
+  float scaleMin = 1.0F;
+  float scaleMax = 1.0F;
+};
+
 struct InstanceDesc {
   SourceRange range;  // the instance object
   std::string mesh;   // a key of "meshes"
@@ -122,6 +137,9 @@ struct InstanceDesc {
   // Whether back faces are drawn too; when absent, the mesh decides (only a
   // glTF material can make a mesh double-sided).
   std::optional<bool> doubleSided;
+  // Copies of this instance scattered over a terrain mesh (scatter.h):
+  // the level-of-detail scene's thousands of objects.
+  std::optional<ScatterDesc> scatter;
 };
 
 struct CameraView {
@@ -165,6 +183,17 @@ struct VariantDesc {
   SourceRange range;
 };
 
+// "lod": the scene is drawn with level of detail (docs/lod.md): each
+// instance's shader is a shader derived from a group, drawn as shader<member>
+// with the member the policy gives for its distance, instances batched by
+// kernel key within `blocks` x `blocks` spatial blocks.
+struct LodDesc {
+  std::filesystem::path policy;
+  SourceRange policyRange;
+  uint32_t blocks = 8;
+  SourceRange range;
+};
+
 struct SceneFile {
   FileId file = kNoFile;
   std::filesystem::path directory;  // relative paths in the file resolve against it
@@ -180,6 +209,7 @@ struct SceneFile {
   std::vector<TextureDesc> textures;
   std::vector<InstanceDesc> instances;  // at least one
   std::vector<VariantDesc> variants;    // may be empty
+  std::optional<LodDesc> lod;
 
   const MeshDesc* findMesh(std::string_view name) const;
   const TextureDesc* findTexture(std::string_view name) const;

@@ -131,6 +131,14 @@ Expected<Mesh> buildMesh(const MeshDesc& desc) {
       break;
     }
     case MeshKind::Gltf: return mergeGltf(desc);
+    case MeshKind::Box: mesh = makeBox(desc.size, desc.height); break;
+    case MeshKind::Cylinder: mesh = makeCylinder(desc.radius, desc.height, desc.segments); break;
+    case MeshKind::Rock: {
+      uint64_t vertices = (uint64_t{desc.rings} + 1) * (uint64_t{desc.segments} + 1);
+      if (vertices > kMaxGeneratedVertices) return Error{meshPrefix(desc) + "rings x segments gives too many vertices"};
+      mesh = makeRock(desc.radius, desc.rings, desc.segments, desc.seed, desc.roughness);
+      break;
+    }
   }
   mesh.name = desc.name;
   return mesh;

@@ -149,6 +149,10 @@ GraphicsPipelineBuilder& GraphicsPipelineBuilder::depthFormat(VkFormat format, b
   depthCompare_ = compare;
   return *this;
 }
+GraphicsPipelineBuilder& GraphicsPipelineBuilder::alphaBlend() {
+  alphaBlend_ = true;
+  return *this;
+}
 GraphicsPipelineBuilder& GraphicsPipelineBuilder::pushConstants(VkShaderStageFlags stages, uint32_t offset,
                                                                 uint32_t size) {
   pushConstants_.push_back({stages, offset, size});
@@ -187,7 +191,17 @@ Expected<Pipeline> GraphicsPipelineBuilder::build(const Context& ctx) const {
   VkPipelineColorBlendAttachmentState noBlend{};
   noBlend.colorWriteMask =
       VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  const std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(colorFormats_.size(), noBlend);
+  std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(colorFormats_.size(), noBlend);
+  if (alphaBlend_ && !blendAttachments.empty()) {
+    VkPipelineColorBlendAttachmentState& b = blendAttachments.front();
+    b.blendEnable = VK_TRUE;
+    b.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+    b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    b.colorBlendOp = VK_BLEND_OP_ADD;
+    b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+    b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    b.alphaBlendOp = VK_BLEND_OP_ADD;
+  }
   const VkPipelineColorBlendStateCreateInfo blend = colorBlendState(blendAttachments);
   const std::array dynamicStates{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
   const VkPipelineDynamicStateCreateInfo dynamic = dynamicState(dynamicStates);

@@ -39,6 +39,9 @@ class GraphicsPipelineBuilder {
   // One color attachment per call, in location order; blending off.
   GraphicsPipelineBuilder& colorFormat(VkFormat format);
   GraphicsPipelineBuilder& depthFormat(VkFormat format, bool write = true, VkCompareOp compare = VK_COMPARE_OP_LESS);
+  // Color attachment 0 blended over what is there by the fragment's alpha
+  // (the destination's alpha kept); the others are written as they are.
+  GraphicsPipelineBuilder& alphaBlend();
   GraphicsPipelineBuilder& pushConstants(VkShaderStageFlags stages, uint32_t offset, uint32_t size);
   // Set layouts in set order: each call appends the next set number.
   GraphicsPipelineBuilder& descriptorSetLayout(VkDescriptorSetLayout layout);
@@ -64,6 +67,7 @@ class GraphicsPipelineBuilder {
   VkFormat depthFormat_ = VK_FORMAT_UNDEFINED;
   bool depthWrite_ = true;
   VkCompareOp depthCompare_ = VK_COMPARE_OP_LESS;
+  bool alphaBlend_ = false;
   std::vector<VkPushConstantRange> pushConstants_;
   std::vector<VkDescriptorSetLayout> setLayouts_;
 };

@@ -55,7 +55,7 @@ TEST(LodSelectionTest, RandomWalksSwitchOnlyBeyondTheMargin) {
   }
 }
 
-TEST(LodSelectionTest, ASwitchCrossFadesWithComplementaryMasks) {
+TEST(LodSelectionTest, ASwitchCrossFadesFromTheOldLevelToTheNew) {
   LodSelector selector(threeLevels(0.0F, 3), 1);
   std::vector<glm::vec3> centers = {{0.0F, 0.0F, 5.0F}};
   selector.reset(centers, glm::vec3(0.0F));
@@ -73,12 +73,12 @@ TEST(LodSelectionTest, ASwitchCrossFadesWithComplementaryMasks) {
       fades.push_back(1.0F);
       continue;
     }
-    EXPECT_EQ(draws[0].level, 1U);
-    EXPECT_EQ(draws[1].level, 0U);
-    EXPECT_EQ(draws[1].fade, -draws[0].fade);
-    fades.push_back(draws[0].fade);
+    EXPECT_EQ(draws[0].level, 0U);  // the level it leaves, opaque
+    EXPECT_EQ(draws[0].fade, 1.0F);
+    EXPECT_EQ(draws[1].level, 1U);  // the level it enters, blended over it
+    fades.push_back(draws[1].fade);
   }
-  // 1/4, 2/4, 3/4 of the pixels, then the new level alone.
+  // Weights 1/4, 2/4, 3/4, then the new level alone.
   EXPECT_EQ(fades, (std::vector<float>{0.25F, 0.5F, 0.75F, 1.0F, 1.0F}));
 }
 

@@ -1,0 +1,340 @@
+#include "renderer/lod_scene.h"
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <map>
+
+#include "scene/scatter.h"
+
+namespace spire::engine {
+
+namespace {
+
+// One level of every prototype: the programs and what preparing them made
+// (materials, bakes, and a draw item per prototype that validated them).
+struct Level {
+  std::string member;
+  std::vector<VariantProgram> programs;  // per prototype
+  PreparedScene prepared;
+};
+
+// Objects drawn with one pipeline: the programs of (prototype, level) pairs
+// whose Vertex and Fragment kernels and shared values are the same.
+struct DrawGroup {
+  uint32_t level = 0;
+  uint32_t representative = 0;              // the prototype whose material and mesh set the group up
+  std::vector<uint32_t> prototypes;         // in texture-array layer order
+  std::map<uint32_t, uint32_t> layerOf;     // prototype -> its layer
+  std::unique_ptr<BakeArrays> arrays;       // the prototypes' texture bakes, one layer each
+  DrawItem item;                            // pipeline, descriptors, per-instance record buffers
+  vk::Pipeline overlay;                     // the same, blended over: cross-fades
+  std::map<uint32_t, VertexInputs> inputs;  // by mesh index
+};
+
+struct Bounds {
+  glm::vec3 center{0.0F};
+  float radius = 0.0F;
+};
+
+Bounds meshBounds(const scene::Mesh& mesh) {
+  glm::vec3 lo(std::numeric_limits<float>::max());
+  glm::vec3 hi(std::numeric_limits<float>::lowest());
+  for (const scene::Vertex& v : mesh.vertices) {
+    lo = glm::min(lo, v.position);
+    hi = glm::max(hi, v.position);
+  }
+  Bounds bounds{(lo + hi) * 0.5F, 0.0F};
+  for (const scene::Vertex& v : mesh.vertices) {
+    bounds.radius = std::max(bounds.radius, glm::distance(v.position, bounds.center));
+  }
+  return bounds;
+}
+
+// What the kernels read that is the same for every object of a batch: the
+// material's values. A value that differs per object but is not read per
+// instance (a uniform bake read as a uniform, a texture bake read as a
+// plain sampler) cannot be shared, so its object gets a group of its own.
+std::string sharedValues(const KernelProgram& kernel, const MaterialValues& material, uint32_t prototype) {
+  std::string identity;
+  for (const KernelInput& input : kernel.inputs) {
+    const auto role = kernel.sourceRole(input);
+    const bool perObject = (role == WorldRole::UniformBake && input.kind == InputKind::UniformMember) ||
+                           (role == WorldRole::TextureBake && input.layer.empty());
+    if (perObject) return fmt::format("object {}", prototype);
+    if (const auto it = material.find(input.component); it != material.end()) {
+      identity += fmt::format("{}={};", input.component, it->second.identity);
+    }
+  }
+  return identity;
+}
+
+}  // namespace
+
+struct LodScene::Impl {
+  SceneRenderer& renderer;
+  lod::LodPolicy policy;
+  std::vector<Level> levels;
+  std::vector<const GpuMesh*> meshes;  // distinct meshes
+  std::vector<bool> doubleSided;       // per prototype
+  std::vector<lod::SceneInstance> instances;
+  std::vector<glm::mat4> models;
+  std::vector<glm::vec3> centers;
+  std::vector<std::unique_ptr<DrawGroup>> groups;
+  uint32_t blockCount = 1;
+  std::optional<lod::InstanceBatcher> batcher;
+  std::optional<lod::LodSelector> selector;
+  lod::FrameBatches batches;
+  LodFrameStats stats;
+
+  Impl(SceneRenderer& r, lod::LodPolicy p) : renderer(r), policy(std::move(p)) {}
+
+  Expected<void> compileLevels();
+  Expected<void> placeInstances(uint32_t blocksPerSide);
+  Expected<void> formGroups();
+  Expected<void> buildGroup(DrawGroup& group, uint32_t representative);
+  void writeRecords(const FrameState& frame);
+  void recordBatches(VkCommandBuffer cmd) const;
+};
+
+Expected<void> LodScene::Impl::compileLevels() {
+  const size_t prototypes = renderer.scene().instances.size();
+  for (const lod::LodLevel& policyLevel : policy.levels) {
+    Level level;
+    level.member = policyLevel.member;
+    for (size_t p = 0; p < prototypes; ++p) {
+      const std::string shader = fmt::format("{}<{}>", renderer.scene().instances[p].shader, policyLevel.member);
+      auto program = renderer.compileShader(p, shader);
+      if (!program) return program.error();
+      level.programs.push_back(std::move(program).value());
+    }
+    auto prepared = renderer.prepare(level.programs);
+    if (!prepared) return prepared.error();
+    level.prepared = std::move(prepared).value();
+    levels.push_back(std::move(level));
+  }
+  return {};
+}
+
+Expected<void> LodScene::Impl::placeInstances(uint32_t blocksPerSide) {
+  const scene::SceneFile& scene = renderer.scene();
+  std::map<const GpuMesh*, uint32_t> meshIndex;
+  std::vector<Bounds> bounds;
+  std::vector<uint32_t> meshOf;
+  for (size_t p = 0; p < scene.instances.size(); ++p) {
+    const DrawItem& item = levels.front().prepared.items[p];
+    const auto [it, fresh] = meshIndex.emplace(item.mesh, static_cast<uint32_t>(meshes.size()));
+    if (fresh) {
+      meshes.push_back(item.mesh);
+      bounds.push_back(meshBounds(item.mesh->mesh));
+    }
+    meshOf.push_back(it->second);
+    doubleSided.push_back(scene.instances[p].doubleSided.value_or(item.mesh->mesh.doubleSided));
+    auto placements = scene::placementsOf(scene.instances[p], scene);
+    if (!placements) return Error{placements.error().message, scene.instances[p].range, {}};
+    const Bounds& b = bounds[it->second];
+    for (const glm::mat4& model : *placements) {
+      const float scale = std::max(
+          {glm::length(glm::vec3(model[0])), glm::length(glm::vec3(model[1])), glm::length(glm::vec3(model[2]))});
+      instances.push_back(
+          {glm::vec3(model * glm::vec4(b.center, 1.0F)), b.radius * scale, static_cast<uint32_t>(p), 0});
+      models.push_back(model);
+    }
+  }
+  // Blocks: a grid over the instances' extent in the XZ plane.
+  glm::vec2 lo(std::numeric_limits<float>::max());
+  glm::vec2 hi(std::numeric_limits<float>::lowest());
+  for (const lod::SceneInstance& i : instances) {
+    lo = glm::min(lo, glm::vec2(i.center.x, i.center.z));
+    hi = glm::max(hi, glm::vec2(i.center.x, i.center.z));
+  }
+  const glm::vec2 cell = glm::max((hi - lo) / static_cast<float>(blocksPerSide), glm::vec2(1e-6F));
+  for (lod::SceneInstance& i : instances) {
+    const auto bx = std::min(static_cast<uint32_t>((i.center.x - lo.x) / cell.x), blocksPerSide - 1);
+    const auto bz = std::min(static_cast<uint32_t>((i.center.z - lo.y) / cell.y), blocksPerSide - 1);
+    i.block = bz * blocksPerSide + bx;
+    centers.push_back(i.center);
+  }
+  lod::DrawGroups drawGroups;
+  drawGroups.meshOf = std::move(meshOf);
+  blockCount = blocksPerSide * blocksPerSide;
+  batcher.emplace(std::move(drawGroups), blockCount);
+  return {};
+}
+
+Expected<void> LodScene::Impl::formGroups() {
+  lod::DrawGroups drawGroups = batcher->groups();
+  const size_t prototypes = renderer.scene().instances.size();
+  drawGroups.groupOf.assign(prototypes, std::vector<uint32_t>(levels.size(), 0));
+  std::map<std::string, uint32_t> byKey;
+  for (uint32_t level = 0; level < levels.size(); ++level) {
+    for (uint32_t p = 0; p < prototypes; ++p) {
+      const VariantProgram& program = levels[level].programs[p];
+      const KernelProgram* vertex = program.kernelWithRole(WorldRole::VertexStage);
+      const KernelProgram* fragment = program.kernelWithRole(WorldRole::FragmentStage);
+      if (!vertex || !fragment) return Error{fmt::format("'{}' has no kernels to draw with", program.shader), {}, {}};
+      const MaterialValues& material = levels[level].prepared.materials[p];
+      // Levels never share a group: their bakes differ even where their
+      // kernels do not.
+      const std::string key = fmt::format("{}|{}|{}|{}|{}|{}", level, vertex->key, fragment->key, doubleSided[p],
+                                          sharedValues(*vertex, material, p), sharedValues(*fragment, material, p));
+      const auto [it, fresh] = byKey.emplace(key, static_cast<uint32_t>(groups.size()));
+      if (fresh) {
+        groups.push_back(std::make_unique<DrawGroup>());
+        groups.back()->level = level;
+        groups.back()->representative = p;
+      }
+      DrawGroup& group = *groups[it->second];
+      group.layerOf.emplace(p, static_cast<uint32_t>(group.prototypes.size()));
+      group.prototypes.push_back(p);
+      drawGroups.groupOf[p][level] = it->second;
+    }
+  }
+  drawGroups.groupCount = static_cast<uint32_t>(groups.size());
+  batcher.emplace(std::move(drawGroups), blockCount);
+  for (const auto& group : groups) {
+    if (auto built = buildGroup(*group, group->representative); !built) return built.error();
+  }
+  return {};
+}
+
+Expected<void> LodScene::Impl::buildGroup(DrawGroup& group, uint32_t representative) {
+  const Level& level = levels[group.level];
+  const VariantProgram& program = level.programs[representative];
+  const KernelProgram* vertex = program.kernelWithRole(WorldRole::VertexStage);
+  const KernelProgram* fragment = program.kernelWithRole(WorldRole::FragmentStage);
+  // Capacity: every copy of every prototype in the group.
+  uint32_t capacity = 0;
+  for (const lod::SceneInstance& i : instances) capacity += group.layerOf.contains(i.prototype) ? 1 : 0;
+  std::vector<const TextureBakeResult*> layers;
+  for (uint32_t p : group.prototypes) layers.push_back(level.prepared.textureBakes[p]);
+  const KernelProgram* kernels[] = {vertex, fragment};
+  auto arrays = buildBakeArrays(renderer.context(), kernels, layers);
+  if (!arrays) return arrays.error();
+  group.arrays = std::make_unique<BakeArrays>(std::move(arrays).value());
+  const DrawItem& prepared = level.prepared.items[representative];
+  BindingSources sources;
+  sources.mesh = prepared.mesh;
+  sources.material = &level.prepared.materials[representative];
+  sources.uniformBake = level.prepared.uniformBakes[representative];
+  sources.textureBake = level.prepared.textureBakes[representative];
+  const scene::SceneFile& scene = renderer.scene();
+  DrawPlacement placement{glm::mat4(1.0F), doubleSided[representative], VkExtent2D{scene.width, scene.height},
+                          std::max(capacity, 1U), &group.arrays->textures};
+  const TargetFormats& formats = renderer.target()->formats();
+  auto item = createDrawItem(renderer.context(), renderer.modules(), program, sources, placement, formats);
+  if (!item) return Error{fmt::format("'{}': {}", program.shader, item.error().message), {}, item.error().details};
+  group.item = std::move(item).value();
+  auto overlay = createOverlayPipeline(renderer.context(), renderer.modules(), program, group.item, placement, formats);
+  if (!overlay) return overlay.error();
+  group.overlay = std::move(overlay).value();
+  for (uint32_t p : group.prototypes) {
+    const uint32_t mesh = batcher->groups().meshOf[p];
+    if (group.inputs.contains(mesh)) continue;
+    BindingSources meshSources = sources;
+    meshSources.mesh = meshes[mesh];
+    auto inputs = vertexInputs(*vertex, meshSources);
+    if (!inputs) return inputs.error();
+    group.inputs.emplace(mesh, std::move(inputs).value());
+  }
+  return {};
+}
+
+void LodScene::Impl::writeRecords(const FrameState& frame) {
+  for (size_t g = 0; g < groups.size(); ++g) {
+    DrawGroup& group = *groups[g];
+    const std::vector<lod::InstanceRecord>& records = batches.records[g];
+    if (records.empty()) continue;
+    // Frame values first: they also write record 0 for a draw of one object.
+    updateFrameValues(group.item, frame);
+    const Level& level = levels[group.level];
+    for (uint32_t r = 0; r < records.size(); ++r) {
+      const lod::InstanceRecord& record = records[r];
+      const uint32_t p = instances[record.instance].prototype;
+      const InstanceState state{models[record.instance], static_cast<float>(group.layerOf.at(p)), record.fade};
+      for (const BoundKernel& kernel : group.item.kernels) {
+        for (const InstanceBlock& block : kernel.instanceBlocks) {
+          writeInstanceRecord(block, r, state, level.prepared.uniformBakes[p]);
+        }
+      }
+    }
+  }
+}
+
+void LodScene::Impl::recordBatches(VkCommandBuffer cmd) const {
+  for (const lod::Batch& batch : batches.batches) {
+    const DrawGroup& group = *groups[batch.group];
+    const vk::Pipeline& pipeline = batch.overlay ? group.overlay : group.item.pipeline;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline.get());
+    bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout.get(), group.item.descriptors);
+    for (uint32_t d = batch.firstDraw; d < batch.firstDraw + batch.drawCount; ++d) {
+      const lod::MeshDraw& draw = batches.draws[d];
+      const GpuMesh& mesh = *meshes[draw.mesh];
+      group.inputs.at(draw.mesh).bind(cmd);
+      vkCmdBindIndexBuffer(cmd, mesh.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+      vkCmdDrawIndexed(cmd, mesh.indexCount(), draw.instanceCount, 0, 0, draw.firstInstance);
+    }
+  }
+}
+
+Expected<std::unique_ptr<LodScene>> LodScene::create(SceneRenderer& renderer, lod::LodPolicy policy,
+                                                     const LodOptions& options) {
+  if (options.fixedLevel) {
+    if (*options.fixedLevel >= policy.levels.size()) {
+      return Error{fmt::format("level {} of a policy of {} levels", *options.fixedLevel, policy.levels.size()), {}, {}};
+    }
+    lod::LodLevel only = policy.levels[*options.fixedLevel];
+    only.until = std::numeric_limits<float>::infinity();
+    policy.levels = {only};
+  }
+  if (!options.transitions || options.fixedLevel) policy.transitionFrames = 0;
+  auto impl = std::make_unique<Impl>(renderer, policy);
+  const uint32_t blocks = renderer.scene().lod ? renderer.scene().lod->blocks : 1;
+  if (auto ok = impl->compileLevels(); !ok) return ok.error();
+  if (auto ok = impl->placeInstances(blocks); !ok) return ok.error();
+  if (auto ok = impl->formGroups(); !ok) return ok.error();
+  impl->selector.emplace(impl->policy, impl->instances.size());
+  return std::unique_ptr<LodScene>(new LodScene(std::move(impl)));
+}
+
+LodScene::LodScene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+LodScene::~LodScene() = default;
+
+void LodScene::resetLevels(const scene::CameraView& view) { impl_->selector->reset(impl_->centers, view.position); }
+
+Expected<FrameTiming> LodScene::render(const scene::CameraView& view, float time) {
+  Impl& s = *impl_;
+  const FrameState frame = s.renderer.frameState(view, time);
+  s.selector->update(s.centers, view.position);
+  s.batcher->build(s.instances, *s.selector, frame.projection * frame.view, s.batches);
+  s.writeRecords(frame);
+  s.stats = {};
+  s.stats.visible = s.batches.visibleInstances;
+  s.stats.batches = static_cast<uint32_t>(s.batches.batches.size());
+  s.stats.drawCalls = static_cast<uint32_t>(s.batches.draws.size());
+  s.stats.levelCounts.assign(s.policy.levels.size(), 0);
+  for (const lod::Batch& b : s.batches.batches) s.stats.overlayBatches += b.overlay ? 1 : 0;
+  for (size_t g = 0; g < s.groups.size(); ++g) {
+    for (const lod::InstanceRecord& r : s.batches.records[g]) {
+      if (r.fade >= 1.0F && s.selector->state(r.instance).level == s.groups[g]->level) {
+        ++s.stats.levelCounts[s.groups[g]->level];
+      }
+    }
+  }
+  return s.renderer.target()->renderWith(s.renderer.context(), s.renderer.scene().clearColor,
+                                         [&](VkCommandBuffer cmd) { s.recordBatches(cmd); });
+}
+
+Expected<measure::FloatImage> LodScene::readColor() {
+  return impl_->renderer.target()->readColor(impl_->renderer.context());
+}
+
+const LodFrameStats& LodScene::lastStats() const { return impl_->stats; }
+size_t LodScene::instanceCount() const { return impl_->instances.size(); }
+const lod::DrawGroups& LodScene::drawGroups() const { return impl_->batcher->groups(); }
+uint32_t LodScene::levelOf(size_t instance) const { return impl_->selector->state(instance).level; }
+const lod::SceneInstance& LodScene::instance(size_t instance) const { return impl_->instances[instance]; }
+const glm::mat4& LodScene::model(size_t instance) const { return impl_->models[instance]; }
+
+}  // namespace spire::engine

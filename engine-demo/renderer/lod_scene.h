@@ -1,0 +1,72 @@
+// A scene drawn with level of detail at scale (docs/lod.md; the Spire paper,
+// section 7.2): every instance of the scene file, scattered copies
+// included, is drawn each frame at the member of its shader's group that
+// the level-of-detail policy gives for its distance. Objects whose programs
+// share Vertex and Fragment kernel keys (and read the same shared values)
+// are drawn together: one pipeline, descriptors and per-instance record
+// buffers per draw group, one instanced draw per mesh in each spatial
+// block. Batches come from the reflection's kernel keys, never from shader
+// names, so a locked base shader's levels batch across materials.
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "lod/instance_batches.h"
+#include "lod/lod_policy.h"
+#include "renderer/scene_renderer.h"
+
+namespace spire::engine {
+
+struct LodOptions {
+  // Every instance at this level of the policy instead of by distance
+  // (0: the nearest band's member, the scene at full quality).
+  std::optional<uint32_t> fixedLevel;
+  bool transitions = true;  // false: switch levels at once, whatever the policy says
+};
+
+struct LodFrameStats {
+  uint32_t visible = 0;               // instances inside the view frustum
+  uint32_t batches = 0;               // pipeline and descriptor binds, overlays included
+  uint32_t overlayBatches = 0;        // of which blended cross-fades
+  uint32_t drawCalls = 0;             // instanced draws
+  std::vector<uint32_t> levelCounts;  // visible instances per level (the level they are switching to)
+};
+
+class LodScene {
+ public:
+  // Compiles every instance's shader as each member the policy names
+  // (`Shader<Member>`), runs their bakes, and builds one pipeline per draw
+  // group. `renderer` must outlive the scene.
+  static Expected<std::unique_ptr<LodScene>> create(SceneRenderer& renderer, lod::LodPolicy policy,
+                                                    const LodOptions& options = {});
+  ~LodScene();
+  LodScene(const LodScene&) = delete;
+  LodScene& operator=(const LodScene&) = delete;
+
+  // Every instance at the level of its distance from `view`, without fading:
+  // the first frame of a camera path.
+  void resetLevels(const scene::CameraView& view);
+  // One frame from `view` at `time` seconds: levels updated (hysteresis,
+  // cross-fades), instances culled and batched, then drawn.
+  Expected<FrameTiming> render(const scene::CameraView& view, float time);
+  // Color target 0 as the last frame left it, read back.
+  Expected<measure::FloatImage> readColor();
+
+  const LodFrameStats& lastStats() const;
+  size_t instanceCount() const;
+  const lod::DrawGroups& drawGroups() const;
+  // The level `instance` is at (or switching to).
+  uint32_t levelOf(size_t instance) const;
+  // Where instance `instance` stands, its prototype (the scene-file
+  // instance it is a copy of) and its model matrix.
+  const lod::SceneInstance& instance(size_t instance) const;
+  const glm::mat4& model(size_t instance) const;
+
+ private:
+  struct Impl;
+  explicit LodScene(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace spire::engine
