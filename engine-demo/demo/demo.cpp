@@ -9,6 +9,7 @@
 #include <ostream>
 
 #include "demo/glfw_window.h"
+#include "demo/lod_demo.h"
 #include "demo/window.h"
 #include "driver/tool_arguments.h"
 #include "measure/comparison_image.h"
@@ -362,7 +363,17 @@ int showVariants(const Options& options, engine::ToolRun& run, GlfwWindow& windo
   std::vector<std::string> names;
   for (const VariantResult& result : results) names.push_back(result.name);
   const WindowOptions windowOptions{fs::path(options.scenePath).filename().string(), options.frames};
-  return runWindow(window, run.renderer(), prepared, names, windowOptions, out, run.reporter());
+  return runWindow(window, run.renderer(), variantFrames(run.renderer(), prepared, names), windowOptions, out,
+                   run.reporter());
+}
+
+// A scene with "lod": its configurations instead of variants.
+int runLod(const Options& options, engine::ToolRun& run, GlfwWindow* window, std::ostream& out) {
+  const FramePlan plan{std::max<uint32_t>(1, options.warmup.value_or(run.scene().warmupFrames)),
+                       options.frames.value_or(run.scene().frames)};
+  LodRunOptions lod{options.scenePath, options.outputDir, plan.warmup, plan.measured, std::nullopt};
+  if (window) lod.windowFrames = options.frames;
+  return runLodDemo(lod, run, window, out);
 }
 
 }  // namespace
@@ -383,6 +394,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   if (const auto status = run.loadScene(options.scenePath)) return *status;
   if (const auto status = openDevice(options, run, window, out, err)) return *status;
   run.startRenderer(options.bakeSize);
+  if (run.scene().lod) return runLod(options, run, window ? &*window : nullptr, out);
   std::vector<engine::PreparedScene> prepared;
   std::vector<VariantResult> results;
   std::vector<FailedVariant> failed;

@@ -64,9 +64,17 @@ std::string keyHelp(std::span<const std::string> names) {
 
 }  // namespace
 
-int runWindow(GlfwWindow& window, engine::SceneRenderer& renderer, std::span<const engine::PreparedScene> variants,
-              std::span<const std::string> names, const WindowOptions& options, std::ostream& out,
-              engine::ErrorReporter& reporter) {
+FrameSource variantFrames(engine::SceneRenderer& renderer, std::span<const engine::PreparedScene> variants,
+                          std::span<const std::string> names) {
+  return {std::vector<std::string>(names.begin(), names.end()),
+          [&renderer, variants](size_t v, const scene::CameraView& view, float time) {
+            return renderer.renderView(variants[v], view, time);
+          }};
+}
+
+int runWindow(GlfwWindow& window, engine::SceneRenderer& renderer, const FrameSource& source,
+              const WindowOptions& options, std::ostream& out, engine::ErrorReporter& reporter) {
+  const std::vector<std::string>& names = source.names;
   const vk::Context& ctx = renderer.context();
   const scene::SceneFile& scene = renderer.scene();
   vk::Image* frameImage = renderer.colorImage();
@@ -78,8 +86,8 @@ int runWindow(GlfwWindow& window, engine::SceneRenderer& renderer, std::span<con
   if (!blit) return reporter.fail(engine::Error::fromVk(blit.error()));
   // One frame of each variant first, so that switching to one is not slowed
   // by lavapipe compiling its shaders at their first draw.
-  for (const engine::PreparedScene& variant : variants) {
-    if (auto warm = renderer.renderFrame(variant, 0); !warm) return reporter.fail(warm.error());
+  for (size_t v = 0; v < names.size(); ++v) {
+    if (auto warm = source.render(v, scene.camera.views.front(), 0.0F); !warm) return reporter.fail(warm.error());
   }
   out << keyHelp(names) << std::flush;
 
@@ -99,7 +107,7 @@ int runWindow(GlfwWindow& window, engine::SceneRenderer& renderer, std::span<con
     if (input.quit) break;
     const double now = clock.elapsedMs() / 1000.0;
     bool retitle = input.togglePause;
-    if (input.variant && *input.variant < variants.size() && *input.variant != current) {
+    if (input.variant && *input.variant < names.size() && *input.variant != current) {
       current = *input.variant;
       stats.restart(now);
       retitle = true;
@@ -117,7 +125,7 @@ int runWindow(GlfwWindow& window, engine::SceneRenderer& renderer, std::span<con
     if (idle) continue;
     const scene::CameraView view =
         orbit(cameraOnLoop(scene.camera.views, pathSeconds / kSecondsPerView), scene.camera.up, yaw, pitch);
-    auto timing = renderer.renderView(variants[current], view, static_cast<float>(now));
+    auto timing = source.render(current, view, static_cast<float>(now));
     if (!timing) return reporter.fail(timing.error());
     const vk::SwapchainFrame& target = **frame;
     if (auto ok = blit->record(target.cmd, *frameImage, target.image, target.extent, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);

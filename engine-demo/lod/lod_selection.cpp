@@ -14,24 +14,33 @@ uint32_t levelFor(const LodPolicy& policy, float distance, uint32_t current) {
   return level;
 }
 
+namespace {
+
+float distanceTo(std::span<const glm::vec3> centers, std::span<const float> radii, size_t i, const glm::vec3& camera) {
+  const float d = glm::distance(centers[i], camera);
+  return radii.empty() ? d : std::max(0.0F, d - radii[i]);
+}
+
+}  // namespace
+
 LodSelector::LodSelector(LodPolicy policy, size_t instances) : policy_(std::move(policy)), states_(instances) {}
 
-void LodSelector::reset(std::span<const glm::vec3> centers, const glm::vec3& camera) {
+void LodSelector::reset(std::span<const glm::vec3> centers, const glm::vec3& camera, std::span<const float> radii) {
   for (size_t i = 0; i < states_.size(); ++i) {
     // Without hysteresis: the band the distance is in.
-    const float d = glm::distance(centers[i], camera);
+    const float d = distanceTo(centers, radii, i, camera);
     uint32_t level = 0;
     while (level + 1 < policy_.levels.size() && d > policy_.levels[level].until) ++level;
     states_[i] = {static_cast<uint8_t>(level), static_cast<uint8_t>(level), 0};
   }
 }
 
-void LodSelector::update(std::span<const glm::vec3> centers, const glm::vec3& camera) {
+void LodSelector::update(std::span<const glm::vec3> centers, const glm::vec3& camera, std::span<const float> radii) {
   const auto frames = static_cast<uint16_t>(policy_.transitionFrames);
   for (size_t i = 0; i < states_.size(); ++i) {
     LodState& s = states_[i];
     if (s.fadeLeft > 0) --s.fadeLeft;
-    const uint32_t level = levelFor(policy_, glm::distance(centers[i], camera), s.level);
+    const uint32_t level = levelFor(policy_, distanceTo(centers, radii, i, camera), s.level);
     if (level == s.level) continue;
     s.from = s.level;
     s.level = static_cast<uint8_t>(level);

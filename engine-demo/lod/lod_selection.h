@@ -40,11 +40,15 @@ class LodSelector {
  public:
   LodSelector(LodPolicy policy, size_t instances);
 
+  // An instance's distance is from the camera to the nearest point of its
+  // bounding sphere (`centers`, `radii`; no radii: points), so that a large
+  // object the camera is near or inside, a terrain, is near.
+  //
   // Starts every instance at the level of its distance, without fading (the
   // first frame of a camera path).
-  void reset(std::span<const glm::vec3> centers, const glm::vec3& camera);
+  void reset(std::span<const glm::vec3> centers, const glm::vec3& camera, std::span<const float> radii = {});
   // One frame: each instance's level from its distance, fades advanced.
-  void update(std::span<const glm::vec3> centers, const glm::vec3& camera);
+  void update(std::span<const glm::vec3> centers, const glm::vec3& camera, std::span<const float> radii = {});
 
   const LodState& state(size_t instance) const { return states_[instance]; }
   // The draws of `instance` this frame: one, or two while it fades (the

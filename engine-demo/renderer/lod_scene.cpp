@@ -81,6 +81,7 @@ struct LodScene::Impl {
   std::vector<lod::SceneInstance> instances;
   std::vector<glm::mat4> models;
   std::vector<glm::vec3> centers;
+  std::vector<float> radii;
   std::vector<std::unique_ptr<DrawGroup>> groups;
   uint32_t blockCount = 1;
   std::optional<lod::InstanceBatcher> batcher;
@@ -155,6 +156,7 @@ Expected<void> LodScene::Impl::placeInstances(uint32_t blocksPerSide) {
     const auto bz = std::min(static_cast<uint32_t>((i.center.z - lo.y) / cell.y), blocksPerSide - 1);
     i.block = bz * blocksPerSide + bx;
     centers.push_back(i.center);
+    radii.push_back(i.radius);
   }
   lod::DrawGroups drawGroups;
   drawGroups.meshOf = std::move(meshOf);
@@ -301,12 +303,22 @@ Expected<std::unique_ptr<LodScene>> LodScene::create(SceneRenderer& renderer, lo
 LodScene::LodScene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 LodScene::~LodScene() = default;
 
-void LodScene::resetLevels(const scene::CameraView& view) { impl_->selector->reset(impl_->centers, view.position); }
+void LodScene::resetLevels(const scene::CameraView& view) {
+  impl_->selector->reset(impl_->centers, view.position, impl_->radii);
+}
+
+void LodScene::updateLevels(const scene::CameraView& view) {
+  impl_->selector->update(impl_->centers, view.position, impl_->radii);
+}
 
 Expected<FrameTiming> LodScene::render(const scene::CameraView& view, float time) {
+  updateLevels(view);
+  return draw(view, time);
+}
+
+Expected<FrameTiming> LodScene::draw(const scene::CameraView& view, float time) {
   Impl& s = *impl_;
   const FrameState frame = s.renderer.frameState(view, time);
-  s.selector->update(s.centers, view.position);
   s.batcher->build(s.instances, *s.selector, frame.projection * frame.view, s.batches);
   s.writeRecords(frame);
   s.stats = {};

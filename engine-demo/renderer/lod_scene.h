@@ -47,8 +47,13 @@ class LodScene {
   // Every instance at the level of its distance from `view`, without fading:
   // the first frame of a camera path.
   void resetLevels(const scene::CameraView& view);
-  // One frame from `view` at `time` seconds: levels updated (hysteresis,
-  // cross-fades), instances culled and batched, then drawn.
+  // One frame's level update for a camera at `view`: each instance's level
+  // from its distance (hysteresis), cross-fades advanced.
+  void updateLevels(const scene::CameraView& view);
+  // Draws the instances at their current levels from `view` at `time`
+  // seconds: culled, batched, recorded, submitted.
+  Expected<FrameTiming> draw(const scene::CameraView& view, float time);
+  // One frame: updateLevels, then draw.
   Expected<FrameTiming> render(const scene::CameraView& view, float time);
   // Color target 0 as the last frame left it, read back.
   Expected<measure::FloatImage> readColor();

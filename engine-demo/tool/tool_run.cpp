@@ -19,6 +19,13 @@ std::optional<int> ToolRun::loadScene(const std::string& path) {
   return kExitInputError;
 }
 
+std::optional<int> ToolRun::loadLodPolicy() {
+  policy_ = lod::loadLodPolicy(scene_->lod->policy, sources_, diags_);
+  if (policy_) return std::nullopt;
+  reporter_.flush();
+  return kExitInputError;
+}
+
 std::optional<int> ToolRun::openDevice(const DeviceOptions& options) {
   vk::ContextOptions contextOptions;
   contextOptions.validation = options.validation;

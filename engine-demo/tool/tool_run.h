@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "lod/lod_policy.h"
 #include "renderer/scene_renderer.h"
 #include "scene/scene_file.h"
 #include "support/diagnostic.h"
@@ -43,6 +44,9 @@ class ToolRun {
 
   // Exit 1 after printing the scene's diagnostics.
   std::optional<int> loadScene(const std::string& path);
+  // The scene's level-of-detail policy ("lod"); exit 1 after printing its
+  // diagnostics. The scene must have one.
+  std::optional<int> loadLodPolicy();
   // Exit 3 (kExitNoDevice) when no usable device can be opened.
   std::optional<int> openDevice(const DeviceOptions& options);
   // The renderer of the loaded scene on the opened device.
@@ -52,6 +56,7 @@ class ToolRun {
   int finish(int status) const;
 
   const scene::SceneFile& scene() const { return *scene_; }
+  const lod::LodPolicy& lodPolicy() const { return *policy_; }
   const vk::Context& context() const { return *context_; }
   SceneRenderer& renderer() { return *renderer_; }
   DiagnosticList& diagnostics() { return diags_; }
@@ -66,6 +71,7 @@ class ToolRun {
   DiagnosticList diags_;
   ErrorReporter reporter_;
   std::optional<scene::SceneFile> scene_;
+  std::optional<lod::LodPolicy> policy_;
   // Declared before the renderer, which must be destroyed first.
   std::optional<vk::Context> context_;
   std::optional<SceneRenderer> renderer_;
