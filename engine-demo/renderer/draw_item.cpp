@@ -50,10 +50,7 @@ Expected<vk::Pipeline> buildPipeline(const vk::Context& ctx, ModuleCache& module
   item.vertexInputs.applyTo(builder);
   for (VkFormat format : formats.colors) builder.colorFormat(format);
   if (overlay) {
-    // Another level's kernels compute the same positions, but compiled
-    // separately they may round differently: a little bias keeps the
-    // overlay from losing the depth test on half its pixels.
-    builder.depthFormat(formats.depth, false, VK_COMPARE_OP_LESS_OR_EQUAL).alphaBlend().depthBias(-8.0F, -1.0F);
+    builder.depthFormat(formats.depth, false, VK_COMPARE_OP_LESS_OR_EQUAL).alphaBlend();
   } else {
     builder.depthFormat(formats.depth);
   }

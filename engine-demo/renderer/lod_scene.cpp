@@ -84,7 +84,8 @@ struct LodScene::Impl {
   std::vector<float> radii;
   std::vector<std::unique_ptr<DrawGroup>> groups;
   uint32_t blockCount = 1;
-  std::optional<lod::InstanceBatcher> batcher;
+  std::vector<uint32_t> meshOfPrototype;
+  std::optional<lod::InstanceBatcher> batcher;  // made once the draw groups are known
   std::optional<lod::LodSelector> selector;
   lod::FrameBatches batches;
   LodFrameStats stats;
@@ -158,15 +159,14 @@ Expected<void> LodScene::Impl::placeInstances(uint32_t blocksPerSide) {
     centers.push_back(i.center);
     radii.push_back(i.radius);
   }
-  lod::DrawGroups drawGroups;
-  drawGroups.meshOf = std::move(meshOf);
+  meshOfPrototype = std::move(meshOf);
   blockCount = blocksPerSide * blocksPerSide;
-  batcher.emplace(std::move(drawGroups), blockCount);
   return {};
 }
 
 Expected<void> LodScene::Impl::formGroups() {
-  lod::DrawGroups drawGroups = batcher->groups();
+  lod::DrawGroups drawGroups;
+  drawGroups.meshOf = meshOfPrototype;
   const size_t prototypes = renderer.scene().instances.size();
   drawGroups.groupOf.assign(prototypes, std::vector<uint32_t>(levels.size(), 0));
   std::map<std::string, uint32_t> byKey;
@@ -232,7 +232,7 @@ Expected<void> LodScene::Impl::buildGroup(DrawGroup& group, uint32_t representat
   if (!overlay) return overlay.error();
   group.overlay = std::move(overlay).value();
   for (uint32_t p : group.prototypes) {
-    const uint32_t mesh = batcher->groups().meshOf[p];
+    const uint32_t mesh = meshOfPrototype[p];
     if (group.inputs.contains(mesh)) continue;
     BindingSources meshSources = sources;
     meshSources.mesh = meshes[mesh];
@@ -325,15 +325,7 @@ Expected<FrameTiming> LodScene::draw(const scene::CameraView& view, float time) 
   s.stats.visible = s.batches.visibleInstances;
   s.stats.batches = static_cast<uint32_t>(s.batches.batches.size());
   s.stats.drawCalls = static_cast<uint32_t>(s.batches.draws.size());
-  s.stats.levelCounts.assign(s.policy.levels.size(), 0);
   for (const lod::Batch& b : s.batches.batches) s.stats.overlayBatches += b.overlay ? 1 : 0;
-  for (size_t g = 0; g < s.groups.size(); ++g) {
-    for (const lod::InstanceRecord& r : s.batches.records[g]) {
-      if (r.fade >= 1.0F && s.selector->state(r.instance).level == s.groups[g]->level) {
-        ++s.stats.levelCounts[s.groups[g]->level];
-      }
-    }
-  }
   return s.renderer.target()->renderWith(s.renderer.context(), s.renderer.scene().clearColor,
                                          [&](VkCommandBuffer cmd) { s.recordBatches(cmd); });
 }
@@ -347,6 +339,5 @@ size_t LodScene::instanceCount() const { return impl_->instances.size(); }
 const lod::DrawGroups& LodScene::drawGroups() const { return impl_->batcher->groups(); }
 uint32_t LodScene::levelOf(size_t instance) const { return impl_->selector->state(instance).level; }
 const lod::SceneInstance& LodScene::instance(size_t instance) const { return impl_->instances[instance]; }
-const glm::mat4& LodScene::model(size_t instance) const { return impl_->models[instance]; }
 
 }  // namespace spire::engine

@@ -63,10 +63,9 @@ class LodScene {
   const lod::DrawGroups& drawGroups() const;
   // The level `instance` is at (or switching to).
   uint32_t levelOf(size_t instance) const;
-  // Where instance `instance` stands, its prototype (the scene-file
-  // instance it is a copy of) and its model matrix.
+  // Where instance `instance` stands and its prototype (the scene-file
+  // instance it is a copy of).
   const lod::SceneInstance& instance(size_t instance) const;
-  const glm::mat4& model(size_t instance) const;
 
  private:
   struct Impl;

@@ -149,11 +149,6 @@ GraphicsPipelineBuilder& GraphicsPipelineBuilder::depthFormat(VkFormat format, b
   depthCompare_ = compare;
   return *this;
 }
-GraphicsPipelineBuilder& GraphicsPipelineBuilder::depthBias(float constant, float slope) {
-  depthBiasConstant_ = constant;
-  depthBiasSlope_ = slope;
-  return *this;
-}
 GraphicsPipelineBuilder& GraphicsPipelineBuilder::alphaBlend() {
   alphaBlend_ = true;
   return *this;
@@ -190,12 +185,7 @@ Expected<Pipeline> GraphicsPipelineBuilder::build(const Context& ctx) const {
   const VkPipelineVertexInputStateCreateInfo vertexInput = vertexInputState(bindings_, attributes_);
   const VkPipelineInputAssemblyStateCreateInfo inputAssembly = inputAssemblyState(topology_);
   const VkPipelineViewportStateCreateInfo viewport = viewportState();
-  VkPipelineRasterizationStateCreateInfo raster = rasterizationState(cullMode_, frontFace_);
-  if (depthBiasConstant_ != 0.0F || depthBiasSlope_ != 0.0F) {
-    raster.depthBiasEnable = VK_TRUE;
-    raster.depthBiasConstantFactor = depthBiasConstant_;
-    raster.depthBiasSlopeFactor = depthBiasSlope_;
-  }
+  const VkPipelineRasterizationStateCreateInfo raster = rasterizationState(cullMode_, frontFace_);
   const VkPipelineMultisampleStateCreateInfo multisample = multisampleState();
   const VkPipelineDepthStencilStateCreateInfo depth = depthStencilState(depthFormat_, depthWrite_, depthCompare_);
   VkPipelineColorBlendAttachmentState noBlend{};

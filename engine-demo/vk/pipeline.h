@@ -42,9 +42,6 @@ class GraphicsPipelineBuilder {
   // Color attachment 0 blended over what is there by the fragment's alpha
   // (the destination's alpha kept); the others are written as they are.
   GraphicsPipelineBuilder& alphaBlend();
-  // Depth offset of every fragment (vkCmdSetDepthBias's factors, fixed in
-  // the pipeline); negative values move fragments towards the camera.
-  GraphicsPipelineBuilder& depthBias(float constant, float slope);
   GraphicsPipelineBuilder& pushConstants(VkShaderStageFlags stages, uint32_t offset, uint32_t size);
   // Set layouts in set order: each call appends the next set number.
   GraphicsPipelineBuilder& descriptorSetLayout(VkDescriptorSetLayout layout);
@@ -71,8 +68,6 @@ class GraphicsPipelineBuilder {
   bool depthWrite_ = true;
   VkCompareOp depthCompare_ = VK_COMPARE_OP_LESS;
   bool alphaBlend_ = false;
-  float depthBiasConstant_ = 0.0F;
-  float depthBiasSlope_ = 0.0F;
   std::vector<VkPushConstantRange> pushConstants_;
   std::vector<VkDescriptorSetLayout> setLayouts_;
 };
