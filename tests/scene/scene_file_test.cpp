@@ -389,7 +389,7 @@ TEST(SceneFile, UnknownKeysE7002) {
   ASSERT_EQ(loaded->diags.all()[0].notes.size(), 1u);
   EXPECT_EQ(loaded->diags.all()[0].notes[0].message,
             "expected one of 'resolution', 'frames', 'warmupFrames', 'clearColor', 'includePaths', 'camera', 'light', "
-            "'meshes', 'textures', 'instances' or 'variants'");
+            "'meshes', 'textures', 'instances', 'variants' or 'lod'");
 }
 
 TEST(SceneFile, WrongTypesE7003) {
@@ -439,7 +439,7 @@ TEST(SceneFile, OutOfRangeE7004) {
   expectError(scene(R"("meshes": {"ground": {"type": "sphear"}})", true, false), DiagCode::E7004,
               "unknown mesh type 'sphear'; did you mean 'sphere'?");
   expectError(scene(R"("meshes": {"ground": {"type": "cube"}})", true, false), DiagCode::E7004,
-              "unknown mesh type 'cube' (expected 'terrain', 'sphere', 'plane' or 'gltf')");
+              "unknown mesh type 'cube' (expected 'terrain', 'sphere', 'plane', 'gltf', 'box', 'cylinder' or 'rock')");
   expectError(scene(R"("textures": {"t": {"type": "solid", "address": "wrap"}})"), DiagCode::E7004,
               "unknown address mode 'wrap' (expected 'repeat' or 'clamp')");
   expectError(scene(R"("textures": {"t": {"type": "checker", "size": 4, "cells": 8}})"), DiagCode::E7004,
@@ -474,7 +474,7 @@ TEST(SceneFile, MissingFieldsE7005) {
   expectError(scene(R"("camera": {"fovY": 60})", false), DiagCode::E7005,
               "'camera' has no 'views' (it needs at least one)");
   expectError(scene(R"("meshes": {"ground": {"size": 3}})", true, false), DiagCode::E7005,
-              "mesh 'ground' has no 'type' (one of 'terrain', 'sphere', 'plane' or 'gltf')");
+              "mesh 'ground' has no 'type' (one of 'terrain', 'sphere', 'plane', 'gltf', 'box', 'cylinder' or 'rock')");
   expectError(scene(R"("meshes": {"ground": {"type": "gltf"}})", true, false), DiagCode::E7005,
               "gltf mesh 'ground' has no 'file'");
   expectError(scene(R"("textures": {"t": {"type": "file"}})"), DiagCode::E7005, "file texture 't' has no 'file'");
