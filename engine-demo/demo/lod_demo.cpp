@@ -20,7 +20,8 @@ namespace spire::demo {
 
 namespace {
 
-// The three configurations, in the order of the window's number keys.
+// The three configurations, in the report's order (the window puts lod
+// first, on key 1).
 constexpr std::array kNames = {"full_quality", "lod", "lod_no_transitions"};
 constexpr size_t kFull = 0;
 constexpr size_t kLod = 1;

@@ -9,7 +9,8 @@
 //               {"member": "LodLQ"}],
 //    "hysteresis": 0.1, "transitionFrames": 8}
 // Levels go from nearest to farthest; each but the last ends at `until`
-// (world units from the camera to the object's centre), the last has no end.
+// (world units from the camera to the nearest point of the object's
+// bounding sphere), the last has no end.
 #pragma once
 
 #include <filesystem>
@@ -33,7 +34,7 @@ struct LodPolicy {
   // A switch to the farther level happens at until * (1 + hysteresis), back
   // to the nearer one at until * (1 - hysteresis).
   float hysteresis = 0.1F;
-  // Frames over which a switch cross-fades the two levels (dithered); 0
+  // Frames over which a switch cross-fades the two levels (blended); 0
   // switches at once.
   uint32_t transitionFrames = 8;
   SourceRange range;  // the whole file, for messages about the policy

@@ -42,9 +42,18 @@ void LodSelector::update(std::span<const glm::vec3> centers, const glm::vec3& ca
     if (s.fadeLeft > 0) --s.fadeLeft;
     const uint32_t level = levelFor(policy_, distanceTo(centers, radii, i, camera), s.level);
     if (level == s.level) continue;
-    s.from = s.level;
-    s.level = static_cast<uint8_t>(level);
-    s.fadeLeft = frames;
+    if (s.fadeLeft == 0) {
+      s.from = s.level;
+      s.level = static_cast<uint8_t>(level);
+      s.fadeLeft = frames;
+    } else if (level == s.from) {
+      // Back to the level it is leaving: the fade turns round from where it
+      // is, so no pixel jumps.
+      std::swap(s.from, s.level);
+      s.fadeLeft = static_cast<uint16_t>(frames + 1 - s.fadeLeft);
+    }
+    // A third level waits for this fade to end: two draws cannot blend
+    // three levels, and cutting the fade short would pop.
   }
 }
 
@@ -54,8 +63,8 @@ uint32_t LodSelector::draws(size_t instance, LevelDraw out[2]) const {
     out[0] = {s.level, 1.0F};
     return 1;
   }
-  // The new level covers a growing share of the pixels: 1/(T+1) on the
-  // switch's frame, all of them T frames later.
+  // The new level's weight grows by 1/(T+1) a frame: 1/(T+1) on the
+  // switch's frame, 1 (no longer fading) T frames later.
   const float f = 1.0F - static_cast<float>(s.fadeLeft) / static_cast<float>(policy_.transitionFrames + 1);
   out[0] = {s.from, 1.0F};
   out[1] = {s.level, f};

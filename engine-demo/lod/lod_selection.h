@@ -1,9 +1,10 @@
 // Per-instance level selection, every frame: the band of the object's
 // distance from the camera, with hysteresis at band edges, and a cross-fade
-// of transitionFrames frames after each switch (He et al. 2015, section
-// 6.3): the object is drawn at the level it leaves, opaque, and at the level
-// it enters blended over it with a weight that grows to 1, so that the
-// switch does not pop.
+// of transitionFrames frames after each switch (the transitions of He et
+// al. 2015, section 6): the object is drawn at the level it leaves, opaque,
+// and at the level it enters blended over it with a weight that grows to 1,
+// so that the switch does not pop. A switch back during a fade turns the
+// fade round; a switch to a third level waits for the fade to end.
 #pragma once
 
 #include <glm/vec3.hpp>

@@ -26,11 +26,10 @@ struct LodOptions {
 };
 
 struct LodFrameStats {
-  uint32_t visible = 0;               // instances inside the view frustum
-  uint32_t batches = 0;               // pipeline and descriptor binds, overlays included
-  uint32_t overlayBatches = 0;        // of which blended cross-fades
-  uint32_t drawCalls = 0;             // instanced draws
-  std::vector<uint32_t> levelCounts;  // visible instances per level (the level they are switching to)
+  uint32_t visible = 0;         // instances inside the view frustum
+  uint32_t batches = 0;         // pipeline and descriptor binds, overlays included
+  uint32_t overlayBatches = 0;  // of which blended cross-fades
+  uint32_t drawCalls = 0;       // instanced draws
 };
 
 class LodScene {

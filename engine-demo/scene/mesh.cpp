@@ -115,8 +115,12 @@ float terrainHeight(float size, float height, uint32_t seed, float x, float z) {
   return height * fbm(u * kTerrainFeatures, v * kTerrainFeatures, seed, kTerrainOctaves);
 }
 
-Mesh makeTerrain(float size, uint32_t resolution, float height, uint32_t seed) {
+Mesh makeTerrain(float size, uint32_t resolution, float height, uint32_t seed, GridTile tile) {
   resolution = std::max(resolution, 1u);
+  const uint32_t tiles = std::clamp(tile.tiles, 1u, resolution);
+  const auto firstQuad = [&](uint32_t t) { return resolution * std::min(t, tiles) / tiles; };
+  const uint32_t i0 = firstQuad(tile.x), i1 = firstQuad(tile.x + 1);
+  const uint32_t j0 = firstQuad(tile.z), j1 = firstQuad(tile.z + 1);
   auto heightAt = [&](float u, float v) {
     return height * fbm(u * kTerrainFeatures, v * kTerrainFeatures, seed, kTerrainOctaves);
   };
@@ -125,8 +129,8 @@ Mesh makeTerrain(float size, uint32_t resolution, float height, uint32_t seed) {
   mesh.name = "terrain";
   float step = 1.0f / static_cast<float>(resolution);
   float worldStep = size * step;
-  for (uint32_t j = 0; j <= resolution; ++j) {
-    for (uint32_t i = 0; i <= resolution; ++i) {
+  for (uint32_t j = j0; j <= j1; ++j) {
+    for (uint32_t i = i0; i <= i1; ++i) {
       glm::vec2 uv(static_cast<float>(i) * step, static_cast<float>(j) * step);
       Vertex vertex;
       vertex.position = glm::vec3((uv.x - 0.5f) * size, heightAt(uv.x, uv.y), (uv.y - 0.5f) * size);
@@ -139,7 +143,7 @@ Mesh makeTerrain(float size, uint32_t resolution, float height, uint32_t seed) {
       mesh.vertices.push_back(vertex);
     }
   }
-  appendGridIndices(mesh.indices, resolution, resolution);
+  appendGridIndices(mesh.indices, i1 - i0, j1 - j0);
   computeTangents(mesh);
   return mesh;
 }

@@ -39,9 +39,21 @@ Mesh makePlane(float size, uint32_t subdivisions);
 // The seam column is duplicated so UVs stay continuous.
 Mesh makeSphere(float radius, uint32_t rings, uint32_t segments);
 
+// One cell of a `tiles` x `tiles` split of a grid mesh, column x, row z
+// (both from 0, x along +X, z along +Z). The whole mesh is the one tile of
+// a 1 x 1 split.
+struct GridTile {
+  uint32_t tiles = 1;
+  uint32_t x = 0;
+  uint32_t z = 0;
+};
+
 // Heightfield over a `size` x `size` square with `resolution` quads per side;
 // heights in [0, height] from fBm noise. A given seed gives identical bytes.
-Mesh makeTerrain(float size, uint32_t resolution, float height, uint32_t seed);
+// With `tile`, only that tile's quads (resolution / tiles per side, the last
+// tile taking the remainder), with the whole terrain's positions, normals
+// and UVs, so that tiles drawn side by side are the whole terrain.
+Mesh makeTerrain(float size, uint32_t resolution, float height, uint32_t seed, GridTile tile = {});
 
 // The height of makeTerrain's surface at world (x, z), which may lie between
 // its vertices or outside it; for placing objects on the terrain.

@@ -12,6 +12,7 @@
 
 #include "scene/json_document.h"
 #include "scene/json_value_checker.h"
+#include "scene/terrain_tiles.h"
 #include "support/file_io.h"
 
 namespace spire::scene {
@@ -44,7 +45,7 @@ struct KindKeys {
 };
 
 const std::vector<KindKeys<MeshKind>> kMeshKinds = {
-    {MeshKind::Terrain, "terrain", {"type", "size", "resolution", "height", "seed"}},
+    {MeshKind::Terrain, "terrain", {"type", "size", "resolution", "height", "seed", "tiles"}},
     {MeshKind::Sphere, "sphere", {"type", "radius", "rings", "segments"}},
     {MeshKind::Plane, "plane", {"type", "size", "resolution"}},
     {MeshKind::Gltf, "gltf", {"type", "file"}},
@@ -67,6 +68,8 @@ const std::vector<KindKeys<TextureKind>> kTextureKinds = {
 constexpr uint32_t kMaxImageSide = 8192;
 constexpr uint32_t kMaxFrames = 100000;
 constexpr uint32_t kMaxGridResolution = 4096;
+// A tiled terrain draws tiles^2 meshes; beyond 64 x 64 a tile is a few quads.
+constexpr uint32_t kMaxTilesPerSide = 64;
 constexpr uint32_t kMaxOctaves = 16;
 constexpr size_t kMaxMaterialNumbers = 16;  // a mat4
 constexpr uint32_t kMaxUint32 = std::numeric_limits<uint32_t>::max();
@@ -382,6 +385,17 @@ class SceneReader {
     return false;
   }
 
+  // Every tile needs at least one quad of the terrain's grid.
+  void checkTiles(const JsonValue& object, const MeshDesc& mesh) {
+    const JsonMember* tiles = object.find("tiles");
+    if (tiles && mesh.tiles > mesh.resolution) {
+      diags_.report(DiagCode::E7004, tiles->value.range,
+                    fmt::format("'tiles' ({}) exceeds the terrain's 'resolution' ({}): each tile needs at least one "
+                                "quad per side",
+                                mesh.tiles, mesh.resolution));
+    }
+  }
+
   MeshDesc readMesh(const JsonMember& named) {
     MeshDesc mesh;
     mesh.name = named.key;
@@ -403,7 +417,9 @@ class SceneReader {
       if (member.key == "segments") assign(mesh.segments, check_.integer(v, "'segments'", 3, kMaxGridResolution));
       if (member.key == "roughness") assign(mesh.roughness, check_.real(v, "'roughness'", between(0.0, 0.9)));
       if (member.key == "file") assign(mesh.file, path(v, "'file'"));
+      if (member.key == "tiles") assign(mesh.tiles, check_.integer(v, "'tiles'", 1, kMaxTilesPerSide));
     }
+    checkTiles(named.value, mesh);
     if (kind != nullptr && kind->kind == MeshKind::Gltf && named.value.find("file") == nullptr) {
       check_.missing(named.value, fmt::format("gltf mesh {} has no 'file'", quotedForMessage(named.key)));
     }
@@ -800,6 +816,7 @@ std::optional<SceneFile> parseSceneFile(std::string displayPath, std::string tex
   scene.file = file;
   scene.directory = directory;
   SceneReader(sources, directory, diags).read(*root, scene);
+  splitTiles(scene, diags);
   // Once the error limit is hit, further errors are not counted.
   if (diags.errorCount() > errorsBefore || diags.limitReached()) return std::nullopt;
   return scene;

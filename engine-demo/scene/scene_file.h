@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/mesh.h"
 #include "scene/pixel_format.h"
 #include "support/diagnostic.h"
 #include "support/source_manager.h"
@@ -44,6 +45,12 @@ struct MeshDesc {
   uint32_t rings = 32;
   uint32_t segments = 64;
   float roughness = 0.3F;
+  // Terrain: drawn as tiles x tiles meshes, so that each tile has its own
+  // bounds (culling, level of detail) and its own bakes. The loader
+  // replaces every instance of a tiled mesh by one instance per tile, of the
+  // meshes NAME[x,z] it adds (see splitTiles).
+  uint32_t tiles = 1;
+  GridTile tile;  // which tile this mesh is: set on the added meshes
   // glTF: the file, absolute or resolved against the scene file's directory.
   std::filesystem::path file;
 };

@@ -112,7 +112,7 @@ Expected<Mesh> buildMesh(const MeshDesc& desc) {
     case MeshKind::Terrain:
       if (auto grid = checkGrid(desc, gridVertices); !grid) return Error{meshPrefix(desc) + grid.error().message};
       if (!std::isfinite(desc.height)) return Error{meshPrefix(desc) + "height must be a finite number"};
-      mesh = makeTerrain(desc.size, desc.resolution, desc.height, desc.seed);
+      mesh = makeTerrain(desc.size, desc.resolution, desc.height, desc.seed, desc.tile);
       break;
     case MeshKind::Plane:
       if (auto grid = checkGrid(desc, gridVertices); !grid) return Error{meshPrefix(desc) + grid.error().message};

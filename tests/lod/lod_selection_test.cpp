@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <random>
 
 namespace spire::lod {
@@ -80,6 +83,51 @@ TEST(LodSelectionTest, ASwitchCrossFadesFromTheOldLevelToTheNew) {
   }
   // Weights 1/4, 2/4, 3/4, then the new level alone.
   EXPECT_EQ(fades, (std::vector<float>{0.25F, 0.5F, 0.75F, 1.0F, 1.0F}));
+}
+
+// Each level's share of the image this frame: the opaque draw's level gets
+// 1 - f, the blended draw's level f.
+std::array<float, 3> levelWeights(const LodSelector& selector) {
+  LevelDraw draws[2];
+  std::array<float, 3> weights{};
+  const uint32_t n = selector.draws(0, draws);
+  if (n == 1) {
+    weights[draws[0].level] = 1.0F;
+  } else {
+    weights[draws[0].level] += 1.0F - draws[1].fade;
+    weights[draws[1].level] += draws[1].fade;
+  }
+  return weights;
+}
+
+// Property: however the distance moves, switches included that come while
+// a fade is still running (back to the level being left, or on to a third
+// one), no level's share of the image changes by more than one fade step
+// between two frames: nothing pops.
+TEST(LodSelectionTest, RandomWalksNeverChangeALevelsShareByMoreThanOneStep) {
+  constexpr uint32_t kFrames = 6;
+  const LodPolicy policy = threeLevels(0.05F, kFrames);
+  const float step = 1.0F / (kFrames + 1);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> move(-6.0F, 6.0F);
+  size_t reversals = 0;
+  for (int walk = 0; walk < 40; ++walk) {
+    LodSelector selector(policy, 1);
+    std::vector<glm::vec3> centers = {{0.0F, 0.0F, 20.0F}};
+    selector.reset(centers, glm::vec3(0.0F));
+    std::array<float, 3> before = levelWeights(selector);
+    for (int frame = 0; frame < 400; ++frame) {
+      centers[0].z = std::clamp(centers[0].z + move(rng), 0.0F, 60.0F);
+      const LodState previous = selector.state(0);
+      selector.update(centers, glm::vec3(0.0F));
+      const LodState& now = selector.state(0);
+      reversals += previous.fadeLeft > 1 && now.level == previous.from && now.from == previous.level ? 1 : 0;
+      const std::array<float, 3> weights = levelWeights(selector);
+      for (size_t l = 0; l < weights.size(); ++l) ASSERT_LE(std::abs(weights[l] - before[l]), step + 1e-5F);
+      before = weights;
+    }
+  }
+  EXPECT_GT(reversals, 0U);  // the walks did turn fades round
 }
 
 }  // namespace
