@@ -392,6 +392,10 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   std::optional<GlfwWindow> window;
   engine::ToolRun run(kTool, err);
   if (const auto status = run.loadScene(options.scenePath)) return *status;
+  // The policy is read before the device opens, so a bad one costs no start-up.
+  if (run.scene().lod) {
+    if (const auto status = run.loadLodPolicy()) return *status;
+  }
   if (const auto status = openDevice(options, run, window, out, err)) return *status;
   run.startRenderer(options.bakeSize);
   if (run.scene().lod) return runLod(options, run, window ? &*window : nullptr, out);

@@ -241,7 +241,6 @@ int measureLod(const LodRunOptions& options, engine::ToolRun& run, std::array<Co
 }  // namespace
 
 int runLodDemo(const LodRunOptions& options, engine::ToolRun& run, GlfwWindow* window, std::ostream& out) {
-  if (const auto status = run.loadLodPolicy()) return *status;
   auto configs = createConfigurations(run);
   if (!configs) return run.fail(configs.error());
   if (!window) return run.finish(measureLod(options, run, *configs, out));

@@ -24,7 +24,8 @@ struct LodRunOptions {
   std::optional<uint32_t> windowFrames;
 };
 
-// Headless: measures, writes full_quality.png, lod.png, comparison.png and
+// `run` has loaded the scene's policy and started its renderer. Headless:
+// measures, writes full_quality.png, lod.png, comparison.png and
 // report.md into the output directory as a set, and prints the summary line.
 // With `window`, flies through the scene instead (keys 1-3 switch). Returns
 // the exit status.

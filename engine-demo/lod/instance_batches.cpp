@@ -24,23 +24,31 @@ bool sphereVisible(const std::array<glm::vec4, 6>& planes, const glm::vec3& cent
 InstanceBatcher::InstanceBatcher(DrawGroups groups, uint32_t blockCount)
     : groups_(std::move(groups)), blockCount_(std::max(blockCount, 1U)) {}
 
+void InstanceBatcher::add(const SceneInstance& instance, uint32_t index, const LodSelector& selector) {
+  LevelDraw draws[2];
+  const uint32_t n = selector.draws(index, draws);
+  for (uint32_t d = 0; d < n; ++d) {
+    const uint32_t group = groups_.groupOf[instance.prototype][draws[d].level];
+    const uint32_t block = draws[d].fade < 1.0F ? blockCount_ + instance.block : instance.block;
+    const uint32_t bucket = block * groups_.groupCount + group;
+    entries_.push_back({bucket, groups_.meshOf[instance.prototype], {index, draws[d].fade}});
+  }
+}
+
 void InstanceBatcher::build(std::span<const SceneInstance> instances, const LodSelector& selector,
-                            const glm::mat4& viewProj, FrameBatches& out) {
+                            const glm::mat4& viewProj, FrameBatches& out, std::span<const uint32_t> subset) {
   const std::array<glm::vec4, 6> planes = frustumPlanes(viewProj);
   entries_.clear();
   out.visibleInstances = 0;
-  for (uint32_t i = 0; i < instances.size(); ++i) {
-    const SceneInstance& instance = instances[i];
-    if (!sphereVisible(planes, instance.center, instance.radius)) continue;
+  const auto consider = [&](uint32_t i) {
+    if (!sphereVisible(planes, instances[i].center, instances[i].radius)) return;
     ++out.visibleInstances;
-    LevelDraw draws[2];
-    const uint32_t n = selector.draws(i, draws);
-    for (uint32_t d = 0; d < n; ++d) {
-      const uint32_t group = groups_.groupOf[instance.prototype][draws[d].level];
-      const uint32_t block = draws[d].fade < 1.0F ? blockCount_ + instance.block : instance.block;
-      const uint32_t bucket = block * groups_.groupCount + group;
-      entries_.push_back({bucket, groups_.meshOf[instance.prototype], {i, draws[d].fade}});
-    }
+    add(instances[i], i, selector);
+  };
+  if (subset.empty()) {
+    for (uint32_t i = 0; i < instances.size(); ++i) consider(i);
+  } else {
+    for (uint32_t i : subset) consider(i);
   }
   // A counting sort by (block, group), then by mesh within each: the
   // buckets are few, so this is linear where a comparison sort is not.

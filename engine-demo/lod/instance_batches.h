@@ -75,10 +75,11 @@ class InstanceBatcher {
  public:
   InstanceBatcher(DrawGroups groups, uint32_t blockCount);
 
-  // Culls `instances` against `viewProj` and batches the visible ones at
-  // the levels `selector` gives. `out` is reused from frame to frame.
+  // Culls `instances` (only those `subset` lists, when it is not empty)
+  // against `viewProj` and batches the visible ones at the levels `selector`
+  // gives. `out` is reused from frame to frame.
   void build(std::span<const SceneInstance> instances, const LodSelector& selector, const glm::mat4& viewProj,
-             FrameBatches& out);
+             FrameBatches& out, std::span<const uint32_t> subset = {});
 
   const DrawGroups& groups() const { return groups_; }
 
@@ -88,6 +89,7 @@ class InstanceBatcher {
     uint32_t mesh;
     InstanceRecord record;
   };
+  void add(const SceneInstance& instance, uint32_t index, const LodSelector& selector);
   void emit(FrameBatches& out) const;
   DrawGroups groups_;
   uint32_t blockCount_;

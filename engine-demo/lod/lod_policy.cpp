@@ -100,11 +100,11 @@ std::optional<LodPolicy> parseLodPolicy(std::string displayPath, std::string tex
   return policy;
 }
 
-std::optional<LodPolicy> loadLodPolicy(const std::filesystem::path& path, SourceManager& sources,
-                                       DiagnosticList& diags) {
+std::optional<LodPolicy> loadLodPolicy(const std::filesystem::path& path, SourceManager& sources, DiagnosticList& diags,
+                                       SourceRange namedAt) {
   std::optional<std::string> text = readWholeFile(path.string());
   if (!text) {
-    diags.report(DiagCode::E1101, {}, fmt::format("cannot open level-of-detail policy '{}'", path.string()));
+    diags.report(DiagCode::E1101, namedAt, fmt::format("cannot open level-of-detail policy '{}'", path.string()));
     return std::nullopt;
   }
   return parseLodPolicy(path.string(), std::move(*text), sources, diags);

@@ -41,9 +41,10 @@ struct LodPolicy {
 };
 
 // Reads and checks a policy file; every problem is reported with its
-// file:line:col (E7001-E7007, as in scene files) and gives nullopt.
-std::optional<LodPolicy> loadLodPolicy(const std::filesystem::path& path, SourceManager& sources,
-                                       DiagnosticList& diags);
+// file:line:col (E7001-E7007, as in scene files) and gives nullopt. A file
+// that cannot be read is reported at `namedAt`, where the path was given.
+std::optional<LodPolicy> loadLodPolicy(const std::filesystem::path& path, SourceManager& sources, DiagnosticList& diags,
+                                       SourceRange namedAt = {});
 std::optional<LodPolicy> parseLodPolicy(std::string displayPath, std::string text, SourceManager& sources,
                                         DiagnosticList& diags);
 

@@ -88,6 +88,7 @@ struct LodScene::Impl {
   std::optional<lod::InstanceBatcher> batcher;  // made once the draw groups are known
   std::optional<lod::LodSelector> selector;
   lod::FrameBatches batches;
+  std::vector<uint32_t> drawnOnly;  // empty: every instance
   LodFrameStats stats;
 
   Impl(SceneRenderer& r, lod::LodPolicy p) : renderer(r), policy(std::move(p)) {}
@@ -319,7 +320,7 @@ Expected<FrameTiming> LodScene::render(const scene::CameraView& view, float time
 Expected<FrameTiming> LodScene::draw(const scene::CameraView& view, float time) {
   Impl& s = *impl_;
   const FrameState frame = s.renderer.frameState(view, time);
-  s.batcher->build(s.instances, *s.selector, frame.projection * frame.view, s.batches);
+  s.batcher->build(s.instances, *s.selector, frame.projection * frame.view, s.batches, s.drawnOnly);
   s.writeRecords(frame);
   s.stats = {};
   s.stats.visible = s.batches.visibleInstances;
@@ -333,6 +334,12 @@ Expected<FrameTiming> LodScene::draw(const scene::CameraView& view, float time) 
 Expected<measure::FloatImage> LodScene::readColor() {
   return impl_->renderer.target()->readColor(impl_->renderer.context());
 }
+
+Expected<std::vector<uint8_t>> LodScene::readCoverage() {
+  return impl_->renderer.target()->readCoverage(impl_->renderer.context());
+}
+
+void LodScene::drawOnly(std::vector<uint32_t> instances) { impl_->drawnOnly = std::move(instances); }
 
 const LodFrameStats& LodScene::lastStats() const { return impl_->stats; }
 size_t LodScene::instanceCount() const { return impl_->instances.size(); }

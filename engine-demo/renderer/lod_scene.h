@@ -56,6 +56,12 @@ class LodScene {
   Expected<FrameTiming> render(const scene::CameraView& view, float time);
   // Color target 0 as the last frame left it, read back.
   Expected<measure::FloatImage> readColor();
+  // 1 where the last frame drew (depth < 1), else 0.
+  Expected<std::vector<uint8_t>> readCoverage();
+  // Draws only these instances from now on (every instance when empty): one
+  // object alone in the frame, as spire-tune --lod-policy measures a level's
+  // error at a distance. Indices must be below instanceCount().
+  void drawOnly(std::vector<uint32_t> instances);
 
   const LodFrameStats& lastStats() const;
   size_t instanceCount() const;

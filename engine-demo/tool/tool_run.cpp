@@ -20,7 +20,8 @@ std::optional<int> ToolRun::loadScene(const std::string& path) {
 }
 
 std::optional<int> ToolRun::loadLodPolicy() {
-  policy_ = lod::loadLodPolicy(scene_->lod->policy, sources_, diags_);
+  if (!scene_->lod) return fail(Error{"the scene has no 'lod': no level-of-detail policy to read", {}, {}});
+  policy_ = lod::loadLodPolicy(scene_->lod->policy, sources_, diags_, scene_->lod->policyRange);
   if (policy_) return std::nullopt;
   reporter_.flush();
   return kExitInputError;

@@ -45,7 +45,7 @@ class ToolRun {
   // Exit 1 after printing the scene's diagnostics.
   std::optional<int> loadScene(const std::string& path);
   // The scene's level-of-detail policy ("lod"); exit 1 after printing its
-  // diagnostics. The scene must have one.
+  // diagnostics, or when the scene has none.
   std::optional<int> loadLodPolicy();
   // Exit 3 (kExitNoDevice) when no usable device can be opened.
   std::optional<int> openDevice(const DeviceOptions& options);

@@ -12,6 +12,7 @@
 #include "driver/tool_arguments.h"
 #include "support/file_io.h"
 #include "tool/tool_run.h"
+#include "tune/lod_policy_tune.h"
 #include "tune/progress.h"
 #include "tune/shader_cache.h"
 #include "tune/tune_options.h"
@@ -163,6 +164,8 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   TuneOptions options;
   defineTuneOptions(app, options);
   if (const auto status = parseToolArguments(app, args, out, err)) return *status;
+  if (!options.lodPolicyPath.empty()) return runLodPolicyTune(options, out, err);
+  if (options.shader.empty()) return usageError(kTool, "--shader is required (or --lod-policy PATH)", err);
   const vk::HostTimer wall;
   // Workers inherit the coordinator's setting. Declared before the run, so
   // the cache outlives the device that uses it.

@@ -4,12 +4,41 @@
 
 namespace spire::tune {
 
+namespace {
+
+void defineLodPolicyOptions(CLI::App& app, TuneOptions& options, CLI::Option* shader) {
+  app.add_option("--lod-policy", options.lodPolicyPath,
+                 "Instead of tuning a shader, measure each level of the scene's level-of-detail policy and write the "
+                 "policy chosen from the measurements to PATH (docs/lod.md)")
+      ->excludes(shader)
+      ->type_name("PATH");
+  app.add_option("--distances", options.distances,
+                 "--lod-policy: camera distances to measure at, increasing (default: 1, 2, 4, ... up to half the "
+                 "camera's far plane)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber)
+      ->type_name("D,D,...");
+  app.add_option("--max-error", options.maxError, "--lod-policy: RMSE tolerated at the farthest distance")
+      ->check(CLI::PositiveNumber)
+      ->type_name("E");
+  app.add_option("--error-exponent", options.errorExponent,
+                 "--lod-policy: tolerance curve ((d - nearest) / (farthest - nearest))^Q * max error")
+      ->check(CLI::PositiveNumber)
+      ->type_name("Q");
+  app.add_option("--switch-penalty", options.switchPenalty,
+                 "--lod-policy: cost of a level switch, as a share of a full-quality frame")
+      ->check(CLI::NonNegativeNumber)
+      ->type_name("P");
+}
+
+}  // namespace
+
 void defineTuneOptions(CLI::App& app, TuneOptions& options) {
   addVersionFlag(app);
   app.add_option("scene", options.scenePath, "Scene file (docs/scene.md)")->required()->type_name("SCENE.json");
-  app.add_option("--shader", options.shader, "The shader to tune (an instance of the scene must use it)")
-      ->required()
-      ->type_name("NAME");
+  auto* shader = app.add_option("--shader", options.shader,
+                                "The shader to tune (an instance of the scene must use it; or --lod-policy)")
+                     ->type_name("NAME");
   app.add_option("--components", options.components,
                  "Components to explore (default: every choice); NAME@World keeps one world for NAME")
       ->delimiter(',')
@@ -55,6 +84,7 @@ void defineTuneOptions(CLI::App& app, TuneOptions& options) {
          "environment's MESA_SHADER_CACHE_* settings")
       ->check(CLI::IsMember({"run", "off", "inherit"}))
       ->type_name("MODE");
+  defineLodPolicyOptions(app, options, shader);
   app.add_option("--worker", options.worker, "Internal: measure shard K")->group("");
 }
 

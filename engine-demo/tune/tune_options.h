@@ -34,6 +34,12 @@ struct TuneOptions {
   std::string shaderCache = "run";
   std::vector<std::string> params;  // NAME=MIN:MAX
   uint32_t paramSamples = 1;
+  // --lod-policy: derive a level-of-detail policy instead of tuning a shader.
+  std::string lodPolicyPath;
+  std::vector<float> distances;  // empty: doubling from 1 to half the camera's far plane
+  double maxError = 0.25;
+  double errorExponent = 0.5;
+  double switchPenalty = 0.05;
 };
 
 // Adds every option of spire-tune to `app`, read into `options`.

@@ -9,13 +9,12 @@
 
 #include <set>
 
+#include "common/lod_test_scene.h"
 #include "engine/renderer_fixture.h"
 #include "lod/lod_policy.h"
 
 namespace spire::engine::testing {
 namespace {
-
-const std::string kMaterials = (fs::path(SPIRE_SOURCE_DIR) / "examples/lod_materials.spire").string();
 
 lod::LodPolicy policy(uint32_t transitionFrames = 0) {
   lod::LodPolicy p;
@@ -23,46 +22,6 @@ lod::LodPolicy policy(uint32_t transitionFrames = 0) {
   p.hysteresis = 0.1F;
   p.transitionFrames = transitionFrames;
   return p;
-}
-
-// Four materials on a small terrain: the terrain itself and copies (or, with
-// `scatter` false, one of each at a fixed place) of a barrel, a sofa and a
-// rock.
-std::string lodJson(bool scatter, const std::string& camera = R"([0, 9, 13], "target": [0, 0, 0])") {
-  const auto placed = [&](const char* mesh, const char* shader, int seed, const char* at, const char* material) {
-    const std::string where = scatter ? fmt::format(R"("scatter": {{"count": 12, "seed": {}, "on": "hills"}})", seed)
-                                      : fmt::format(R"("transform": {{"translate": {}}})", at);
-    return fmt::format(R"(, {{"mesh": "{}", "source": "{}", "shader": "{}", {}, "material": {}}})", mesh, kMaterials,
-                       shader, where, material);
-  };
-  return R"({"resolution": [96, 64], "frames": 2, "warmupFrames": 1, "clearColor": [0, 0, 0, 1],
-  "camera": {"fovY": 60, "views": [{"position": )" +
-         camera + R"(}]},
-  "lod": {"policy": "unused.json", "blocks": )" +
-         std::string(scatter ? "2" : "1") + R"(},
-  "meshes": {"hills": {"type": "terrain", "size": 12, "resolution": 16, "height": 0.5, "seed": 3},
-             "barrel": {"type": "cylinder", "radius": 0.4, "height": 1.0, "segments": 12},
-             "sofa": {"type": "box", "size": 0.8, "height": 0.5},
-             "rock": {"type": "rock", "radius": 0.5, "rings": 6, "segments": 12, "seed": 4}},
-  "textures": {"n": {"type": "noise", "size": 32, "seed": 9, "octaves": 3},
-               "c": {"type": "noise", "size": 32, "seed": 2, "color": [0.8, 0.3, 0.1], "color2": [0.1, 0.2, 0.6]},
-               "nm": {"type": "normalMap", "size": 32, "seed": 5}},
-  "instances": [{"mesh": "hills", "source": ")" +
-         kMaterials +
-         R"(", "shader": "TerrainLod", "material": {"mixMap": "n", "albedoMap1": "c", "albedoMap2": "n",
-     "normalMap1": "nm", "normalMap2": "nm"}})" +
-         placed("barrel", "Barrel", 1, "[-2, 0.3, 1]",
-                R"({"woodGrainMap": "c", "woodNormalMap": "nm", "grimeMap": "n", "rustMap": "n", "staveCount": 16,
-      "bandWidth": 0.05, "grimeAmount": 0.5, "rustAmount": 0.4, "metalColor": [0.35, 0.35, 0.38],
-      "rustColor": [0.45, 0.2, 0.08]})") +
-         placed("sofa", "Sofa", 2, "[0, 0.3, 2]",
-                R"({"fabricColorMap": "c", "fabricNormalMap": "nm", "wearMap": "n", "fabricColor": [0.55, 0.2, 0.15],
-      "pipingColor": [0.9, 0.85, 0.7], "weaveDensity": 120, "panelCount": 3, "wearAmount": 0.4})") +
-         placed("rock", "Rock", 3, "[2, 0.3, 0]",
-                R"({"rockNoiseMap": "n", "rockDetailMap": "n", "rockNormalMap": "nm", "crackMap": "n",
-      "mossMap": "c", "rockColor1": [0.5, 0.48, 0.45], "rockColor2": [0.35, 0.33, 0.3], "mossAmount": 0.5,
-      "crackWidth": 0.02})") +
-         "]}";
 }
 
 TextureBakeOptions smallBakes() {
@@ -91,7 +50,9 @@ TEST_F(LodSceneTest, MaterialsSharingLockedKernelsLandInOneBatch) {
   // blocks: 2 x 2 over the copies' extent; every level of every prototype
   // in view from above.
   for (uint32_t level = 0; level < 3; ++level) {
-    auto scene = lodScene(lodJson(true, R"([0, 30, 0.01], "target": [0, 0, 0])"), {.fixedLevel = level});
+    auto scene =
+        lodScene(spire::testing::lodTestSceneJson({true, R"([{"position": [0, 30, 0.01], "target": [0, 0, 0]}])"}),
+                 {.fixedLevel = level});
     ASSERT_TRUE(scene);
     scene->resetLevels(scene_->camera.views.front());
     ASSERT_TRUE(scene->render(scene_->camera.views.front(), 0.0F));
@@ -118,7 +79,7 @@ TEST_F(LodSceneTest, MaterialsSharingLockedKernelsLandInOneBatch) {
 TEST_F(LodSceneTest, EachLevelMatchesTheSameShadersDrawnOneObjectAtATime) {
   const std::string members[] = {"LodHQ", "LodMQ", "LodLQ"};
   for (uint32_t level = 0; level < 3; ++level) {
-    auto scene = lodScene(lodJson(false), {.fixedLevel = level});
+    auto scene = lodScene(spire::testing::lodTestSceneJson({.scatter = false}), {.fixedLevel = level});
     ASSERT_TRUE(scene);
     scene->resetLevels(scene_->camera.views.front());
     ASSERT_TRUE(scene->render(scene_->camera.views.front(), 0.0F));
@@ -128,7 +89,7 @@ TEST_F(LodSceneTest, EachLevelMatchesTheSameShadersDrawnOneObjectAtATime) {
       EXPECT_EQ(scene->lastStats().batches, 1U) << "level " << level;  // one block, one group
     }
 
-    std::string json = lodJson(false);
+    std::string json = spire::testing::lodTestSceneJson({.scatter = false});
     for (const char* shader : {"TerrainLod", "Barrel", "Sofa", "Rock"}) {
       const std::string from = fmt::format(R"("shader": "{}")", shader);
       json.replace(json.find(from), from.size(), fmt::format(R"("shader": "{}<{}>")", shader, members[level]));
@@ -152,7 +113,7 @@ TEST_F(LodSceneTest, EachLevelMatchesTheSameShadersDrawnOneObjectAtATime) {
 // than its band widened by the margin allows.
 TEST_F(LodSceneTest, LevelsFollowThePolicyWithHysteresisAsTheCameraMoves) {
   const lod::LodPolicy p = policy();
-  auto scene = lodScene(lodJson(true), {}, p);
+  auto scene = lodScene(spire::testing::lodTestSceneJson(), {}, p);
   ASSERT_TRUE(scene);
   scene::CameraView view = scene_->camera.views.front();
   scene->resetLevels(view);

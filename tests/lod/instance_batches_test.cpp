@@ -73,6 +73,32 @@ TEST(InstanceBatchesTest, PrototypesSharingAGroupLandInOneBatchPerBlock) {
   EXPECT_EQ(out.records[4].size(), 8U);
 }
 
+// A subset (one object alone, as spire-tune --lod-policy draws it) batches
+// only the instances it lists, keeping their indices into the scene.
+TEST(InstanceBatchesTest, ASubsetDrawsOnlyTheInstancesItLists) {
+  DrawGroups groups;
+  groups.groupOf = {{0, 1}, {0, 1}};
+  groups.meshOf = {0, 1};
+  groups.groupCount = 2;
+  std::vector<SceneInstance> instances;
+  for (uint32_t k = 0; k < 6; ++k) instances.push_back({{0.4F * float(k), 0, -5.0F}, 0.2F, k % 2, 0});
+  LodSelector selector(twoLevels(), instances.size());
+  std::vector<glm::vec3> centers;
+  for (const auto& i : instances) centers.push_back(i.center);
+  selector.reset(centers, glm::vec3(0));
+  InstanceBatcher batcher(groups, 1);
+  FrameBatches out;
+  const std::vector<uint32_t> subset{3};
+  batcher.build(instances, selector, viewProj(glm::vec3(0), glm::vec3(0, 0, -1)), out, subset);
+  EXPECT_EQ(out.visibleInstances, 1U);
+  ASSERT_EQ(out.draws.size(), 1U);
+  EXPECT_EQ(out.draws[0].mesh, 1U);
+  ASSERT_EQ(out.records[0].size(), 1U);
+  EXPECT_EQ(out.records[0][0].instance, 3U);
+  batcher.build(instances, selector, viewProj(glm::vec3(0), glm::vec3(0, 0, -1)), out);
+  EXPECT_EQ(out.records[0].size(), 6U);
+}
+
 // Property over random scenes: every visible instance is drawn exactly once
 // per level it is drawn at, in the group of its (prototype, level), in a
 // batch of its block and a draw of its mesh; no batch repeats a (block,

@@ -2,6 +2,7 @@
 // run in-process on a small scene (with validation on), including resuming.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -13,8 +14,10 @@
 
 #include <unistd.h>
 
+#include "common/lod_test_scene.h"
 #include "driver/exit_codes.h"
 #include "engine/device_fixture.h"
+#include "lod/lod_policy.h"
 #include "scene/scene_file.h"
 #include "tune/format_selection.h"
 #include "tune/pareto.h"
@@ -381,6 +384,116 @@ TEST_F(TuneRun, ShaderCacheModesCleanUpAfterThemselves) {
     ::setenv("TMPDIR", tmpdir->c_str(), 1);
   else
     ::unsetenv("TMPDIR");
+  fs::remove_all(dir);
+}
+
+// The per-level frame times spire-tune --lod-policy printed, by member.
+std::map<std::string, double> printedCosts(const std::string& out) {
+  std::map<std::string, double> costs;
+  std::istringstream line(out.substr(out.find("):") + 2, out.find('\n', out.find("):")) - out.find("):") - 2));
+  std::string member, unit;
+  double ms = 0.0;
+  while (line >> member >> ms >> unit) costs[member] = ms;
+  return costs;
+}
+
+// spire-tune --lod-policy on a small level-of-detail scene: the policy it
+// writes reads back and holds the scene's levels in order; with nothing
+// tolerated it keeps full quality everywhere, with everything tolerated and
+// no switch penalty it ends on the level measured cheapest.
+TEST_F(TuneRun, DerivesALevelOfDetailPolicyFromMeasurements) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_lod_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  spire::testing::LodTestScene sceneOptions;
+  sceneOptions.policy = "policy.json";
+  std::ofstream(dir / "scene.json") << spire::testing::lodTestSceneJson(sceneOptions);
+  std::ofstream(dir / "policy.json") << spire::testing::lodTestPolicyJson();
+  const fs::path tuned = dir / "tuned.json";
+  const auto tune = [&](const std::vector<std::string>& extra, std::string& printed) {
+    std::vector<std::string> args{(dir / "scene.json").string(),
+                                  "--lod-policy",
+                                  tuned.string(),
+                                  "--distances",
+                                  "1,3,9",
+                                  "--frames",
+                                  "3",
+                                  "--validation"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::ostringstream out, err;
+    const int status = runTune(args, out, err);
+    printed = out.str() + err.str();
+    return status;
+  };
+  const auto readBack = [&]() {
+    SourceManager sources;
+    DiagnosticList diags;
+    return lod::loadLodPolicy(tuned, sources, diags);
+  };
+
+  std::string strict;
+  ASSERT_EQ(tune({"--max-error", "1e-6"}, strict), 0) << strict;
+  for (const char* row : {"| 1 | 0.0000 |", "| 3 |", "| 9 |", "LodMQ RMSE", "LodLQ RMSE"}) {
+    EXPECT_NE(strict.find(row), std::string::npos) << row << " in\n" << strict;
+  }
+  auto policy = readBack();
+  ASSERT_TRUE(policy) << strict;
+  ASSERT_EQ(policy->levels.size(), 1U) << strict;
+  EXPECT_EQ(policy->levels[0].member, "LodHQ");
+  EXPECT_FLOAT_EQ(policy->hysteresis, 0.1F);  // kept from the scene's policy
+  EXPECT_EQ(policy->transitionFrames, 4U);
+
+  std::string lax;
+  ASSERT_EQ(tune({"--max-error", "10", "--switch-penalty", "0"}, lax), 0) << lax;
+  policy = readBack();
+  ASSERT_TRUE(policy) << lax;
+  const std::vector<std::string> members{"LodHQ", "LodMQ", "LodLQ"};
+  size_t next = 0;
+  for (const lod::LodLevel& level : policy->levels) {
+    const auto at = std::find(members.begin() + static_cast<std::ptrdiff_t>(next), members.end(), level.member);
+    ASSERT_NE(at, members.end()) << level.member << " out of order:\n" << lax;
+    next = static_cast<size_t>(at - members.begin()) + 1;
+  }
+  EXPECT_EQ(policy->levels.front().member, "LodHQ") << "nothing is tolerated at the nearest distance";
+  const std::map<std::string, double> costs = printedCosts(lax);
+  ASSERT_EQ(costs.size(), 3U) << lax;
+  std::vector<std::pair<double, std::string>> byCost;
+  for (const auto& [member, ms] : costs) byCost.emplace_back(ms, member);
+  std::sort(byCost.begin(), byCost.end());
+  if (byCost[0].first < byCost[1].first) {
+    EXPECT_EQ(policy->levels.back().member, byCost[0].second) << lax;
+  }
+  if (policy->levels.size() > 1) {
+    EXPECT_FLOAT_EQ(policy->levels[0].until, 3.34F);  // 3 / (1 - hysteresis), rounded up
+  }
+  fs::remove_all(dir);
+}
+
+TEST_F(TuneRun, LevelOfDetailPolicyInputErrorsWriteNothing) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_lod_bad_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string tuned = (dir / "tuned.json").string();
+  const std::string lodScene = (dir / "scene.json").string();
+  std::ofstream(lodScene) << spire::testing::lodTestSceneJson();  // its policy file is missing
+  struct Case {
+    std::vector<std::string> args;
+    int status;
+    const char* message;
+  };
+  const std::vector<Case> cases{
+      {{lodScene, "--lod-policy", tuned, "--distances", "4,2"}, kExitUsageError, "--distances must increase"},
+      {{lodScene, "--lod-policy", tuned, "--distances", "4"}, kExitUsageError, "at least two distances"},
+      {{lodScene, "--lod-policy", tuned, "--shader", "Rock"}, kExitUsageError, "excludes"},
+      {{lodScene, "--lod-policy", tuned}, kExitInputError, "cannot open level-of-detail policy"},
+      {{"examples/scenes/terrain.json", "--lod-policy", tuned}, kExitInputError, "the scene has no 'lod'"},
+  };
+  for (const Case& c : cases) {
+    std::ostringstream out, err;
+    EXPECT_EQ(runTune(c.args, out, err), c.status) << c.message << "\n" << err.str();
+    EXPECT_NE(err.str().find(c.message), std::string::npos) << err.str();
+    EXPECT_FALSE(fs::exists(tuned)) << c.message;
+  }
   fs::remove_all(dir);
 }
 
