@@ -10,6 +10,9 @@ enum ExitCode : int {
   kExitInputError = 1,  // errors in the inputs (sources, scenes, decisions) or while running
   kExitUsageError = 2,  // a command line the tool cannot run
   kExitNoDevice = 3,    // no usable Vulkan device (only the tools that render)
+  // Stopped by SIGINT or SIGTERM after leaving its work resumable (spire-tune);
+  // 128 + SIGINT, as a shell reports a command it interrupted.
+  kExitInterrupted = 130,
 };
 
 }  // namespace spire

@@ -13,8 +13,10 @@
 #include "support/file_io.h"
 #include "tool/tool_run.h"
 #include "tune/lod_policy_tune.h"
+#include "tune/output_lock.h"
 #include "tune/progress.h"
 #include "tune/shader_cache.h"
+#include "tune/stop_request.h"
 #include "tune/tune_options.h"
 #include "tune/tune_outputs.h"
 #include "tune/tune_session.h"
@@ -34,12 +36,21 @@ constexpr const char* kTool = "spire-tune";
 // WorkQueue).
 size_t chunkSize(const TuneSpace& space) { return space.axes.empty() ? 1 : space.axes.back().placements.size(); }
 
+// Points of this run's space an earlier run measured (the journal may hold
+// rows of a sample this run does not take).
+size_t doneInSpace(const TuneSession& session) {
+  size_t done = 0;
+  for (const TunePoint& point : session.space.points) done += session.done.contains(point.index) ? 1 : 0;
+  return done;
+}
+
 // Measures the points in [begin, end) not done yet, appending each row to
 // the worker's shard as it finishes (the journal a rerun resumes from).
 void measureRange(const TuneOptions& options, TuneSession& session, int worker, size_t begin, size_t end,
                   Progress* progress, size_t& finished) {
   const std::vector<TunePoint>& points = session.space.points;
   for (size_t i = begin; i < std::min(end, points.size()); ++i) {
+    if (StopRequest::requested()) return;
     if (session.done.contains(points[i].index)) continue;
     appendRow(shardPath(options, std::max(worker, 0)), session.components, session.tuner->measure(points[i]));
     if (progress) progress->update(++finished);
@@ -51,7 +62,7 @@ void measureRange(const TuneOptions& options, TuneSession& session, int worker, 
 std::optional<int> measurePoints(const TuneOptions& options, engine::ToolRun& run, TuneSession& session, int worker,
                                  Progress* progress) {
   if (auto ok = session.tuner->renderReference(session.reference); !ok) return run.fail(ok.error());
-  size_t finished = session.done.size();
+  size_t finished = doneInSpace(session);
   const size_t count = session.space.points.size();
   if (worker < 0) {
     measureRange(options, session, worker, 0, count, progress, finished);
@@ -61,6 +72,7 @@ std::optional<int> measurePoints(const TuneOptions& options, engine::ToolRun& ru
   const size_t chunks = (count + chunk - 1) / chunk;
   WorkQueue queue(queuePath(options));
   while (true) {
+    if (StopRequest::requested()) return std::nullopt;
     const auto next = queue.next(chunks);
     if (!next) return run.fail(next.error().message);
     if (!next->has_value()) return std::nullopt;
@@ -73,6 +85,7 @@ std::optional<int> measurePoints(const TuneOptions& options, engine::ToolRun& ru
 int measureShard(const TuneOptions& options, engine::ToolRun& run, TuneSession& session, int worker,
                  Progress* progress) {
   if (const auto status = measurePoints(options, run, session, worker, progress)) return *status;
+  if (StopRequest::requested()) return kExitInterrupted;
   const TimeSplit& s = session.tuner->timeSplit();
   const std::string text = fmt::format("{} {} {} {}\n", s.compileMs, s.firstUseMs, s.renderMs, s.errorMs);
   if (auto written = writeFileAtomically(splitPath(options, std::max(worker, 0)).string(), text); !written) {
@@ -82,6 +95,19 @@ int measureShard(const TuneOptions& options, engine::ToolRun& run, TuneSession& 
   // only errors are worth printing here.
   if (run.diagnostics().hasErrors()) run.reporter().flush();
   return run.finish(kExitSuccess);
+}
+
+// After a stop request: what the journal keeps, and how to go on.
+int reportInterrupted(const TuneOptions& options, const TuneSession& session, std::ostream& err) {
+  size_t kept = 0;
+  if (const auto done = loadDone(options, session.components)) {
+    for (const TunePoint& point : session.space.points) kept += done->contains(point.index) ? 1 : 0;
+  }
+  err << fmt::format(
+      "spire-tune: interrupted: {} of {} variants are measured and kept in '{}'; run the same command again to "
+      "resume\n",
+      kept, session.space.points.size(), options.outputDir);
+  return kExitInterrupted;
 }
 
 // The coordinator: measures what is not done yet, in this process or in
@@ -96,8 +122,7 @@ std::optional<int> measureAll(const TuneOptions& options, engine::ToolRun& run, 
       session.components.size(), space.productSize,
       space.sampled ? fmt::format(" (too many: measuring a sample of {})", total) : std::string(),
       session.done.empty() ? std::string() : fmt::format(", resuming with {} measured", session.done.size()));
-  size_t already = 0;
-  for (const TunePoint& point : space.points) already += session.done.contains(point.index) ? 1 : 0;
+  const size_t already = doneInSpace(session);
   if (already == total) return std::nullopt;
   if (options.jobs == 1 || workerProgram.empty()) {
     Progress progress(err, total, already);
@@ -106,16 +131,19 @@ std::optional<int> measureAll(const TuneOptions& options, engine::ToolRun& run, 
     // run knows which bindings no variant read.
     run.renderer().reportUnreadBindings();
     run.reporter().flush();
+    if (status == kExitInterrupted) return reportInterrupted(options, session, err);
     return status == kExitSuccess ? std::nullopt : std::optional<int>(status);
   }
   if (const auto created = WorkQueue::create(queuePath(options)); !created) return run.fail(created.error().message);
   WorkerPlan plan{workerProgram, args, {}};
   for (uint32_t k = 0; k < options.jobs; ++k) plan.shards.push_back(shardPath(options, static_cast<int>(k)));
-  if (!runWorkers(plan, already, total, err)) {
-    err << "spire-tune: error: a worker failed (its messages are above); rerun to resume\n";
-    return kExitInputError;
+  switch (runWorkers(plan, already, total, err)) {
+    case WorkersEnd::Finished: return std::nullopt;
+    case WorkersEnd::Interrupted: return reportInterrupted(options, session, err);
+    case WorkersEnd::Failed: break;
   }
-  return std::nullopt;
+  err << "spire-tune: error: a worker failed (its messages are above); rerun to resume\n";
+  return kExitInputError;
 }
 
 // One row per point of this run, in index order, as variants.csv.
@@ -175,6 +203,18 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       err << fmt::format("spire-tune: error: {}\n", applied.error().message);
       return kExitInputError;
     }
+  }
+  const StopRequest stop;
+  std::optional<OutputLock> lock;
+  if (options.worker >= 0) {
+    followCoordinator();
+  } else {
+    auto acquired = OutputLock::acquire(options.outputDir);
+    if (!acquired) {
+      err << fmt::format("spire-tune: error: {}\n", acquired.error().message);
+      return kExitInputError;
+    }
+    lock.emplace(std::move(acquired).value());
   }
   engine::ToolRun run(kTool, err);
   TuneSession session;

@@ -119,8 +119,19 @@ Expected<std::map<uint64_t, VariantResult>, Failure> loadDone(const TuneOptions&
 
 void appendRow(const fs::path& path, const std::vector<std::string>& components, const VariantResult& result) {
   const bool fresh = !fs::exists(path);
+  // A row an interruption cut short ends without a newline; the next row
+  // starts on a line of its own, so only the cut one is lost.
+  bool torn = false;
+  if (!fresh) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (in.tellg() > 0) {
+      in.seekg(-1, std::ios::end);
+      torn = in.get() != '\n';
+    }
+  }
   std::ofstream file(path, std::ios::app);
   if (fresh) file << csvHeader(components);
+  if (torn) file << '\n';
   file << csvRow(result);
   file.flush();
 }

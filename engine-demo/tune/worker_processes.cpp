@@ -1,16 +1,21 @@
 #include "tune/worker_processes.h"
 
+#include <signal.h>
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 #include <optional>
 #include <string_view>
 #include <thread>
 
 #include "tune/progress.h"
+#include "tune/stop_request.h"
 
 extern char** environ;
 
@@ -24,17 +29,30 @@ size_t countRows(const std::filesystem::path& path) {
   return lines == 0 ? 0 : lines - 1;
 }
 
-// This process's environment with LP_NUM_THREADS=1.
+constexpr std::string_view kCoordinatorVariable = "SPIRE_TUNE_COORDINATOR";
+
+// This process's environment with LP_NUM_THREADS=1 and the coordinator's
+// process id.
 std::vector<std::string> workerEnvironment() {
   std::vector<std::string> env;
   for (char** e = environ; *e; ++e) {
-    if (!std::string_view(*e).starts_with("LP_NUM_THREADS=")) env.emplace_back(*e);
+    const std::string_view entry(*e);
+    if (!entry.starts_with("LP_NUM_THREADS=") && !entry.starts_with(kCoordinatorVariable)) env.emplace_back(entry);
   }
   env.emplace_back("LP_NUM_THREADS=1");
+  env.push_back(std::string(kCoordinatorVariable) + "=" + std::to_string(::getpid()));
   return env;
 }
 
-// nullopt when a worker could not start (those started keep running).
+// Rows in each shard when the workers start: an interrupted run's, already
+// counted.
+std::vector<size_t> shardRows(const WorkerPlan& plan) {
+  std::vector<size_t> rows;
+  for (const std::filesystem::path& shard : plan.shards) rows.push_back(countRows(shard));
+  return rows;
+}
+
+// nullopt when a worker could not start (after stopping those that did).
 std::optional<std::vector<pid_t>> spawnWorkers(const WorkerPlan& plan) {
   std::vector<std::string> env = workerEnvironment();
   std::vector<char*> envp;
@@ -49,21 +67,39 @@ std::optional<std::vector<pid_t>> spawnWorkers(const WorkerPlan& plan) {
     for (std::string& a : workerArgs) argv.push_back(a.data());
     argv.push_back(nullptr);
     pid_t pid = 0;
-    if (posix_spawn(&pid, plan.program.c_str(), nullptr, nullptr, argv.data(), envp.data()) != 0) return std::nullopt;
+    if (posix_spawn(&pid, plan.program.c_str(), nullptr, nullptr, argv.data(), envp.data()) != 0) {
+      // No run with some of its workers: those started stop again.
+      for (const pid_t started : pids) ::kill(started, SIGTERM);
+      for (const pid_t started : pids) ::waitpid(started, nullptr, 0);
+      return std::nullopt;
+    }
     pids.push_back(pid);
   }
   return pids;
 }
 
-// Waits for every worker, updating the progress from their shards.
-bool waitForWorkers(std::vector<pid_t> pids, const WorkerPlan& plan, size_t already, size_t total, std::ostream& err) {
+// Waits for every worker, updating the progress from their shards; a stop
+// request is passed on to them once.
+WorkersEnd waitForWorkers(std::vector<pid_t> pids, const WorkerPlan& plan, size_t already, size_t total,
+                          std::ostream& err) {
   Progress progress(err, total, already);
+  const std::vector<size_t> before = shardRows(plan);
   bool ok = true;
+  bool stopping = false;
   size_t running = pids.size();
   while (running > 0) {
     size_t done = already;
-    for (const std::filesystem::path& shard : plan.shards) done += countRows(shard);
+    for (size_t k = 0; k < plan.shards.size(); ++k) {
+      const size_t rows = countRows(plan.shards[k]);
+      done += rows - std::min(before[k], rows);
+    }
     progress.update(std::min(done, total));
+    if (StopRequest::requested() && !stopping) {
+      stopping = true;
+      for (const pid_t pid : pids) {
+        if (pid != 0) ::kill(pid, SIGTERM);
+      }
+    }
     for (pid_t& pid : pids) {
       if (pid == 0) continue;
       int status = 0;
@@ -75,19 +111,27 @@ bool waitForWorkers(std::vector<pid_t> pids, const WorkerPlan& plan, size_t alre
     }
     if (running > 0) std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
+  if (stopping) return WorkersEnd::Interrupted;
   progress.update(total);
-  return ok;
+  return ok ? WorkersEnd::Finished : WorkersEnd::Failed;
 }
 
 }  // namespace
 
-bool runWorkers(const WorkerPlan& plan, size_t already, size_t total, std::ostream& err) {
+WorkersEnd runWorkers(const WorkerPlan& plan, size_t already, size_t total, std::ostream& err) {
   auto pids = spawnWorkers(plan);
   if (!pids) {
     err << "spire-tune: error: cannot start a worker process\n";
-    return false;
+    return WorkersEnd::Failed;
   }
   return waitForWorkers(std::move(*pids), plan, already, total, err);
+}
+
+void followCoordinator() {
+  ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+  // The coordinator may have gone before the line above ran.
+  const char* coordinator = std::getenv(std::string(kCoordinatorVariable).c_str());
+  if (coordinator && std::to_string(::getppid()) != coordinator) ::raise(SIGTERM);
 }
 
 }  // namespace spire::tune

@@ -19,8 +19,19 @@ struct WorkerPlan {
   std::vector<std::filesystem::path> shards;  // one per worker: the rows it measured
 };
 
-// Runs the workers to the end, showing progress from the rows in their
-// shards; false when one could not start or did not exit with 0.
-bool runWorkers(const WorkerPlan& plan, size_t already, size_t total, std::ostream& err);
+enum class WorkersEnd {
+  Finished,     // every worker exited with 0
+  Failed,       // one could not start or did not exit with 0
+  Interrupted,  // a stop was requested (StopRequest) and passed on; they stopped between variants
+};
+
+// Runs the workers to the end, showing progress from the rows they add to
+// their shards (rows an interrupted run left there are in `already`).
+WorkersEnd runWorkers(const WorkerPlan& plan, size_t already, size_t total, std::ostream& err);
+
+// In a worker: stop (as on SIGTERM) when the coordinator that started it
+// is gone, however it ended, so that no worker writes into a directory
+// that another run may have taken over.
+void followCoordinator();
 
 }  // namespace spire::tune

@@ -1,5 +1,6 @@
 // spire-tune: the search space, the Pareto front, the CSV journal, and a whole
 // run in-process on a small scene (with validation on), including resuming.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +12,12 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <thread>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "common/lod_test_scene.h"
@@ -25,6 +31,8 @@
 #include "tune/tune_cli.h"
 #include "tune/tune_space.h"
 #include "tune/work_queue.h"
+
+extern char** environ;
 
 namespace spire::tune {
 namespace {
@@ -384,6 +392,137 @@ TEST_F(TuneRun, ShaderCacheModesCleanUpAfterThemselves) {
     ::setenv("TMPDIR", tmpdir->c_str(), 1);
   else
     ::unsetenv("TMPDIR");
+  fs::remove_all(dir);
+}
+
+// The N of each "tune: N/M variants" progress line (stderr is no terminal
+// in tests, so every change is a line).
+std::vector<size_t> progressCounts(const std::string& text, size_t total) {
+  std::vector<size_t> counts;
+  const std::string suffix = fmt::format("/{} variants", total);
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("tune: ", 0) != 0 || line.find(suffix) == std::string::npos) continue;
+    counts.push_back(std::stoul(line.substr(6)));
+  }
+  return counts;
+}
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The first `rows` rows of a journal, as an interrupted run leaves them.
+void keepRows(const fs::path& from, const fs::path& to, size_t rows) {
+  std::istringstream in(readText(from));
+  std::string text;
+  std::string line;
+  for (size_t i = 0; i <= rows && std::getline(in, line); ++i) text += line + "\n";
+  fs::remove(from);
+  std::ofstream(to, std::ios::binary) << text;
+}
+
+const std::vector<std::string> kSixVariants{
+    "examples/scenes/terrain.json", "--shader", "Terrain", "--components", "albedo,normal", "--bake-size", "64"};
+
+// A resumed run counts the rows an earlier run left once, in process and
+// with workers, whose shards already hold them.
+TEST_F(TuneRun, ResumeCountsEachVariantOnce) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_resume_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  std::vector<std::string> args = kSixVariants;
+  args.insert(args.end(), {"--jobs", "1", "-o", dir.string()});
+  std::ostringstream out, err;
+  ASSERT_EQ(runTune(args, out, err), 0) << err.str();
+  EXPECT_EQ(progressCounts(err.str(), 6), (std::vector<size_t>{1, 2, 3, 4, 5, 6}));
+
+  keepRows(dir / "variants.csv", dir / "variants.csv", 2);
+  std::ostringstream resumedOut, resumed;
+  ASSERT_EQ(runTune(args, resumedOut, resumed), 0) << resumed.str();
+  EXPECT_EQ(progressCounts(resumed.str(), 6), (std::vector<size_t>{3, 4, 5, 6})) << resumed.str();
+
+  keepRows(dir / "variants.csv", dir / "shard-0.csv", 2);
+  const fs::path log = dir / "workers.log";
+  std::string command = "ASAN_OPTIONS=detect_leaks=0 " + std::string(SPIRE_TUNE_EXE);
+  for (const std::string& a : kSixVariants) command += " '" + a + "'";
+  command += " --jobs 2 -o '" + dir.string() + "' > /dev/null 2> '" + log.string() + "'";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command << "\n" << readText(log);
+  const std::vector<size_t> counts = progressCounts(readText(log), 6);
+  ASSERT_FALSE(counts.empty()) << readText(log);
+  EXPECT_EQ(counts.front(), 2U) << readText(log);
+  EXPECT_EQ(counts.back(), 6U);
+  EXPECT_TRUE(std::is_sorted(counts.begin(), counts.end())) << readText(log);
+  fs::remove_all(dir);
+}
+
+// SIGINT to the tuner alone, mid-run: its workers stop with it (nothing
+// writes into the directory afterwards), it says what it kept and exits
+// 130; the same command then resumes, and the rows are those of a run that
+// was never interrupted. While a run holds the directory, a second is
+// refused.
+TEST_F(TuneRun, ASignalStopsTheWorkersAndTheRunResumes) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_signal_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::vector<std::string> args{SPIRE_TUNE_EXE};
+  args.insert(args.end(), kSixVariants.begin(), kSixVariants.end());
+  args.insert(args.end(), {"--jobs", "2", "-o", (dir / "run").string()});
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const fs::path log = dir / "run.log";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 2, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  const auto rows = [&] {
+    size_t n = 0;
+    for (int k = 0; k < 2; ++k) {
+      std::istringstream in(readText(dir / "run" / fmt::format("shard-{}.csv", k)));
+      for (std::string line; std::getline(in, line);) n += line.rfind("index", 0) == 0 ? 0 : 1;
+    }
+    return n;
+  };
+  for (int wait = 0; wait < 1200 && rows() == 0; ++wait) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_GT(rows(), 0U) << readText(log);
+  {
+    std::ostringstream out, err;
+    std::vector<std::string> second = kSixVariants;
+    second.insert(second.end(), {"-o", (dir / "run").string()});
+    EXPECT_EQ(runTune(second, out, err), kExitInputError);
+    EXPECT_NE(err.str().find("is in use by another spire-tune run"), std::string::npos) << err.str();
+  }
+  ASSERT_EQ(::kill(pid, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << readText(log);
+  EXPECT_EQ(WEXITSTATUS(status), kExitInterrupted) << readText(log);
+  EXPECT_NE(readText(log).find("spire-tune: interrupted: "), std::string::npos) << readText(log);
+  const size_t kept = rows();
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  EXPECT_EQ(rows(), kept) << "a worker outlived the tuner";
+  EXPECT_FALSE(fs::exists(dir / "run" / "variants.csv"));
+
+  std::vector<std::string> serial = kSixVariants;
+  serial.insert(serial.end(), {"--jobs", "1", "-o", (dir / "run").string()});
+  std::ostringstream out, err;
+  ASSERT_EQ(runTune(serial, out, err), 0) << err.str();
+  serial.back() = (dir / "whole").string();
+  ASSERT_EQ(runTune(serial, out, err), 0) << err.str();
+  const auto resumed = readResults(dir / "run" / "variants.csv", {"albedo", "normal"});
+  const auto whole = readResults(dir / "whole" / "variants.csv", {"albedo", "normal"});
+  ASSERT_TRUE(resumed && whole);
+  ASSERT_EQ(resumed->size(), 6U);
+  ASSERT_EQ(whole->size(), 6U);
+  for (size_t i = 0; i < whole->size(); ++i) {
+    EXPECT_EQ((*resumed)[i].index, (*whole)[i].index);
+    EXPECT_EQ((*resumed)[i].status, (*whole)[i].status);
+    EXPECT_EQ((*resumed)[i].rmse, (*whole)[i].rmse) << "variant " << (*whole)[i].index;
+  }
   fs::remove_all(dir);
 }
 
