@@ -269,10 +269,19 @@ std::optional<int> reportRows(engine::ToolRun& run, const std::vector<VariantRes
     row.psnr = error.psnr;
     row.maxError = error.maxError;
     row.nanPixels = error.nanPixels + error.infPixels;
+    engine::Coverage coverage;
+    for (size_t v = 0; v < result.views.size(); ++v) coverage.add(results.front().views[v], result.views[v]);
+    row.degenerate = coverage.degenerate();
     rows.push_back(row);
     if (error.nanPixels + error.infPixels > 0) {
       err << fmt::format("spire-demo: warning: variant '{}' produced {} NaN and {} Inf pixels; its error is infinite\n",
                          result.name, error.nanPixels, error.infPixels);
+    }
+    if (row.degenerate) {
+      err << fmt::format(
+          "spire-demo: warning: variant '{}' covers {:.0f}% of the pixels '{}' covers: its image is degenerate (a "
+          "collapsed or missing surface), so its time is no speedup\n",
+          result.name, 100.0 * coverage.ratio(), results.front().name);
     }
   }
   return std::nullopt;
@@ -286,8 +295,8 @@ std::optional<int> encodeImages(engine::ToolRun& run, const std::vector<VariantR
     auto png = scene::encodePng(results[i].image);
     if (!png) return run.fail(fmt::format("variant '{}': {}", results[i].name, png.error().message));
     files.emplace_back(results[i].name + ".png", std::move(png).value());
-    panels.push_back(
-        {results[i].image, fmt::format("{} {:.2f}X RMSE {:.4f}", results[i].name, rows[i].speedup, rows[i].rmse)});
+    const std::string speed = rows[i].degenerate ? "DEGENERATE" : fmt::format("{:.2f}X", rows[i].speedup);
+    panels.push_back({results[i].image, fmt::format("{} {} RMSE {:.4f}", results[i].name, speed, rows[i].rmse)});
   }
   auto comparison = measure::makeComparisonImage(panels);
   if (!comparison) return run.fail(comparison.error());

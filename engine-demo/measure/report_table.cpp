@@ -35,7 +35,9 @@ Cells cells(const ReportRow& row) {
           fixed(row.frameMs, 3),
           fixed(row.firstUseMs, 3),
           fixed(row.prebakeMs, 3),
-          std::isfinite(row.speedup) ? fmt::format("{:.2f}x", row.speedup) : nonFinite(row.speedup),
+          row.degenerate               ? std::string("degenerate")
+          : std::isfinite(row.speedup) ? fmt::format("{:.2f}x", row.speedup)
+                                       : nonFinite(row.speedup),
           significant(row.rmse),
           fixed(row.psnr, 2),
           significant(row.maxError),

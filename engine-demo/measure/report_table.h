@@ -21,6 +21,9 @@ struct ReportRow {
   double psnr = std::numeric_limits<double>::infinity();
   double maxError = 0.0;
   uint64_t nanPixels = 0;
+  // The image covers far fewer pixels than the reference's: no speedup is
+  // shown, since drawing almost nothing is not a trade.
+  bool degenerate = false;
 };
 
 // Columns separated by two spaces, the variant left-aligned and numbers

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace spire::engine {
 
 scene::Expected<measure::ImageError> viewError(const Capture& reference, const Capture& test) {
@@ -25,6 +27,18 @@ scene::Expected<measure::ImageError> viewsError(std::span<const Capture> referen
     accumulated.add(*error);
   }
   return accumulated.total();
+}
+
+void Coverage::add(const Capture& referenceView, const Capture& testView) {
+  const auto covered = [](const std::vector<uint8_t>& mask) {
+    return static_cast<uint64_t>(std::count_if(mask.begin(), mask.end(), [](uint8_t c) { return c != 0; }));
+  };
+  reference += covered(referenceView.coverage);
+  test += covered(testView.coverage);
+}
+
+double Coverage::ratio() const {
+  return reference == 0 ? 1.0 : static_cast<double>(test) / static_cast<double>(reference);
 }
 
 }  // namespace spire::engine

@@ -19,7 +19,7 @@ namespace spire::tune {
 struct VariantResult {
   uint64_t index = 0;
   std::vector<std::string> placements;  // one per explored component, in axis order
-  std::string status = "ok";            // "ok", "infeasible" or "failed: why"
+  std::string status = "ok";            // "ok", "infeasible", "failed: why" or "degenerate: why"
   double frameMs = 0.0;                 // median GPU time of the measured frames
   double firstFrameMs = 0.0;            // host time of the first frame (shader compilation)
   double prebakeMs = 0.0;               // bakes this variant ran (reused ones count 0)

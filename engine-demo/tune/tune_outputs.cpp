@@ -31,7 +31,20 @@ struct FrontSummary {
   size_t hazards = 0;
   size_t infeasible = 0;
   size_t reused = 0;
+  std::vector<size_t> offTrade;  // failed, infeasible and degenerate variants, in index order
 };
+
+// How many variants of each class off the trade the console names before
+// pointing to the report, which names them all.
+constexpr size_t kConsoleListed = 10;
+
+// Why a result is not a point of the trade, for people.
+std::string offTradeReason(const VariantResult& r) {
+  if (r.status == "infeasible") {
+    return "infeasible: its decisions cannot hold together (one component's world rules out another's)";
+  }
+  return r.status;
+}
 
 // The best variant within each budget (indices into the results).
 struct BudgetChoice {
@@ -48,6 +61,7 @@ FrontSummary summarize(const std::vector<VariantResult>& results) {
     summary.hazards += hazard ? 1 : 0;
     summary.infeasible += r.status == "infeasible" ? 1 : 0;
     summary.reused += r.sameAs ? 1 : 0;
+    if (!r.ok()) summary.offTrade.push_back(summary.measured.size());
     summary.measured.push_back({r.frameMs, hazard ? std::numeric_limits<double>::infinity() : r.rmse, r.ok()});
   }
   summary.front = paretoFront(summary.measured);
@@ -202,6 +216,15 @@ std::string reportFindings(const TuneOptions& options, const TuneSession& sessio
                           placementsText(session.components, r), r.nanPixels, r.infPixels, r.hazardInputs);
     }
   }
+  if (!summary.offTrade.empty()) {
+    text +=
+        "\n\n## Variants off the trade\n\nFailed, infeasible and degenerate variants (images covering far fewer "
+        "pixels than the reference's): none is on the front.\n\n| variant | decisions | why |\n|---|---|---|\n";
+    for (size_t i : summary.offTrade) {
+      const VariantResult& r = results[i];
+      text += fmt::format("| {} | {} | {} |\n", r.index, placementsText(session.components, r), offTradeReason(r));
+    }
+  }
   text += fmt::format(
       "\n{} variants had NaN or Inf pixels (infinite error, never on the front); {} were infeasible; "
       "{} had kernels identical to an earlier variant and were measured once.\n\n"
@@ -239,9 +262,20 @@ void printSummary(const TuneOptions& options, const TuneSession& session, const 
                          r.index, placementsText(session.components, r), r.nanPixels, r.infPixels, r.hazardInputs);
     }
   }
+  for (size_t k = 0; k < summary.offTrade.size() && k < kConsoleListed; ++k) {
+    const VariantResult& r = results[summary.offTrade[k]];
+    err << fmt::format("spire-tune: warning: variant {} ({}) is off the trade: {}\n", r.index,
+                       placementsText(session.components, r), offTradeReason(r));
+  }
+  if (summary.offTrade.size() > kConsoleListed) {
+    err << fmt::format("spire-tune: warning: and {} more variants off the trade; {}/report.md lists them all\n",
+                       summary.offTrade.size() - kConsoleListed, options.outputDir);
+  }
   out << fmt::format(
-      "front: {} variants; {} with NaN/Inf pixels; {} infeasible; {} measured once for identical kernels\n",
-      summary.front.size(), summary.hazards, summary.infeasible, summary.reused);
+      "front: {} variants; {} with NaN/Inf pixels; {} off the trade ({} infeasible, {} failed or degenerate); {} "
+      "measured once for identical kernels\n",
+      summary.front.size(), summary.hazards, summary.offTrade.size(), summary.infeasible,
+      summary.offTrade.size() - summary.infeasible, summary.reused);
   out << fmt::format(
       "time split (summed over workers): compile {:.1f} s, first use {:.1f} s, render {:.1f} s, error {:.1f} s\n",
       split.compileMs / 1000, split.firstUseMs / 1000, split.renderMs / 1000, split.errorMs / 1000);

@@ -98,8 +98,7 @@ VariantResult Tuner::measure(const TunePoint& point) {
 engine::Expected<void> Tuner::measureImages(const std::vector<engine::VariantProgram>& programs,
                                             VariantResult& result) {
   const vk::HostTimer timer;
-  measure::ErrorAccumulator accumulated;
-  double errorMs = 0.0;
+  ViewTotals totals;
   const std::vector<ParameterSample> parameterSamples = samples();
   for (size_t s = 0; s < parameterSamples.size(); ++s) {
     renderer_.setParameterOverrides(parameterSamples[s]);
@@ -109,7 +108,7 @@ engine::Expected<void> Tuner::measureImages(const std::vector<engine::VariantPro
     if (s == 0) {
       for (const engine::BakeRecord& bake : prepared->bakes) result.prebakeMs += bake.reused ? 0.0 : bake.milliseconds;
     }
-    if (auto compared = compareViews(*prepared, s, parameterSamples[s], result, accumulated, errorMs); !compared) {
+    if (auto compared = compareViews(*prepared, s, parameterSamples[s], result, totals); !compared) {
       return compared;
     }
     if (s == 0) {
@@ -121,9 +120,13 @@ engine::Expected<void> Tuner::measureImages(const std::vector<engine::VariantPro
       result.frameMs = stats->medianGpuMs;
     }
   }
-  split_.errorMs += errorMs;
-  split_.renderMs += timer.elapsedMs() - result.firstFrameMs - errorMs;
-  const measure::ImageError total = accumulated.total();
+  split_.errorMs += totals.errorMs;
+  split_.renderMs += timer.elapsedMs() - result.firstFrameMs - totals.errorMs;
+  if (totals.coverage.degenerate()) {
+    result.status =
+        fmt::format("degenerate: covers {:.0f}% of the pixels the reference covers", 100.0 * totals.coverage.ratio());
+  }
+  const measure::ImageError total = totals.error.total();
   result.rmse = total.rmse;
   result.psnr = total.psnr;
   result.maxError = total.maxError;
@@ -133,8 +136,7 @@ engine::Expected<void> Tuner::measureImages(const std::vector<engine::VariantPro
 }
 
 engine::Expected<void> Tuner::compareViews(const engine::PreparedScene& prepared, size_t s,
-                                           const ParameterSample& sample, VariantResult& result,
-                                           measure::ErrorAccumulator& accumulated, double& errorMs) {
+                                           const ParameterSample& sample, VariantResult& result, ViewTotals& totals) {
   const auto& views = renderer_.scene().camera.views;
   for (size_t v = 0; v < views.size(); ++v) {
     auto capture = renderer_.capture(prepared, views[v]);
@@ -147,9 +149,10 @@ engine::Expected<void> Tuner::compareViews(const engine::PreparedScene& prepared
     }
     const vk::HostTimer errorTimer;
     auto error = engine::viewError(reference_[s][v], *capture);
-    errorMs += errorTimer.elapsedMs();
+    totals.coverage.add(reference_[s][v], *capture);
+    totals.errorMs += errorTimer.elapsedMs();
     if (!error) return engine::Error(error.error());
-    accumulated.add(*error);
+    totals.error.add(*error);
     if (result.hazardInputs.empty() && error->nanPixels + error->infPixels > 0) {
       result.hazardInputs = fmt::format("camera view {}", v);
       for (const auto& [component, values] : sample) {

@@ -12,6 +12,7 @@
 
 #include "measure/image_metrics.h"
 #include "renderer/scene_renderer.h"
+#include "renderer/view_error.h"
 #include "tune/results_csv.h"
 #include "tune/tune_space.h"
 
@@ -37,6 +38,13 @@ struct TunerOptions {
   // Error is measured over every sample (and every camera view); time over
   // the first. Empty: the scene's own values only.
   std::vector<ParameterSample> parameterSamples;
+};
+
+// What a variant's views add up to against the reference's.
+struct ViewTotals {
+  measure::ErrorAccumulator error;
+  engine::Coverage coverage;
+  double errorMs = 0.0;  // spent comparing
 };
 
 class Tuner {
@@ -68,7 +76,7 @@ class Tuner {
   // The views of `prepared` (under sample `s`) against the reference's,
   // added to `accumulated`; the first capture of sample 0 is the first use.
   engine::Expected<void> compareViews(const engine::PreparedScene& prepared, size_t s, const ParameterSample& sample,
-                                      VariantResult& result, measure::ErrorAccumulator& accumulated, double& errorMs);
+                                      VariantResult& result, ViewTotals& totals);
   engine::Expected<std::vector<engine::VariantProgram>> programsFor(const TunePoint& point,
                                                                     std::vector<std::string>* skipped);
 

@@ -870,5 +870,30 @@ TEST_F(StabilityTest, UsersDivisionByZeroIsCountedAndNamed) {
   EXPECT_EQ(std::stoul(match[1].str()) + std::stoul(match[2].str()), covered) << errText;
 }
 
+// A variant that averages the position per object (collapse.json) draws
+// every vertex on one point and covers nothing: spire-demo flags its image
+// as degenerate (no speedup in the table, the report or the caption) and
+// says why, instead of reporting it as the fastest variant.
+TEST_F(StabilityTest, ACollapsedImageIsFlaggedNotASpeedup) {
+  const fs::path outputDir = fs::temp_directory_path() / ("spire_stability_collapse_" + std::to_string(::getpid()));
+  std::ostringstream out;
+  std::ostringstream err;
+  ASSERT_EQ(demo::runDemo({(kDataDir / "collapse.json").string(), "--validation", "-o", outputDir.string()}, out, err),
+            0)
+      << err.str();
+  EXPECT_NE(err.str().find("spire-demo: warning: variant 'per_object' covers 0% of the pixels 'per_vertex' covers: "
+                           "its image is degenerate"),
+            std::string::npos)
+      << err.str();
+  EXPECT_EQ(err.str().find("variant 'per_vertex' covers"), std::string::npos) << err.str();
+  const std::regex degenerateRow(R"(per_object +[0-9.]+ +[0-9.]+ +[0-9.]+ +degenerate )");
+  const std::string table = out.str();
+  EXPECT_TRUE(std::regex_search(table, degenerateRow)) << table;
+  std::ifstream report(outputDir / "report.md");
+  const std::string reportText{std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>()};
+  EXPECT_NE(reportText.find("| degenerate |"), std::string::npos) << reportText;
+  fs::remove_all(outputDir);
+}
+
 }  // namespace
 }  // namespace spire::engine

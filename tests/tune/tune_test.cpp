@@ -526,6 +526,46 @@ TEST_F(TuneRun, ASignalStopsTheWorkersAndTheRunResumes) {
   fs::remove_all(dir);
 }
 
+// A variant that collapses the mesh (collapse.spire's position per object)
+// is off the trade: its status says it is degenerate, it is not on the
+// front whatever its time, and the console and the report both name it.
+TEST_F(TuneRun, ADegenerateVariantIsListedAndKeptOffTheFront) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_collapse_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  std::ostringstream out;
+  std::ostringstream err;
+  ASSERT_EQ(runTune({"tests/data/engine/stability/collapse.json", "--shader", "Collapse", "--jobs", "1", "--validation",
+                     "-o", dir.string()},
+                    out, err),
+            0)
+      << err.str();
+  const auto rows = readResults(dir / "variants.csv", {"position"});
+  ASSERT_TRUE(rows) << rows.error().message;
+  ASSERT_EQ(rows->size(), 3U);
+  std::optional<uint64_t> collapsed;
+  for (const VariantResult& r : *rows) {
+    const bool perObject = r.placements.front() == "PrebakeUniform";
+    EXPECT_EQ(r.status.rfind("degenerate: covers 0% of the pixels", 0) == 0, perObject) << r.status;
+    if (perObject) collapsed = r.index;
+  }
+  ASSERT_TRUE(collapsed);
+  const auto front = readResults(dir / "pareto.csv", {"position"});
+  ASSERT_TRUE(front);
+  for (const VariantResult& r : *front) EXPECT_NE(r.index, *collapsed);
+  EXPECT_NE(err.str().find(fmt::format("spire-tune: warning: variant {} (position=PrebakeUniform) is off the trade: "
+                                       "degenerate: covers 0%",
+                                       *collapsed)),
+            std::string::npos)
+      << err.str();
+  EXPECT_NE(out.str().find("1 off the trade (0 infeasible, 1 failed or degenerate)"), std::string::npos) << out.str();
+  const std::string report = readText(dir / "report.md");
+  EXPECT_NE(report.find("## Variants off the trade"), std::string::npos) << report;
+  EXPECT_NE(report.find(fmt::format("| {} | position=PrebakeUniform | degenerate: covers 0%", *collapsed)),
+            std::string::npos)
+      << report;
+  fs::remove_all(dir);
+}
+
 // The per-level frame times spire-tune --lod-policy printed, by member.
 std::map<std::string, double> printedCosts(const std::string& out) {
   std::map<std::string, double> costs;
