@@ -220,6 +220,8 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   TuneSession session;
   if (const auto status = startSession(options, run, session, err)) return *status;
   if (options.worker >= 0) return measureShard(options, run, session, options.worker, nullptr);
+  // Before any worker starts: a broken reference stops the run here, once.
+  if (auto ok = session.tuner->renderReference(session.reference); !ok) return run.fail(ok.error());
   if (const auto status = measureAll(options, run, session, args, workerProgram, out, err)) return *status;
   std::vector<VariantResult> results;
   if (const auto status = mergeResults(options, run, session, results)) return *status;

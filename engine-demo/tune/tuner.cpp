@@ -1,6 +1,7 @@
 #include "tune/tuner.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -19,10 +20,49 @@ std::vector<ParameterSample> Tuner::samples() const {
                                            : options_.parameterSamples;
 }
 
+namespace {
+
+uint64_t nonFinitePixels(const measure::FloatImage& image) {
+  uint64_t count = 0;
+  for (size_t p = 0; p + 3 < image.rgba.size(); p += 4) {
+    bool finite = true;
+    for (size_t c = 0; c < 4; ++c) finite = finite && std::isfinite(image.rgba[p + c]);
+    count += finite ? 0 : 1;
+  }
+  return count;
+}
+
+std::string sampleText(const ParameterSample& sample) {
+  std::string text;
+  for (const auto& [component, values] : sample) text += fmt::format(" {}={}", component, fmt::join(values, ","));
+  return text;
+}
+
+}  // namespace
+
+engine::Expected<void> Tuner::checkReference(const std::optional<std::filesystem::path>& decisions) const {
+  const std::vector<ParameterSample> parameterSamples = samples();
+  for (size_t s = 0; s < reference_.size(); ++s) {
+    for (size_t v = 0; v < reference_[s].size(); ++v) {
+      const uint64_t broken = nonFinitePixels(reference_[s][v].color);
+      if (broken == 0) continue;
+      return engine::Error{
+          fmt::format("the reference ({}) has {} NaN or Inf pixels under camera view {}{}: every variant's error "
+                      "against it would be infinite. Fix the shader, or choose a reference without the hazard with "
+                      "--reference DECISIONS",
+                      decisions ? decisions->string() : std::string("each instance's own decisions"), broken, v,
+                      sampleText(parameterSamples[s])),
+          {},
+          {}};
+    }
+  }
+  return {};
+}
+
 engine::Expected<void> Tuner::renderReference(const std::optional<std::filesystem::path>& decisions) {
+  if (!reference_.empty()) return {};
   auto programs = renderer_.compile(decisions);
   if (!programs) return programs.error();
-  reference_.clear();
   for (const ParameterSample& sample : samples()) {
     renderer_.setParameterOverrides(sample);
     auto prepared = renderer_.prepare(*programs);
@@ -36,7 +76,7 @@ engine::Expected<void> Tuner::renderReference(const std::optional<std::filesyste
     reference_.push_back(std::move(views));
   }
   renderer_.setParameterOverrides({});
-  return {};
+  return checkReference(decisions);
 }
 
 engine::Expected<std::vector<engine::VariantProgram>> Tuner::programsFor(const TunePoint& point,
@@ -154,10 +194,7 @@ engine::Expected<void> Tuner::compareViews(const engine::PreparedScene& prepared
     if (!error) return engine::Error(error.error());
     totals.error.add(*error);
     if (result.hazardInputs.empty() && error->nanPixels + error->infPixels > 0) {
-      result.hazardInputs = fmt::format("camera view {}", v);
-      for (const auto& [component, values] : sample) {
-        result.hazardInputs += fmt::format(" {}={}", component, fmt::join(values, ","));
-      }
+      result.hazardInputs = fmt::format("camera view {}{}", v, sampleText(sample));
     }
   }
   return {};

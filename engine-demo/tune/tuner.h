@@ -52,7 +52,9 @@ class Tuner {
   Tuner(engine::SceneRenderer& renderer, size_t instance, std::vector<Axis> axes, TunerOptions options);
 
   // Renders the reference variant (`decisions`: a decision file for every
-  // instance, or each instance's own) from every camera view.
+  // instance, or each instance's own) from every camera view, once. A
+  // reference with NaN or Inf pixels is an error: every variant's error
+  // against it would be infinite, clean ones included.
   engine::Expected<void> renderReference(const std::optional<std::filesystem::path>& decisions);
 
   VariantResult measure(const TunePoint& point);
@@ -77,6 +79,7 @@ class Tuner {
   // added to `accumulated`; the first capture of sample 0 is the first use.
   engine::Expected<void> compareViews(const engine::PreparedScene& prepared, size_t s, const ParameterSample& sample,
                                       VariantResult& result, ViewTotals& totals);
+  engine::Expected<void> checkReference(const std::optional<std::filesystem::path>& decisions) const;
   engine::Expected<std::vector<engine::VariantProgram>> programsFor(const TunePoint& point,
                                                                     std::vector<std::string>* skipped);
 

@@ -329,31 +329,57 @@ TEST_F(TuneRun, WritesEveryOutputAndResumes) {
   fs::remove_all(dir);
 }
 
-// A user's component that divides by a uniform: sampling the uniform's range
-// hits 0, every variant gets infinite error and the inputs are named; none can
-// be on the front.
+// A user's division by a swept uniform: under divisor=0 the raw variations
+// go Inf and are named with that input, none of them on the front; the
+// guarded reference and variations stay finite and make the front.
 TEST_F(TuneRun, NamesTheInputsOfAHazardAndKeepsItOffTheFront) {
   const fs::path dir = fs::temp_directory_path() / ("spire_tune_hazard_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   std::ostringstream out;
   std::ostringstream err;
-  ASSERT_EQ(runTune({"tests/data/engine/stability/user_divide.json", "--shader", "UserDivide", "--param", "divisor=0:1",
-                     "--param-samples", "0", "--validation", "-o", dir.string()},
+  ASSERT_EQ(runTune({"tests/data/engine/stability/guarded_divide.json", "--shader", "GuardedDivide", "--param",
+                     "divisor=0:1", "--param-samples", "0", "--jobs", "1", "--validation", "-o", dir.string()},
                     out, err),
             0)
       << err.str();
   const auto rows = readResults(dir / "variants.csv", {"scaled"});
   ASSERT_TRUE(rows) << rows.error().message;
-  ASSERT_FALSE(rows->empty());
+  ASSERT_EQ(rows->size(), 6U);
   for (const VariantResult& r : *rows) {
-    EXPECT_GT(r.nanPixels + r.infPixels, 0U) << r.placements[0];
-    EXPECT_TRUE(std::isinf(r.rmse));
-    EXPECT_EQ(r.hazardInputs, "camera view 0 divisor=0");
+    const bool raw = r.placements[0].ends_with(":raw");
+    EXPECT_EQ(r.nanPixels + r.infPixels > 0, raw) << r.placements[0];
+    EXPECT_EQ(std::isinf(r.rmse), raw) << r.placements[0];
+    EXPECT_EQ(r.hazardInputs, raw ? "camera view 0 divisor=0" : "") << r.placements[0];
   }
   const auto front = readResults(dir / "pareto.csv", {"scaled"});
   ASSERT_TRUE(front) << front.error().message;
-  EXPECT_TRUE(front->empty());
+  EXPECT_FALSE(front->empty());
+  for (const VariantResult& r : *front) EXPECT_TRUE(r.placements[0].ends_with(":guarded")) << r.placements[0];
   EXPECT_NE(err.str().find("first under camera view 0 divisor=0"), std::string::npos) << err.str();
+  fs::remove_all(dir);
+}
+
+// A reference with NaN or Inf pixels would make every variant's error
+// infinite, clean ones included: the run stops before measuring, naming the
+// reference and the inputs, and writes no results.
+TEST_F(TuneRun, AHazardousReferenceStopsTheRun) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_bad_reference_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  for (const char* jobs : {"1", "2"}) {
+    std::ostringstream out;
+    std::ostringstream err;
+    EXPECT_EQ(runTune({"tests/data/engine/stability/user_divide.json", "--shader", "UserDivide", "--jobs", jobs,
+                       "--validation", "-o", dir.string()},
+                      out, err, SPIRE_TUNE_EXE),
+              kExitInputError);
+    EXPECT_NE(err.str().find("the reference (tests/data/engine/stability/user_divide_fragment.decisions) has 289 NaN "
+                             "or Inf pixels under camera view 0: every variant's error against it would be infinite"),
+              std::string::npos)
+        << err.str();
+    EXPECT_NE(err.str().find("--reference DECISIONS"), std::string::npos);
+    EXPECT_FALSE(fs::exists(dir / "variants.csv"));
+    EXPECT_FALSE(fs::exists(dir / "shard-0.csv")) << "no worker should have started";
+  }
   fs::remove_all(dir);
 }
 
@@ -372,8 +398,8 @@ TEST_F(TuneRun, ShaderCacheModesCleanUpAfterThemselves) {
   for (const char* mode : {"run", "off", "inherit"}) {
     std::ostringstream out;
     std::ostringstream err;
-    EXPECT_EQ(runTune({"tests/data/engine/stability/user_divide.json", "--shader", "UserDivide", "--shader-cache", mode,
-                       "--validation", "-o", (dir / mode).string()},
+    EXPECT_EQ(runTune({"tests/data/engine/stability/guarded_divide.json", "--shader", "GuardedDivide", "--shader-cache",
+                       mode, "--validation", "-o", (dir / mode).string()},
                       out, err),
               0)
         << mode << ": " << err.str();
@@ -383,7 +409,7 @@ TEST_F(TuneRun, ShaderCacheModesCleanUpAfterThemselves) {
   }
   std::ostringstream out;
   std::ostringstream err;
-  EXPECT_EQ(runTune({"tests/data/engine/stability/user_divide.json", "--shader", "UserDivide", "--shader-cache",
+  EXPECT_EQ(runTune({"tests/data/engine/stability/guarded_divide.json", "--shader", "GuardedDivide", "--shader-cache",
                      "sometimes", "-o", (dir / "bad").string()},
                     out, err),
             2);
