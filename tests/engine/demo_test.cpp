@@ -1,13 +1,17 @@
 // spire-demo run in-process, as a user runs it: golden diagnostics for scenes
 // that do not fit their shaders (tests/golden/demo/NAME.json against
-// NAME.expected, the exact stderr; SPIRE_UPDATE_GOLDENS=1 rewrites them), and
-// the main job's outputs on a small terrain scene.
+// NAME.expected, the exact stderr; SPIRE_UPDATE_GOLDENS=1 rewrites them), the
+// main job's outputs on a small terrain scene, and the level-of-detail
+// configurations on a small LOD scene.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -140,6 +144,126 @@ TEST_F(DemoTest, AFailingVariantIsReportedAndTheOthersAreWritten) {
   EXPECT_NE(report.find("| " + name + " | " + broken.string() + " |"), std::string::npos) << report;
   fs::remove_all(dir);
   fs::remove(broken);
+}
+
+// A small level-of-detail scene (after lodJson() in lod_scene_test.cpp): a
+// terrain and a dozen scattered copies each of a barrel, a sofa and a rock,
+// with the policy file `policyFile` (relative to the scene file) and two
+// camera views so that the fly-through moves. The materials are named by
+// absolute path, since the scene file is written to a temporary folder.
+std::string smallLodScene(const std::string& policyFile) {
+  const std::string materials = (fs::path(SPIRE_SOURCE_DIR) / "examples/lod_materials.spire").string();
+  const auto scattered = [&](const char* mesh, const char* shader, int seed, const char* material) {
+    return fmt::format(
+        R"(, {{"mesh": "{}", "source": "{}", "shader": "{}", "scatter": {{"count": 12, "seed": {}, "on": "hills"}},
+        "material": {}}})",
+        mesh, materials, shader, seed, material);
+  };
+  return fmt::format(R"({{"resolution": [96, 64], "frames": 2, "warmupFrames": 1, "clearColor": [0, 0, 0, 1],
+  "camera": {{"fovY": 60, "views": [{{"position": [0, 9, 13], "target": [0, 0, 0]}},
+                                    {{"position": [6, 5, 4], "target": [-2, 0, -2]}}]}},
+  "lod": {{"policy": "{}", "blocks": 2}},
+  "meshes": {{"hills": {{"type": "terrain", "size": 12, "resolution": 16, "height": 0.5, "seed": 3}},
+             "barrel": {{"type": "cylinder", "radius": 0.4, "height": 1.0, "segments": 12}},
+             "sofa": {{"type": "box", "size": 0.8, "height": 0.5}},
+             "rock": {{"type": "rock", "radius": 0.5, "rings": 6, "segments": 12, "seed": 4}}}},
+  "textures": {{"n": {{"type": "noise", "size": 32, "seed": 9, "octaves": 3}},
+               "c": {{"type": "noise", "size": 32, "seed": 2, "color": [0.8, 0.3, 0.1], "color2": [0.1, 0.2, 0.6]}},
+               "nm": {{"type": "normalMap", "size": 32, "seed": 5}}}},
+  "instances": [{{"mesh": "hills", "source": "{}", "shader": "TerrainLod", "material": {{"mixMap": "n",
+     "albedoMap1": "c", "albedoMap2": "n", "normalMap1": "nm", "normalMap2": "nm"}}}})",
+                     policyFile, materials) +
+         scattered("barrel", "Barrel", 1,
+                   R"({"woodGrainMap": "c", "woodNormalMap": "nm", "grimeMap": "n", "rustMap": "n", "staveCount": 16,
+      "bandWidth": 0.05, "grimeAmount": 0.5, "rustAmount": 0.4, "metalColor": [0.35, 0.35, 0.38],
+      "rustColor": [0.45, 0.2, 0.08]})") +
+         scattered("sofa", "Sofa", 2,
+                   R"({"fabricColorMap": "c", "fabricNormalMap": "nm", "wearMap": "n", "fabricColor": [0.55, 0.2, 0.15],
+      "pipingColor": [0.9, 0.85, 0.7], "weaveDensity": 120, "panelCount": 3, "wearAmount": 0.4})") +
+         scattered("rock", "Rock", 3,
+                   R"({"rockNoiseMap": "n", "rockDetailMap": "n", "rockNormalMap": "nm", "crackMap": "n",
+      "mossMap": "c", "rockColor1": [0.5, 0.48, 0.45], "rockColor2": [0.35, 0.33, 0.3], "mossAmount": 0.5,
+      "crackWidth": 0.02})") +
+         "]}";
+}
+
+// The numbers of spire-demo's last line on a LOD scene.
+struct LodSummary {
+  double speedup, batches, fullBatches, rmse, popping, poppingWithout;
+};
+
+std::optional<LodSummary> parseLodSummary(const std::string& out) {
+  static const std::regex line(
+      R"(\nlod: speedup (\S+), batches (\S+) vs full quality (\S+), rmse (\S+), popping (\S+) with transitions vs )"
+      R"((\S+) without\n$)");
+  std::smatch m;
+  if (!std::regex_search(out, m, line)) return std::nullopt;
+  return LodSummary{std::stod(m[1]), std::stod(m[2]), std::stod(m[3]),
+                    std::stod(m[4]), std::stod(m[5]), std::stod(m[6])};
+}
+
+// The three configurations over a moving camera: the four files, a report
+// row for each configuration, and a summary line with sane numbers.
+TEST_F(DemoTest, LodSceneWritesImagesReportAndSummary) {
+  const fs::path dir = outputDir();
+  const fs::path sceneDir = fs::path(dir.string() + "_scene");
+  fs::create_directories(sceneDir);
+  // LodHQ only within 0.5 units: the cameras are 5 units or more above the
+  // ground, so the copies draw LodMQ (up to 8) or LodLQ in lod, and lod
+  // differs from full quality wherever a copy is seen.
+  std::ofstream(sceneDir / "policy.json")
+      << R"({"levels": [{"member": "LodHQ", "until": 0.5}, {"member": "LodMQ", "until": 8}, {"member": "LodLQ"}],
+            "transitionFrames": 2})";
+  std::ofstream(sceneDir / "scene.json") << smallLodScene("policy.json");
+  std::ostringstream out;
+  std::ostringstream err;
+  ASSERT_EQ(runDemo({(sceneDir / "scene.json").string(), "--validation", "--frames", "3", "--warmup", "1", "-o",
+                     dir.string()},
+                    out, err),
+            0)
+      << err.str();
+  for (const char* name : {"full_quality", "lod", "comparison"}) {
+    auto image = scene::loadImage(dir / (std::string(name) + ".png"));
+    ASSERT_TRUE(image) << name << ": " << image.error().message;
+    EXPECT_GT(image->width, 0U);
+  }
+  const std::string report = readFile(dir / "report.md");
+  for (const char* row : {"| full_quality |", "| lod |", "| lod_no_transitions |"}) {
+    EXPECT_NE(report.find(row), std::string::npos) << row << "\n" << report;
+  }
+  const std::optional<LodSummary> summary = parseLodSummary(out.str());
+  ASSERT_TRUE(summary) << out.str();
+  EXPECT_GT(summary->speedup, 0.0);
+  // Full quality binds a pipeline per material and block; in lod the three
+  // object materials share one draw group at LodMQ and one at LodLQ, so it
+  // binds fewer, fades' overlay batches included.
+  EXPECT_GE(summary->batches, 1.0);
+  EXPECT_LT(summary->batches, summary->fullBatches);
+  EXPECT_TRUE(std::isfinite(summary->rmse));
+  // The copies are drawn from bakes in lod, per fragment in full quality.
+  EXPECT_GT(summary->rmse, 0.0);
+  for (double popping : {summary->popping, summary->poppingWithout}) {
+    EXPECT_TRUE(std::isfinite(popping) && popping >= 0.0) << popping;
+  }
+  fs::remove_all(dir);
+  fs::remove_all(sceneDir);
+}
+
+// A policy file that cannot be read fails the run before anything is
+// rendered, naming the file, and leaves no output behind.
+TEST_F(DemoTest, LodSceneWithoutItsPolicyFileFails) {
+  const fs::path dir = outputDir();
+  const fs::path sceneDir = fs::path(dir.string() + "_scene");
+  fs::create_directories(sceneDir);
+  std::ofstream(sceneDir / "scene.json") << smallLodScene("no_such_policy.json");
+  std::ostringstream out;
+  std::ostringstream err;
+  EXPECT_EQ(runDemo({(sceneDir / "scene.json").string(), "--validation", "-o", dir.string()}, out, err),
+            kExitInputError);
+  EXPECT_NE(err.str().find("E1101"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find((sceneDir / "no_such_policy.json").string()), std::string::npos) << err.str();
+  EXPECT_FALSE(fs::exists(dir)) << "a failed run must not write outputs";
+  fs::remove_all(sceneDir);
 }
 
 }  // namespace
