@@ -17,6 +17,7 @@
 
 #include <unistd.h>
 
+#include "common/lod_test_scene.h"
 #include "demo/demo.h"
 #include "driver/exit_codes.h"
 #include "engine/device_fixture.h"
@@ -146,45 +147,13 @@ TEST_F(DemoTest, AFailingVariantIsReportedAndTheOthersAreWritten) {
   fs::remove(broken);
 }
 
-// A small level-of-detail scene (after lodJson() in lod_scene_test.cpp): a
-// terrain and a dozen scattered copies each of a barrel, a sofa and a rock,
-// with the policy file `policyFile` (relative to the scene file) and two
-// camera views so that the fly-through moves. The materials are named by
-// absolute path, since the scene file is written to a temporary folder.
+// The shared small LOD scene with the policy file `policyFile` (relative to
+// the scene file) and two camera views, so that the fly-through moves.
 std::string smallLodScene(const std::string& policyFile) {
-  const std::string materials = (fs::path(SPIRE_SOURCE_DIR) / "examples/lod_materials.spire").string();
-  const auto scattered = [&](const char* mesh, const char* shader, int seed, const char* material) {
-    return fmt::format(
-        R"(, {{"mesh": "{}", "source": "{}", "shader": "{}", "scatter": {{"count": 12, "seed": {}, "on": "hills"}},
-        "material": {}}})",
-        mesh, materials, shader, seed, material);
-  };
-  return fmt::format(R"({{"resolution": [96, 64], "frames": 2, "warmupFrames": 1, "clearColor": [0, 0, 0, 1],
-  "camera": {{"fovY": 60, "views": [{{"position": [0, 9, 13], "target": [0, 0, 0]}},
-                                    {{"position": [6, 5, 4], "target": [-2, 0, -2]}}]}},
-  "lod": {{"policy": "{}", "blocks": 2}},
-  "meshes": {{"hills": {{"type": "terrain", "size": 12, "resolution": 16, "height": 0.5, "seed": 3}},
-             "barrel": {{"type": "cylinder", "radius": 0.4, "height": 1.0, "segments": 12}},
-             "sofa": {{"type": "box", "size": 0.8, "height": 0.5}},
-             "rock": {{"type": "rock", "radius": 0.5, "rings": 6, "segments": 12, "seed": 4}}}},
-  "textures": {{"n": {{"type": "noise", "size": 32, "seed": 9, "octaves": 3}},
-               "c": {{"type": "noise", "size": 32, "seed": 2, "color": [0.8, 0.3, 0.1], "color2": [0.1, 0.2, 0.6]}},
-               "nm": {{"type": "normalMap", "size": 32, "seed": 5}}}},
-  "instances": [{{"mesh": "hills", "source": "{}", "shader": "TerrainLod", "material": {{"mixMap": "n",
-     "albedoMap1": "c", "albedoMap2": "n", "normalMap1": "nm", "normalMap2": "nm"}}}})",
-                     policyFile, materials) +
-         scattered("barrel", "Barrel", 1,
-                   R"({"woodGrainMap": "c", "woodNormalMap": "nm", "grimeMap": "n", "rustMap": "n", "staveCount": 16,
-      "bandWidth": 0.05, "grimeAmount": 0.5, "rustAmount": 0.4, "metalColor": [0.35, 0.35, 0.38],
-      "rustColor": [0.45, 0.2, 0.08]})") +
-         scattered("sofa", "Sofa", 2,
-                   R"({"fabricColorMap": "c", "fabricNormalMap": "nm", "wearMap": "n", "fabricColor": [0.55, 0.2, 0.15],
-      "pipingColor": [0.9, 0.85, 0.7], "weaveDensity": 120, "panelCount": 3, "wearAmount": 0.4})") +
-         scattered("rock", "Rock", 3,
-                   R"({"rockNoiseMap": "n", "rockDetailMap": "n", "rockNormalMap": "nm", "crackMap": "n",
-      "mossMap": "c", "rockColor1": [0.5, 0.48, 0.45], "rockColor2": [0.35, 0.33, 0.3], "mossAmount": 0.5,
-      "crackWidth": 0.02})") +
-         "]}";
+  spire::testing::LodTestScene options;
+  options.views = R"([{"position": [0, 9, 13], "target": [0, 0, 0]}, {"position": [6, 5, 4], "target": [-2, 0, -2]}])";
+  options.policy = policyFile;
+  return spire::testing::lodTestSceneJson(options);
 }
 
 // The numbers of spire-demo's last line on a LOD scene.
