@@ -13,6 +13,7 @@
 #include "measure/comparison_image.h"
 #include "measure/image_metrics.h"
 #include "renderer/lod_scene.h"
+#include "renderer/view_error.h"
 #include "scene/texture.h"
 #include "support/atomic_directory.h"
 
@@ -100,7 +101,7 @@ engine::Expected<void> measurePopping(Configuration& config, const scene::Camera
 // One frame of every configuration at `view`; measured ones recorded.
 engine::Expected<void> renderFrame(std::array<Configuration, 3>& configs, const scene::CameraView& view,
                                    const scene::CameraView& previousView, float time, bool measured) {
-  measure::FloatImage full;
+  engine::Capture full;
   for (size_t c = 0; c < configs.size(); ++c) {
     Configuration& config = configs[c];
     config.scene->updateLevels(view);
@@ -111,16 +112,23 @@ engine::Expected<void> renderFrame(std::array<Configuration, 3>& configs, const 
     if (!timing) return timing.error();
     auto image = config.scene->readColor();
     if (!image) return image.error();
-    if (c == kFull) full = *image;
     if (!measured) continue;
     config.gpuMs.push_back(timing->gpuMs);
     config.batches.push_back(config.scene->lastStats().batches);
     config.draws.push_back(config.scene->lastStats().drawCalls);
-    if (c == kFull) continue;
-    auto error = measure::compareImages(full, *image, nullptr);
+    // Error over the pixels either image covers, as for variants: the sky,
+    // the same in both, dilutes nothing.
+    auto coverage = config.scene->readCoverage();
+    if (!coverage) return coverage.error();
+    engine::Capture capture{std::move(image).value(), std::move(coverage).value(), *timing};
+    if (c == kFull) {
+      full = std::move(capture);
+      continue;
+    }
+    auto error = engine::viewError(full, capture);
     if (!error) return engine::Error{error.error().message, {}, {}};
     config.error.add(*error);
-    config.previous = std::move(image).value();
+    config.previous = std::move(capture.color);
   }
   return {};
 }
@@ -152,7 +160,8 @@ std::string reportText(const LodRunOptions& options, const engine::ToolRun& run,
   std::string text = fmt::format(
       "# spire-demo level-of-detail report\n\nScene `{}` on {}, {}x{}, {} instances, {} blocks per side; {} frames "
       "along a loop through its {} camera views after {} warm-up, the three configurations rendered in turn each "
-      "frame. Error against full quality over every measured frame; popping is the largest change level switches "
+      "frame. Error against full quality over every measured frame, over the pixels either image covers; popping is "
+      "the largest change level switches "
       "alone made from one frame to the next (the new frame's levels drawn from the previous frame's camera, "
       "against the previous frame): the largest RGB change of a pixel that all but 0.01% of the pixels stay "
       "under; popped pixels are those the switches changed by more than 0.1, summed over the frames.\n\n"

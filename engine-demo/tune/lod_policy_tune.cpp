@@ -13,6 +13,7 @@
 #include "driver/tool_arguments.h"
 #include "lod/policy_choice.h"
 #include "renderer/lod_scene.h"
+#include "renderer/view_error.h"
 #include "support/file_io.h"
 #include "tool/tool_run.h"
 
@@ -89,12 +90,7 @@ scene::CameraView probeView(const lod::SceneInstance& object, const scene::Camer
   return view;
 }
 
-struct Shot {
-  measure::FloatImage color;
-  std::vector<uint8_t> coverage;
-};
-
-engine::Expected<Shot> shoot(engine::LodScene& scene, uint32_t instance, const scene::CameraView& view) {
+engine::Expected<engine::Capture> shoot(engine::LodScene& scene, uint32_t instance, const scene::CameraView& view) {
   scene.drawOnly({instance});
   scene.resetLevels(view);
   if (auto drawn = scene.draw(view, 0.0F); !drawn) return drawn.error();
@@ -102,19 +98,7 @@ engine::Expected<Shot> shoot(engine::LodScene& scene, uint32_t instance, const s
   if (!color) return color.error();
   auto coverage = scene.readCoverage();
   if (!coverage) return coverage.error();
-  return Shot{std::move(color).value(), std::move(coverage).value()};
-}
-
-// RMSE over the pixels either image covers, so the background, identical
-// in both, does not dilute it.
-engine::Expected<double> shotError(const Shot& reference, const Shot& test) {
-  std::vector<uint8_t> either(reference.coverage.size());
-  for (size_t p = 0; p < either.size() && p < test.coverage.size(); ++p) {
-    either[p] = reference.coverage[p] | test.coverage[p];
-  }
-  auto error = measure::compareImages(reference.color, test.color, &either);
-  if (!error) return engine::Error{error.error().message, {}, {}};
-  return error->rmse;
+  return engine::Capture{std::move(color).value(), std::move(coverage).value(), {}};
 }
 
 // Every level's error at every distance: the largest over the materials.
@@ -131,10 +115,12 @@ engine::Expected<void> measureErrors(LevelScenes& scenes, const std::vector<Prob
       for (size_t l = 1; l < scenes.size(); ++l) {
         auto shot = shoot(*scenes[l], probe.instance, view);
         if (!shot) return shot.error();
-        auto error = shotError(*reference, *shot);
-        if (!error) return error.error();
-        if (m.worst[l][s].empty() || *error > m.levels.error[l][s]) {
-          m.levels.error[l][s] = *error;
+        // Over the pixels either image covers, so the background, the same
+        // in both, does not dilute it.
+        auto error = engine::viewError(*reference, *shot);
+        if (!error) return engine::Error{error.error().message, {}, {}};
+        if (m.worst[l][s].empty() || error->rmse > m.levels.error[l][s]) {
+          m.levels.error[l][s] = error->rmse;
           m.worst[l][s] = probe.material;
         }
       }
