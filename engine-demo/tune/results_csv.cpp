@@ -11,9 +11,9 @@ namespace spire::tune {
 
 namespace {
 
-constexpr const char* kTrailing[] = {"status",     "frame_ms", "first_frame_ms", "prebake_ms",
-                                     "rmse",       "psnr",     "max_error",      "nan_pixels",
-                                     "inf_pixels", "same_as",  "kernels",        "hazard_inputs"};
+constexpr const char* kTrailing[] = {
+    "status",     "frame_ms", "first_frame_ms", "prebake_ms",    "rmse",       "psnr",      "max_error",  "nan_pixels",
+    "inf_pixels", "same_as",  "kernels",        "hazard_inputs", "time_ratio", "ratio_low", "ratio_high", "pairs"};
 
 std::string quote(const std::string& field) {
   if (field.find_first_of(",\"\n") == std::string::npos) return field;
@@ -86,6 +86,9 @@ std::string csvRow(const VariantResult& r) {
       fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{}\n", quote(r.status), number(r.frameMs), number(r.firstFrameMs),
                   number(r.prebakeMs), number(r.rmse), number(r.psnr), number(r.maxError), r.nanPixels, r.infPixels,
                   r.sameAs ? std::to_string(*r.sameAs) : "", quote(r.kernels), quote(r.hazardInputs));
+  row.pop_back();  // the newline, after the columns below
+  row += fmt::format(",{},{},{},{}\n", number(r.time.median), number(r.time.interval.low), number(r.time.interval.high),
+                     r.time.pairs);
   return row;
 }
 
@@ -117,7 +120,12 @@ Expected<std::vector<VariantResult>, Failure> readResults(const std::filesystem:
     const auto maxError = parseNumber(f[i + 6]);
     const auto nan = parseCount(f[i + 7]);
     const auto inf = parseCount(f[i + 8]);
-    if (!index || !frame || !first || !prebake || !rmse || !psnr || !maxError || !nan || !inf) {
+    const auto ratio = parseNumber(f[i + 12]);
+    const auto low = parseNumber(f[i + 13]);
+    const auto high = parseNumber(f[i + 14]);
+    const auto pairs = parseCount(f[i + 15]);
+    if (!index || !frame || !first || !prebake || !rmse || !psnr || !maxError || !nan || !inf || !ratio || !low ||
+        !high || !pairs) {
       return Failure{fmt::format("{}:{}: malformed row", path.string(), lineNumber)};
     }
     r.index = *index;
@@ -134,6 +142,7 @@ Expected<std::vector<VariantResult>, Failure> readResults(const std::filesystem:
     if (!f[i + 9].empty()) r.sameAs = parseCount(f[i + 9]);
     r.kernels = f[i + 10];
     r.hazardInputs = f[i + 11];
+    r.time = {*ratio, {*low, *high}, static_cast<uint32_t>(*pairs)};
     results.push_back(std::move(r));
   }
   return results;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "support/expected.h"
+#include "tune/paired_timing.h"
 
 namespace spire::tune {
 
@@ -20,7 +21,7 @@ struct VariantResult {
   uint64_t index = 0;
   std::vector<std::string> placements;  // one per explored component, in axis order
   std::string status = "ok";            // "ok", "infeasible", "failed: why" or "degenerate: why"
-  double frameMs = 0.0;                 // median GPU time of the measured frames
+  double frameMs = 0.0;                 // time.median times the reference's median frame time in this run
   double firstFrameMs = 0.0;            // host time of the first frame (shader compilation)
   double prebakeMs = 0.0;               // bakes this variant ran (reused ones count 0)
   double rmse = 0.0;
@@ -34,6 +35,9 @@ struct VariantResult {
   // plus the parameter sample's values ("roughness=0 shininess=1"); empty
   // without hazards.
   std::string hazardInputs;
+  // The variant's frame time over the reference's, frame for frame (see
+  // tune/paired_timing.h).
+  TimeRatio time;
 
   bool ok() const { return status == "ok"; }
 };

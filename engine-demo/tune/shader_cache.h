@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "support/expected.h"
+#include "tune/run_environment.h"
 
 namespace spire::tune {
 
@@ -31,10 +32,9 @@ class ShaderCacheSetting {
   Expected<void, Failure> apply(const std::string& mode);
 
  private:
-  void set(const std::string& name, const std::string& value);
-
-  std::vector<std::pair<std::string, std::optional<std::string>>> saved_;
+  // Declared after the directory: the variables are restored first.
   std::filesystem::path directory_;
+  RunEnvironment environment_;
 };
 
 }  // namespace spire::tune

@@ -15,6 +15,8 @@
 #include "tune/lod_policy_tune.h"
 #include "tune/output_lock.h"
 #include "tune/progress.h"
+#include "tune/racing.h"
+#include "tune/run_environment.h"
 #include "tune/shader_cache.h"
 #include "tune/stop_request.h"
 #include "tune/tune_options.h"
@@ -146,7 +148,9 @@ std::optional<int> measureAll(const TuneOptions& options, engine::ToolRun& run, 
   return kExitInputError;
 }
 
-// One row per point of this run, in index order, as variants.csv.
+// One row per point of this run, in index order, each time ratio turned
+// into milliseconds with this process's reference time, so rows that workers
+// or an earlier run measured share one scale.
 std::optional<int> mergeResults(const TuneOptions& options, engine::ToolRun& run, const TuneSession& session,
                                 std::vector<VariantResult>& results) {
   const auto done = loadDone(options, session.components);
@@ -154,11 +158,56 @@ std::optional<int> mergeResults(const TuneOptions& options, engine::ToolRun& run
   for (const TunePoint& point : session.space.points) {
     if (const auto it = done->find(point.index); it != done->end()) results.push_back(it->second);
   }
+  for (VariantResult& r : results) r.frameMs = r.time.median * session.tuner->referenceMs();
+  return std::nullopt;
+}
+
+// Racing: the candidates for the front whose time is not yet tight are
+// measured again, with pairs added until it is or up to --max-frames, in
+// this process (with the workers' single lavapipe thread when there were
+// workers, so that ratios compare).
+void race(const TuneOptions& options, TuneSession& session, std::vector<VariantResult>& results, std::ostream& err) {
+  const StoppingRule rule{options.frames, std::max(options.frames, options.maxFrames), StoppingRule{}.relativeWidth};
+  std::vector<size_t> loose;
+  for (size_t i : frontCandidates(results)) {
+    if (!tight(results[i].time, rule.relativeWidth) && results[i].time.pairs < rule.maxPairs) loose.push_back(i);
+  }
+  if (loose.empty()) return;
+  err << fmt::format("racing: {} candidates for the front measured again, up to {} pairs each\n", loose.size(),
+                     rule.maxPairs);
+  for (size_t i : loose) {
+    if (StopRequest::requested()) return;
+    auto time = session.tuner->remeasureTime(pointAt(session.space.axes, results[i].index), rule);
+    if (!time) continue;  // the earlier measurement stands
+    for (VariantResult& r : results) {
+      if (r.index != results[i].index && r.sameAs != results[i].index) continue;
+      r.time = *time;
+      r.frameMs = time->median * session.tuner->referenceMs();
+    }
+  }
+}
+
+std::optional<int> writeResultsTable(const TuneOptions& options, engine::ToolRun& run, const TuneSession& session,
+                                     const std::vector<VariantResult>& results) {
   std::string table = csvHeader(session.components);
   for (const VariantResult& r : results) table += csvRow(r);
   if (auto written = writeFileAtomically((fs::path(options.outputDir) / "variants.csv").string(), table); !written) {
     return run.fail(written.error().message);
   }
+  return std::nullopt;
+}
+
+// The coordinator's hold on the output directory and, when workers measure,
+// the workers' single lavapipe thread for its own timings (racing).
+std::optional<int> prepareCoordinator(const TuneOptions& options, const std::string& workerProgram,
+                                      std::optional<OutputLock>& lock, RunEnvironment& environment, std::ostream& err) {
+  auto acquired = OutputLock::acquire(options.outputDir);
+  if (!acquired) {
+    err << fmt::format("spire-tune: error: {}\n", acquired.error().message);
+    return kExitInputError;
+  }
+  lock.emplace(std::move(acquired).value());
+  if (options.jobs > 1 && !workerProgram.empty()) environment.set("LP_NUM_THREADS", "1");
   return std::nullopt;
 }
 
@@ -206,15 +255,11 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   }
   const StopRequest stop;
   std::optional<OutputLock> lock;
+  RunEnvironment environment;  // before the run: Mesa reads it when the device is made
   if (options.worker >= 0) {
     followCoordinator();
-  } else {
-    auto acquired = OutputLock::acquire(options.outputDir);
-    if (!acquired) {
-      err << fmt::format("spire-tune: error: {}\n", acquired.error().message);
-      return kExitInputError;
-    }
-    lock.emplace(std::move(acquired).value());
+  } else if (const auto status = prepareCoordinator(options, workerProgram, lock, environment, err)) {
+    return *status;
   }
   engine::ToolRun run(kTool, err);
   TuneSession session;
@@ -225,6 +270,9 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   if (const auto status = measureAll(options, run, session, args, workerProgram, out, err)) return *status;
   std::vector<VariantResult> results;
   if (const auto status = mergeResults(options, run, session, results)) return *status;
+  race(options, session, results, err);
+  if (StopRequest::requested()) return reportInterrupted(options, session, err);
+  if (const auto status = writeResultsTable(options, run, session, results)) return *status;
   const TimeSplit split = collectTimeSplits(options);
   return writeTuneOutputs(options, run, session, results, split, wall, out, err);
 }

@@ -48,7 +48,14 @@ void defineTuneOptions(CLI::App& app, TuneOptions& options) {
       ->type_name("NAME,...");
   app.add_option("--max-variants", options.maxVariants, "Sample the product when it has more variants")->type_name("N");
   app.add_option("--seed", options.seed, "Seed of the sample")->type_name("N");
-  app.add_option("--frames", options.frames, "Measured frames per variant (median; at least 3)")
+  app.add_option("--frames", options.frames,
+                 "Pairs of frames (variant, reference) measured per variant (at least 3); with --lod-policy, "
+                 "frames per level")
+      ->check(CLI::Range(3U, 1000U))
+      ->type_name("N");
+  app.add_option("--max-frames", options.maxFrames,
+                 "Candidates for the front are measured again, adding pairs while the time ratio's 95% interval "
+                 "is wider than 6%, up to N")
       ->check(CLI::Range(3U, 1000U))
       ->type_name("N");
   app.add_option("--warmup", options.warmup,

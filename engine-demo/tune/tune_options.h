@@ -20,7 +20,8 @@ struct TuneOptions {
   std::vector<std::string> only;
   uint64_t maxVariants = 4096;
   uint64_t seed = 1;
-  uint32_t frames = 3;
+  uint32_t frames = 3;      // pairs of frames per variant
+  uint32_t maxFrames = 15;  // pairs at most for a candidate for the front (racing)
   uint32_t warmup = 1;
   uint32_t jobs = std::max(1U, std::thread::hardware_concurrency());
   uint32_t bakeSize = 512;

@@ -174,13 +174,18 @@ std::string reportHeader(const TuneOptions& options, const engine::ToolRun& run,
   for (size_t i = 0; i < session.components.size(); ++i) separators += "---|";
   return fmt::format(
       "# spire-tune report\n\nShader `{}` on `{}` ({}), {} variants of {} components{}; error is RMSE against the "
-      "reference over {} camera view(s); time is the median GPU frame time of {} frames after {} unmeasured ones "
-      "(the captures of the camera views first).\n\n"
+      "reference over {} camera view(s). Time: the variant's and the reference's frames are rendered in turn, "
+      "after {} unmeasured ones (the captures of the camera views first), and a variant's time is the median of "
+      "its per-pair ratios: {} pairs, and for the candidates for the front a new measurement that adds pairs "
+      "until the ratio's 95% interval is within 6% or it has {}; in milliseconds, times the reference's median "
+      "frame, {:.3f} ms. A front point whose interval "
+      "overlaps the previous one's is marked *within noise*: their order is not known.\n\n"
       "![error against time](plot.png)\n\n## Pareto front\n\n"
-      "| variant | {} | frame ms | RMSE | image |\n|---|{}---|---|---|\n",
+      "| variant | {} | frame ms | 95% interval (ms) | pairs | RMSE | image |\n|---|{}---|---|---|---|---|\n",
       options.shader, options.scenePath, run.context().selectedDevice().name, variants, session.components.size(),
-      session.space.sampled ? " (sampled)" : "", run.scene().camera.views.size(), options.frames,
-      session.tuner->unmeasuredFrames(), fmt::join(session.components, " | "), separators);
+      session.space.sampled ? " (sampled)" : "", run.scene().camera.views.size(), session.tuner->unmeasuredFrames(),
+      options.frames, options.maxFrames, session.tuner->referenceMs(), fmt::join(session.components, " | "),
+      separators);
 }
 
 // A row per variant of the front, with its image from camera view 0 as
@@ -190,8 +195,8 @@ std::optional<int> appendFrontTable(const TuneOptions& options, engine::ToolRun&
                                     std::string& report) {
   std::error_code ec;
   fs::create_directories(fs::path(options.outputDir) / "front", ec);
-  for (size_t i : summary.front) {
-    const VariantResult& r = results[i];
+  for (size_t k = 0; k < summary.front.size(); ++k) {
+    const VariantResult& r = results[summary.front[k]];
     auto capture = session.tuner->capture(pointAt(session.space.axes, r.index));
     if (!capture) return run.fail(capture.error());
     const std::string thumb = fmt::format("front/{}.png", r.index);
@@ -199,8 +204,11 @@ std::optional<int> appendFrontTable(const TuneOptions& options, engine::ToolRun&
         !written) {
       return run.fail(written.error());
     }
-    report += fmt::format("| {} | {} | {:.3f} | {:.4g} | ![]({}) |\n", r.index, fmt::join(r.placements, " | "),
-                          r.frameMs, r.rmse, thumb);
+    const double ms = session.tuner->referenceMs();
+    const bool tied = k > 0 && withinNoise(results[summary.front[k - 1]].time, r.time);
+    report += fmt::format("| {} | {} | {:.3f}{} | {:.3f}-{:.3f} | {} | {:.4g} | ![]({}) |\n", r.index,
+                          fmt::join(r.placements, " | "), r.frameMs, tied ? " *within noise*" : "",
+                          r.time.interval.low * ms, r.time.interval.high * ms, r.time.pairs, r.rmse, thumb);
   }
   return std::nullopt;
 }

@@ -58,7 +58,10 @@ std::optional<int> startTuner(const TuneOptions& options, engine::ToolRun& run, 
     ranges.push_back(*range);
   }
   TunerOptions tunerOptions;
-  tunerOptions.frames = options.frames;
+  // Every variant gets `frames` pairs; only candidates for the front get
+  // more, when racing.
+  tunerOptions.timing.minPairs = options.frames;
+  tunerOptions.timing.maxPairs = options.frames;
   tunerOptions.warmupFrames = options.warmup;
   tunerOptions.parameterSamples = parameterSamples(ranges, options.paramSamples, options.seed);
   session.tuner.emplace(run.renderer(), session.instanceIndex, session.space.axes, tunerOptions);

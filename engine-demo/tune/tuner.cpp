@@ -74,9 +74,50 @@ engine::Expected<void> Tuner::renderReference(const std::optional<std::filesyste
       views.push_back(std::move(capture).value());
     }
     reference_.push_back(std::move(views));
+    if (!referenceScene_) referenceScene_.emplace(std::move(prepared).value());
   }
   renderer_.setParameterOverrides({});
-  return checkReference(decisions);
+  if (auto checked = checkReference(decisions); !checked) return checked;
+  const auto views = static_cast<uint32_t>(renderer_.scene().camera.views.size());
+  auto stats = renderer_.measure(*referenceScene_, unmeasuredFrames() - views, options_.timing.minPairs);
+  if (!stats) return stats.error();
+  referenceMs_ = stats->medianGpuMs;
+  return {};
+}
+
+engine::Expected<TimeRatio> Tuner::measurePaired(const engine::PreparedScene& variant, uint32_t warmup,
+                                                 const StoppingRule& rule) {
+  uint32_t frame = 0;
+  for (; frame < warmup; ++frame) {
+    if (auto timing = renderer_.renderFrame(variant, frame); !timing) return timing.error();
+  }
+  std::vector<double> ratios;
+  while (!enoughPairs(ratios, rule)) {
+    // Each goes first in every other pair, so that neither is always timed
+    // right after the other.
+    const bool variantFirst = ratios.size() % 2 == 0;
+    double variantMs = 0.0;
+    double referenceMs = 0.0;
+    for (const bool isVariant : {variantFirst, !variantFirst}) {
+      auto timing = renderer_.renderFrame(isVariant ? variant : *referenceScene_, frame);
+      if (!timing) return timing.error();
+      (isVariant ? variantMs : referenceMs) = timing->gpuMs;
+    }
+    ++frame;
+    ratios.push_back(variantMs / std::max(referenceMs, 1e-9));
+  }
+  return summarizeRatios(ratios);
+}
+
+engine::Expected<TimeRatio> Tuner::remeasureTime(const TunePoint& point, const StoppingRule& rule) {
+  auto programs = programsFor(point, nullptr);
+  if (!programs) return programs.error();
+  renderer_.setParameterOverrides(samples().front());
+  auto prepared = renderer_.prepare(*programs);
+  renderer_.setParameterOverrides({});
+  if (!prepared) return prepared.error();
+  // The first frame compiles the kernels (lavapipe); one more settles.
+  return measurePaired(*prepared, std::max(options_.warmupFrames, 2U), rule);
 }
 
 engine::Expected<std::vector<engine::VariantProgram>> Tuner::programsFor(const TunePoint& point,
@@ -155,9 +196,10 @@ engine::Expected<void> Tuner::measureImages(const std::vector<engine::VariantPro
       // The captures above were the warm-up: only what the option asks for
       // beyond them is rendered before the measured frames.
       const auto views = static_cast<uint32_t>(renderer_.scene().camera.views.size());
-      auto stats = renderer_.measure(*prepared, unmeasuredFrames() - views, options_.frames);
-      if (!stats) return stats.error();
-      result.frameMs = stats->medianGpuMs;
+      auto time = measurePaired(*prepared, unmeasuredFrames() - views, options_.timing);
+      if (!time) return time.error();
+      result.time = *time;
+      result.frameMs = time->median * referenceMs_;
     }
   }
   split_.errorMs += totals.errorMs;

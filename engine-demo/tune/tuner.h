@@ -13,6 +13,7 @@
 #include "measure/image_metrics.h"
 #include "renderer/scene_renderer.h"
 #include "renderer/view_error.h"
+#include "tune/paired_timing.h"
 #include "tune/results_csv.h"
 #include "tune/tune_space.h"
 
@@ -34,7 +35,9 @@ struct TunerOptions {
   // views come first and count: the first frame pays lavapipe's shader
   // compilation whatever it is used for.
   uint32_t warmupFrames = 1;
-  uint32_t frames = 3;
+  // Pairs of frames (variant, reference) per variant: at least minPairs,
+  // more while the time ratio's interval is wide.
+  StoppingRule timing;
   // Error is measured over every sample (and every camera view); time over
   // the first. Empty: the scene's own values only.
   std::vector<ParameterSample> parameterSamples;
@@ -58,6 +61,12 @@ class Tuner {
   engine::Expected<void> renderReference(const std::optional<std::filesystem::path>& decisions);
 
   VariantResult measure(const TunePoint& point);
+  // The point's time ratio measured again under `rule` (racing: the
+  // candidates for the front get more pairs).
+  engine::Expected<TimeRatio> remeasureTime(const TunePoint& point, const StoppingRule& rule);
+  // The reference's median frame time in this process: a time ratio times
+  // this is a frame time.
+  double referenceMs() const { return referenceMs_; }
 
   // The variant's image from camera view 0 and its placement, for reports
   // and decision files.
@@ -79,6 +88,10 @@ class Tuner {
   // added to `accumulated`; the first capture of sample 0 is the first use.
   engine::Expected<void> compareViews(const engine::PreparedScene& prepared, size_t s, const ParameterSample& sample,
                                       VariantResult& result, ViewTotals& totals);
+  // Frames of `variant` and of the reference in turn, after `warmup` of the
+  // variant's, until `rule` is met.
+  engine::Expected<TimeRatio> measurePaired(const engine::PreparedScene& variant, uint32_t warmup,
+                                            const StoppingRule& rule);
   engine::Expected<void> checkReference(const std::optional<std::filesystem::path>& decisions) const;
   engine::Expected<std::vector<engine::VariantProgram>> programsFor(const TunePoint& point,
                                                                     std::vector<std::string>* skipped);
@@ -91,6 +104,8 @@ class Tuner {
   std::vector<ParameterSample> samples() const;
 
   std::vector<std::vector<engine::Capture>> reference_;  // [sample][view]
+  std::optional<engine::PreparedScene> referenceScene_;  // under the first sample: the timing partner
+  double referenceMs_ = 0.0;
   std::map<std::string, VariantResult> byKernels_;
   TimeSplit split_;
 };

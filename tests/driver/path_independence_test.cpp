@@ -3,7 +3,9 @@
 // spirec runs from different working directories, with relative, absolute
 // and roundabout spellings, on the checkout and on a copy of it elsewhere,
 // and every output file must be byte-identical.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -75,16 +77,22 @@ void expectSameFiles(const SpirecOutput& a, const SpirecOutput& b) {
 }
 
 const fs::path kSource = SPIRE_SOURCE_DIR;
-const fs::path kTemp = fs::temp_directory_path() / "spire_path_independence";
+// Per test and process: ctest runs these tests in parallel.
+fs::path tempDir() {
+  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  return fs::temp_directory_path() /
+         fmt::format("spire_path_independence_{}_{}", info ? info->name() : "none", ::getpid());
+}
 
 TEST(PathIndependence, KernelsAndReflectionDoNotDependOnTheWorkingDirectoryOrSpelling) {
   const std::string decisions = "examples/decisions/terrain_baked_albedo.decisions";
-  const SpirecOutput relative = spirecIn(kSource, {"examples/terrain.spire", "--decisions", decisions}, kTemp / "a");
+  const SpirecOutput relative =
+      spirecIn(kSource, {"examples/terrain.spire", "--decisions", decisions}, tempDir() / "a");
   ASSERT_FALSE(relative.files.empty());
   // From the examples folder, with an absolute path that takes a detour.
   const std::string roundabout = (kSource / "stdlib" / ".." / "examples" / "." / "terrain.spire").string();
   const SpirecOutput absolute =
-      spirecIn(kSource / "examples", {roundabout, "--decisions", (kSource / decisions).string()}, kTemp / "b");
+      spirecIn(kSource / "examples", {roundabout, "--decisions", (kSource / decisions).string()}, tempDir() / "b");
   expectSameFiles(relative, absolute);
   // The kernels name the sources relative to the input's folder.
   const std::string& fragment = relative.files.at("Terrain/Fragment.glsl");
@@ -92,24 +100,26 @@ TEST(PathIndependence, KernelsAndReflectionDoNotDependOnTheWorkingDirectoryOrSpe
   EXPECT_NE(fragment.find("\"terrain.spire\""), std::string::npos) << fragment;
   EXPECT_NE(fragment.find("\"../stdlib/lighting.spire\""), std::string::npos) << fragment;
   EXPECT_EQ(fragment.find(kSource.string()), std::string::npos) << fragment;
+  fs::remove_all(tempDir());
 }
 
 TEST(PathIndependence, ACopyOfTheSourcesElsewhereGivesTheSameKernels) {
   // A second checkout at another depth, as on another build machine.
-  const fs::path copy = kTemp / "deeper" / "checkout";
-  fs::remove_all(kTemp / "deeper");
+  const fs::path copy = tempDir() / "deeper" / "checkout";
+  fs::remove_all(tempDir() / "deeper");
   for (const char* dir : {"examples", "pipelines", "stdlib"}) {
     fs::create_directories(copy / dir);
     fs::copy(kSource / dir, copy / dir, fs::copy_options::recursive);
   }
-  const SpirecOutput original = spirecIn(kSource, {"examples/lod_library.spire"}, kTemp / "a");
-  const SpirecOutput copied = spirecIn(copy / "stdlib", {"../examples/lod_library.spire"}, kTemp / "b");
+  const SpirecOutput original = spirecIn(kSource, {"examples/lod_library.spire"}, tempDir() / "a");
+  const SpirecOutput copied = spirecIn(copy / "stdlib", {"../examples/lod_library.spire"}, tempDir() / "b");
   expectSameFiles(original, copied);
-  fs::remove_all(kTemp / "deeper");
+  fs::remove_all(tempDir() / "deeper");
+  fs::remove_all(tempDir());
 }
 
 TEST(PathIndependence, IncludeDirectoriesNameTheirFilesRelativeToThemselves) {
-  const fs::path project = kTemp / "project";
+  const fs::path project = tempDir() / "project";
   fs::remove_all(project);
   fs::create_directories(project / "shaders");
   std::ofstream(project / "shaders" / "lit.spire") << "using \"engine.spire\";\n"
@@ -119,16 +129,17 @@ TEST(PathIndependence, IncludeDirectoriesNameTheirFilesRelativeToThemselves) {
                                                       "  vec4 output = vec4(vert_normal, 1.0);\n"
                                                       "}\n";
   const SpirecOutput inProject =
-      spirecIn(project, {"shaders/lit.spire", "-I", (kSource / "pipelines").string()}, kTemp / "a");
+      spirecIn(project, {"shaders/lit.spire", "-I", (kSource / "pipelines").string()}, tempDir() / "a");
   const std::string pipelinesFromShaders = fs::relative(kSource / "pipelines", project / "shaders").string();
   const SpirecOutput inShaders =
-      spirecIn(project / "shaders", {"./lit.spire", "-I", pipelinesFromShaders + "/"}, kTemp / "b");
+      spirecIn(project / "shaders", {"./lit.spire", "-I", pipelinesFromShaders + "/"}, tempDir() / "b");
   expectSameFiles(inProject, inShaders);
   fs::remove_all(project);
+  fs::remove_all(tempDir());
 }
 
 TEST(PathIndependence, DiagnosticsKeepThePathAsTyped) {
-  const fs::path project = kTemp / "broken";
+  const fs::path project = tempDir() / "broken";
   fs::remove_all(project);
   fs::create_directories(project / "sub");
   std::ofstream(project / "sub" / "bad.spire") << "shader S using NoSuchPipeline {}\n";
@@ -139,6 +150,7 @@ TEST(PathIndependence, DiagnosticsKeepThePathAsTyped) {
     EXPECT_EQ(err.str().rfind("sub/../sub/bad.spire:1:", 0), 0u) << err.str();
   }
   fs::remove_all(project);
+  fs::remove_all(tempDir());
 }
 
 }  // namespace

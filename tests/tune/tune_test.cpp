@@ -289,6 +289,18 @@ TEST_F(TuneRun, WritesEveryOutputAndResumes) {
   }
   EXPECT_TRUE(sawReference);
   EXPECT_NE(out.str().find("12 variants in"), std::string::npos) << out.str();
+  // Every variant's time is a ratio to the reference's with an interval that
+  // holds its median; the report shows the intervals of the front.
+  for (const VariantResult& r : *rows) {
+    if (!r.ok()) continue;
+    EXPECT_GE(r.time.pairs, 3U) << r.index;
+    EXPECT_LE(r.time.interval.low, r.time.median) << r.index;
+    EXPECT_GE(r.time.interval.high, r.time.median) << r.index;
+    EXPECT_GT(r.frameMs, 0.0) << r.index;
+  }
+  std::ifstream reportFile(dir / "report.md");
+  const std::string report{std::istreambuf_iterator<char>(reportFile), std::istreambuf_iterator<char>()};
+  EXPECT_NE(report.find("| 95% interval (ms) | pairs |"), std::string::npos) << report;
   // spirec takes the chosen variant's decision file without a warning.
   const fs::path spirecErr = dir / "spirec.err";
   const std::string spirec = std::string(SPIRE_SPIREC_EXE) + " examples/terrain.spire --shader Terrain --decisions '" +
@@ -449,8 +461,17 @@ void keepRows(const fs::path& from, const fs::path& to, size_t rows) {
   std::ofstream(to, std::ios::binary) << text;
 }
 
-const std::vector<std::string> kSixVariants{
-    "examples/scenes/terrain.json", "--shader", "Terrain", "--components", "albedo,normal", "--bake-size", "64"};
+// --max-frames 3: these runs check rows and counts, not timing, so they
+// race nothing.
+const std::vector<std::string> kSixVariants{"examples/scenes/terrain.json",
+                                            "--shader",
+                                            "Terrain",
+                                            "--components",
+                                            "albedo,normal",
+                                            "--bake-size",
+                                            "64",
+                                            "--max-frames",
+                                            "3"};
 
 // A resumed run counts the rows an earlier run left once, in process and
 // with workers, whose shards already hold them.
