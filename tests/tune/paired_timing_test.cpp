@@ -131,7 +131,6 @@ TEST(PairedTiming, OverlappingIntervalsAreWithinTheNoise) {
   EXPECT_FALSE(withinNoise(a, c));
 }
 
-
 VariantResult measured(uint64_t index, double ratio, double low, double high, double rmse) {
   VariantResult r;
   r.index = index;
