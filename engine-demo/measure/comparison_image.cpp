@@ -1,6 +1,6 @@
 #include "measure/comparison_image.h"
 
-#include "measure/bitmap_font.h"
+#include "measure/caption_text.h"
 
 #include <fmt/format.h>
 
@@ -47,7 +47,7 @@ scene::Expected<scene::Image> makeComparisonImage(const std::vector<Panel>& pane
   if (panels.empty()) return scene::Error{"cannot make a comparison image of no images"};
   uint32_t scale = std::max(layout.textScale, 1u);
   uint64_t padding = uint64_t{scale} * 2;
-  uint64_t stripHeight = uint64_t{kGlyphHeight} * scale + 2 * padding;
+  uint64_t stripHeight = uint64_t{textHeight(scale)} + 2 * padding;
   uint64_t width = layout.gap;
   uint64_t tallest = 0;
   for (size_t i = 0; i < panels.size(); ++i) {
@@ -87,7 +87,7 @@ scene::Expected<scene::Image> makeComparisonImage(const std::vector<Panel>& pane
     blitOpaque(canvas, panel.image, left, layout.gap);
     fillRect(canvas, left, stripTop, panel.image.width, static_cast<uint32_t>(stripHeight), kStrip);
     const uint32_t textSpace = textSpaceOf(panel);
-    uint64_t textTop = stripTop + (stripHeight - uint64_t{kGlyphHeight} * captionScale) / 2;
+    uint64_t textTop = stripTop + (stripHeight - uint64_t{textHeight(captionScale)}) / 2;
     drawText(canvas, left + static_cast<uint32_t>(padding), static_cast<uint32_t>(textTop),
              fitCaption(panel.caption, textSpace, captionScale), captionScale, kText);
     left += panel.image.width + layout.gap;

@@ -15,7 +15,7 @@ namespace spire::measure {
 
 struct Panel {
   const scene::Image& image;
-  // Drawn with the built-in font (bitmap_font.h). A caption too wide for its
+  // Drawn with stb_easy_font (caption_text.h). A caption too wide for its
   // panel is drawn smaller, down to scale 1, and only then cut off.
   std::string caption;
 };

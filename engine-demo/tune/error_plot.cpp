@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "measure/bitmap_font.h"
+#include "measure/caption_text.h"
 
 namespace spire::tune {
 
@@ -75,11 +75,11 @@ scene::Image plotErrorAgainstTime(const std::vector<Measured>& points, const std
     line(image, px(ms), bottom, px(ms), bottom + 5, kAxis);
     line(image, left - 5, py(e), left, py(e), kAxis);
     measure::drawText(image, static_cast<uint32_t>(std::max<int64_t>(0, px(ms) - 12)),
-                      static_cast<uint32_t>(bottom + 10), fmt::format("{:.1f}", ms), 1, kAxis);
+                      static_cast<uint32_t>(bottom + 10), fmt::format("{:.3g}", ms), 1, kAxis);
     measure::drawText(image, 4, static_cast<uint32_t>(std::max<int64_t>(0, py(e) - 3)), fmt::format("{:.4f}", e), 1,
                       kAxis);
   }
-  measure::drawText(image, static_cast<uint32_t>((left + right) / 2 - 40), height - 18, "FRAME MS", 2, kAxis);
+  measure::drawText(image, static_cast<uint32_t>((left + right) / 2 - 40), height - 18, "frame ms", 2, kAxis);
   measure::drawText(image, static_cast<uint32_t>(left + 10), static_cast<uint32_t>(top), "RMSE", 2, kAxis);
 
   for (const Measured& p : points) {
