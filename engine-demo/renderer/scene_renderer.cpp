@@ -3,6 +3,7 @@
 #include "renderer/stereo.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
@@ -221,6 +222,23 @@ const GpuTexture* SceneRenderer::textureFor(const std::string& name, SourceRange
   return assets_->textures.emplace(name, std::move(uploaded).value()).first->second.get();
 }
 
+Expected<std::string> SceneRenderer::solidTexture(const std::vector<double>& rgba) {
+  scene::TextureDesc desc;
+  desc.name = fmt::format("solid texture ({})", fmt::join(rgba, ", "));
+  if (assets_->textures.contains(desc.name)) return desc.name;
+  desc.kind = scene::TextureKind::Solid;
+  desc.size = 4;
+  // Float texels: a sampled range may go beyond [0, 1].
+  desc.format = scene::PixelFormat::RGBA32F;
+  for (size_t c = 0; c < 4 && c < rgba.size(); ++c) desc.color[static_cast<int>(c)] = static_cast<float>(rgba[c]);
+  auto image = scene::buildTexture(desc, scene_);
+  if (!image) return Error{fmt::format("{}: {}", desc.name, image.error().message), {}, {}};
+  auto uploaded = uploadTexture(ctx_, *image, desc.clamp);
+  if (!uploaded) return Error{fmt::format("{}: {}", desc.name, uploaded.error().message), {}, {}};
+  assets_->textures.emplace(desc.name, std::move(uploaded).value());
+  return desc.name;
+}
+
 Expected<RenderTarget*> SceneRenderer::targetFor(size_t colorTargets) {
   if (target_ && target_->formats().colors.size() == colorTargets) return &*target_;
   target_.reset();
@@ -243,8 +261,13 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
   for (size_t i = 0; i < programs.size(); ++i) {
     scene::InstanceDesc instance = scene_.instances[i];
     for (scene::MaterialBinding& binding : instance.material) {
-      if (const auto it = overrides_.find(binding.component); it != overrides_.end()) {
-        binding.texture.reset();
+      const auto it = overrides_.find(binding.component);
+      if (it == overrides_.end()) continue;
+      if (binding.texture) {
+        auto solid = solidTexture(it->second);
+        if (!solid) return solid.error();
+        binding.texture = std::move(solid).value();
+      } else {
         binding.numbers = it->second;
       }
     }

@@ -82,7 +82,9 @@ class SceneRenderer {
 
   // Material values that replace the scene's for every instance that binds
   // the component, in the next prepare() calls: the tuner samples uniform
-  // parameters over ranges this way. Empty restores the scene's values.
+  // parameters over ranges this way. A component bound to a texture gets a
+  // solid RGBA32F texture of the four values instead. Empty restores the
+  // scene's values.
   void setParameterOverrides(std::map<std::string, std::vector<double>> overrides) {
     overrides_ = std::move(overrides);
   }
@@ -133,6 +135,9 @@ class SceneRenderer {
   Expected<ShaderLibrary*> libraryFor(const scene::InstanceDesc& instance);
   const GpuMesh* meshFor(const std::string& name, SourceRange range);
   const GpuTexture* textureFor(const std::string& name, SourceRange range);
+  // The name of a solid texture of `rgba`, made on first use, that
+  // textureFor then gives.
+  Expected<std::string> solidTexture(const std::vector<double>& rgba);
   Expected<RenderTarget*> targetFor(size_t colorTargets);
   Expected<std::vector<const DrawItem*>> drawList(const PreparedScene& prepared);
 

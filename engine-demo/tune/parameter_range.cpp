@@ -51,12 +51,13 @@ Expected<ParameterRange, Failure> parseParameter(const std::string& text, const 
     return Failure{fmt::format("--param '{}': MIN and MAX must be numbers with MIN <= MAX", text)};
   }
   for (const scene::MaterialBinding& binding : instance.material) {
-    if (binding.component == range.component && !binding.texture) {
-      range.arity = binding.numbers.size();
-      return range;
-    }
+    if (binding.component != range.component || binding.engineValue) continue;
+    range.texture = binding.texture.has_value();
+    range.arity = range.texture ? 4 : binding.numbers.size();
+    return range;
   }
-  return Failure{fmt::format("--param '{}': the instance's material binds no numbers to '{}'", text, range.component)};
+  return Failure{
+      fmt::format("--param '{}': the instance's material binds no numbers or texture to '{}'", text, range.component)};
 }
 
 }  // namespace spire::tune

@@ -1,6 +1,9 @@
 // Material parameters the tuner samples (--param NAME=MIN:MAX): the error of
 // a variant that looks right at the scene's values may not be at others, so
-// the tuner measures it over samples of each parameter's range.
+// the tuner measures it over samples of each parameter's range. A number
+// parameter takes values in the range; a texture parameter is replaced by
+// solid textures whose channels take them (Pellacini 2005's extremes for an
+// input that varies over the surface).
 #pragma once
 
 #include <cstddef>
@@ -19,7 +22,8 @@ struct ParameterRange {
   std::string component;
   double minimum = 0.0;
   double maximum = 0.0;
-  size_t arity = 1;
+  size_t arity = 1;      // numbers per value; 4 (RGBA) for a texture
+  bool texture = false;  // the material binds a texture: samples are solid colors
 };
 
 // Parameter samples as in Pellacini 2005: every parameter at its minimum,

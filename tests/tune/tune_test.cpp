@@ -372,6 +372,41 @@ TEST_F(TuneRun, NamesTheInputsOfAHazardAndKeepsItOffTheFront) {
   fs::remove_all(dir);
 }
 
+// A hazard that only a texture's extremes reach: the scene's mask is 0.5
+// everywhere and no variant goes non-finite; sweeping the texture over
+// solid 0 and solid 1 finds the raw divisions and names the input.
+TEST_F(TuneRun, ATextureDrivenHazardIsFoundBySweepingTheTexture) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_texture_" + std::to_string(::getpid()));
+  for (const bool sweep : {false, true}) {
+    fs::remove_all(dir);
+    std::vector<std::string> args{"tests/data/engine/stability/texture_divide.json",
+                                  "--shader",
+                                  "TextureDivide",
+                                  "--components",
+                                  "scaled",
+                                  "--jobs",
+                                  "1",
+                                  "--max-frames",
+                                  "3",
+                                  "--validation",
+                                  "-o",
+                                  dir.string()};
+    if (sweep) args.insert(args.end(), {"--param", "maskMap=0:1", "--param-samples", "0"});
+    std::ostringstream out;
+    std::ostringstream err;
+    ASSERT_EQ(runTune(args, out, err), 0) << err.str();
+    const auto rows = readResults(dir / "variants.csv", {"scaled"});
+    ASSERT_TRUE(rows) << rows.error().message;
+    ASSERT_EQ(rows->size(), 6U);
+    for (const VariantResult& r : *rows) {
+      const bool hazard = sweep && r.placements[0].ends_with(":raw");
+      EXPECT_EQ(r.nanPixels + r.infPixels > 0, hazard) << r.placements[0] << (sweep ? " swept" : "");
+      EXPECT_EQ(r.hazardInputs, hazard ? "camera view 0 maskMap=0,0,0,0" : "") << r.placements[0];
+    }
+  }
+  fs::remove_all(dir);
+}
+
 // A reference with NaN or Inf pixels would make every variant's error
 // infinite, clean ones included: the run stops before measuring, naming the
 // reference and the inputs, and writes no results.
