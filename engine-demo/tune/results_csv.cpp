@@ -11,9 +11,10 @@ namespace spire::tune {
 
 namespace {
 
-constexpr const char* kTrailing[] = {
-    "status",     "frame_ms", "first_frame_ms", "prebake_ms",    "rmse",       "psnr",      "max_error",  "nan_pixels",
-    "inf_pixels", "same_as",  "kernels",        "hazard_inputs", "time_ratio", "ratio_low", "ratio_high", "pairs"};
+constexpr const char* kTrailing[] = {"status",  "frame_ms",      "first_frame_ms", "prebake_ms", "rmse",
+                                     "psnr",    "max_error",     "nan_pixels",     "inf_pixels", "same_as",
+                                     "kernels", "hazard_inputs", "time_ratio",     "ratio_low",  "ratio_high",
+                                     "pairs",   "worst_rmse"};
 
 std::string quote(const std::string& field) {
   if (field.find_first_of(",\"\n") == std::string::npos) return field;
@@ -87,8 +88,8 @@ std::string csvRow(const VariantResult& r) {
                   number(r.prebakeMs), number(r.rmse), number(r.psnr), number(r.maxError), r.nanPixels, r.infPixels,
                   r.sameAs ? std::to_string(*r.sameAs) : "", quote(r.kernels), quote(r.hazardInputs));
   row.pop_back();  // the newline, after the columns below
-  row += fmt::format(",{},{},{},{}\n", number(r.time.median), number(r.time.interval.low), number(r.time.interval.high),
-                     r.time.pairs);
+  row += fmt::format(",{},{},{},{},{}\n", number(r.time.median), number(r.time.interval.low),
+                     number(r.time.interval.high), r.time.pairs, number(r.worstRmse));
   return row;
 }
 
@@ -124,8 +125,9 @@ Expected<std::vector<VariantResult>, Failure> readResults(const std::filesystem:
     const auto low = parseNumber(f[i + 13]);
     const auto high = parseNumber(f[i + 14]);
     const auto pairs = parseCount(f[i + 15]);
+    const auto worst = parseNumber(f[i + 16]);
     if (!index || !frame || !first || !prebake || !rmse || !psnr || !maxError || !nan || !inf || !ratio || !low ||
-        !high || !pairs) {
+        !high || !pairs || !worst) {
       return Failure{fmt::format("{}:{}: malformed row", path.string(), lineNumber)};
     }
     r.index = *index;
@@ -143,6 +145,7 @@ Expected<std::vector<VariantResult>, Failure> readResults(const std::filesystem:
     r.kernels = f[i + 10];
     r.hazardInputs = f[i + 11];
     r.time = {*ratio, {*low, *high}, static_cast<uint32_t>(*pairs)};
+    r.worstRmse = *worst;
     results.push_back(std::move(r));
   }
   return results;

@@ -24,7 +24,8 @@ struct VariantResult {
   double frameMs = 0.0;                 // time.median times the reference's median frame time in this run
   double firstFrameMs = 0.0;            // host time of the first frame (shader compilation)
   double prebakeMs = 0.0;               // bakes this variant ran (reused ones count 0)
-  double rmse = 0.0;
+  double rmse = 0.0;                    // typical: over every camera view under every parameter sample together
+  double worstRmse = 0.0;               // worst case: the largest RMSE under one parameter sample
   double psnr = std::numeric_limits<double>::infinity();
   double maxError = 0.0;
   uint64_t nanPixels = 0;

@@ -174,14 +174,17 @@ std::string reportHeader(const TuneOptions& options, const engine::ToolRun& run,
   for (size_t i = 0; i < session.components.size(); ++i) separators += "---|";
   return fmt::format(
       "# spire-tune report\n\nShader `{}` on `{}` ({}), {} variants of {} components{}; error is RMSE against the "
-      "reference over {} camera view(s). Time: the variant's and the reference's frames are rendered in turn, "
+      "reference over {} camera view(s) and every parameter sample together; worst RMSE the largest under one "
+      "sample. Time: the variant's and the reference's frames are rendered in turn, "
       "after {} unmeasured ones (the captures of the camera views first), and a variant's time is the median of "
       "its per-pair ratios: {} pairs, and for the candidates for the front a new measurement that adds pairs "
       "until the ratio's 95% interval is within 6% or it has {}; in milliseconds, times the reference's median "
       "frame, {:.3f} ms. A front point whose interval "
       "overlaps the previous one's is marked *within noise*: their order is not known.\n\n"
       "![error against time](plot.png)\n\n## Pareto front\n\n"
-      "| variant | {} | frame ms | 95% interval (ms) | pairs | RMSE | image |\n|---|{}---|---|---|---|---|\n",
+      "| variant | {} | frame ms | 95% interval (ms) | pairs | RMSE | worst RMSE | image "
+      "|\n|---|{}---|---|---|---|---|---|"
+      "\n",
       options.shader, options.scenePath, run.context().selectedDevice().name, variants, session.components.size(),
       session.space.sampled ? " (sampled)" : "", run.scene().camera.views.size(), session.tuner->unmeasuredFrames(),
       options.frames, options.maxFrames, session.tuner->referenceMs(), fmt::join(session.components, " | "),
@@ -206,9 +209,10 @@ std::optional<int> appendFrontTable(const TuneOptions& options, engine::ToolRun&
     }
     const double ms = session.tuner->referenceMs();
     const bool tied = k > 0 && withinNoise(results[summary.front[k - 1]].time, r.time);
-    report += fmt::format("| {} | {} | {:.3f}{} | {:.3f}-{:.3f} | {} | {:.4g} | ![]({}) |\n", r.index,
-                          fmt::join(r.placements, " | "), r.frameMs, tied ? " *within noise*" : "",
-                          r.time.interval.low * ms, r.time.interval.high * ms, r.time.pairs, r.rmse, thumb);
+    report +=
+        fmt::format("| {} | {} | {:.3f}{} | {:.3f}-{:.3f} | {} | {:.4g} | {:.4g} | ![]({}) |\n", r.index,
+                    fmt::join(r.placements, " | "), r.frameMs, tied ? " *within noise*" : "", r.time.interval.low * ms,
+                    r.time.interval.high * ms, r.time.pairs, r.rmse, r.worstRmse, thumb);
   }
   return std::nullopt;
 }

@@ -189,9 +189,11 @@ engine::Expected<void> Tuner::measureImages(const std::vector<engine::VariantPro
     if (s == 0) {
       for (const engine::BakeRecord& bake : prepared->bakes) result.prebakeMs += bake.reused ? 0.0 : bake.milliseconds;
     }
+    totals.sample = {};
     if (auto compared = compareViews(*prepared, s, parameterSamples[s], result, totals); !compared) {
       return compared;
     }
+    totals.worstRmse = std::max(totals.worstRmse, totals.sample.total().rmse);
     if (s == 0) {
       // The captures above were the warm-up: only what the option asks for
       // beyond them is rendered before the measured frames.
@@ -209,6 +211,7 @@ engine::Expected<void> Tuner::measureImages(const std::vector<engine::VariantPro
         fmt::format("degenerate: covers {:.0f}% of the pixels the reference covers", 100.0 * totals.coverage.ratio());
   }
   const measure::ImageError total = totals.error.total();
+  result.worstRmse = totals.worstRmse;
   result.rmse = total.rmse;
   result.psnr = total.psnr;
   result.maxError = total.maxError;
@@ -235,6 +238,7 @@ engine::Expected<void> Tuner::compareViews(const engine::PreparedScene& prepared
     totals.errorMs += errorTimer.elapsedMs();
     if (!error) return engine::Error(error.error());
     totals.error.add(*error);
+    totals.sample.add(*error);
     if (result.hazardInputs.empty() && error->nanPixels + error->infPixels > 0) {
       result.hazardInputs = fmt::format("camera view {}{}", v, sampleText(sample));
     }

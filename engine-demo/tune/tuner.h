@@ -45,7 +45,9 @@ struct TunerOptions {
 
 // What a variant's views add up to against the reference's.
 struct ViewTotals {
-  measure::ErrorAccumulator error;
+  measure::ErrorAccumulator error;   // every view under every sample
+  measure::ErrorAccumulator sample;  // the views under the sample being compared
+  double worstRmse = 0.0;            // the largest RMSE of one sample
   engine::Coverage coverage;
   double errorMs = 0.0;  // spent comparing
 };

@@ -363,6 +363,10 @@ TEST_F(TuneRun, NamesTheInputsOfAHazardAndKeepsItOffTheFront) {
     EXPECT_EQ(r.nanPixels + r.infPixels > 0, raw) << r.placements[0];
     EXPECT_EQ(std::isinf(r.rmse), raw) << r.placements[0];
     EXPECT_EQ(r.hazardInputs, raw ? "camera view 0 divisor=0" : "") << r.placements[0];
+    // The worst case is one sample's RMSE, never below the typical error
+    // over every sample together.
+    EXPECT_GE(r.worstRmse, r.rmse) << r.placements[0];
+    EXPECT_EQ(std::isinf(r.worstRmse), raw) << r.placements[0];
   }
   const auto front = readResults(dir / "pareto.csv", {"scaled"});
   ASSERT_TRUE(front) << front.error().message;
