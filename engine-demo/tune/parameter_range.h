@@ -20,9 +20,9 @@ namespace spire::tune {
 
 struct ParameterRange {
   std::string component;
-  double minimum = 0.0;
-  double maximum = 0.0;
-  size_t arity = 1;      // numbers per value; 4 (RGBA) for a texture
+  // Per component of the value (4, RGBA, for a texture).
+  std::vector<double> minimum;
+  std::vector<double> maximum;
   bool texture = false;  // the material binds a texture: samples are solid colors
 };
 
@@ -33,7 +33,10 @@ std::vector<ParameterSample> parameterSamples(const std::vector<ParameterRange>&
                                               uint64_t seed);
 
 // Parses NAME=MIN:MAX against the instance's material, which gives the
-// value's arity (every component of a vector gets the same range).
-Expected<ParameterRange, Failure> parseParameter(const std::string& text, const scene::InstanceDesc& instance);
+// value's arity (every component of a vector gets the same range). A
+// texture input may be given as NAME alone: its range is then the
+// texture's own, per channel, from its darkest to its brightest texel.
+Expected<ParameterRange, Failure> parseParameter(const std::string& text, const scene::InstanceDesc& instance,
+                                                 const scene::SceneFile& scene);
 
 }  // namespace spire::tune

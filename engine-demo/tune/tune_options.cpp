@@ -79,7 +79,8 @@ void defineTuneOptions(CLI::App& app, TuneOptions& options) {
   app.add_flag("--validation", options.validation, "Enable VK_LAYER_KHRONOS_validation; any message fails the run");
   app.add_option("--param", options.params,
                  "Measure error over samples of a material parameter's range (repeatable): its minimum, its maximum "
-                 "and random values")
+                 "and random values; a texture is swept as solid colors, over its own texels' range when given as "
+                 "NAME alone")
       ->type_name("NAME=MIN:MAX");
   app.add_option("--param-samples", options.paramSamples, "Random samples besides the minimum and maximum")
       ->check(CLI::Range(0U, 100U))

@@ -50,7 +50,7 @@ std::optional<int> startTuner(const TuneOptions& options, engine::ToolRun& run, 
     session.reference = run.scene().variants.front().decisions;
   std::vector<ParameterRange> ranges;
   for (const std::string& text : options.params) {
-    auto range = parseParameter(text, *session.instance);
+    auto range = parseParameter(text, *session.instance, run.scene());
     if (!range) {
       err << fmt::format("spire-tune: error: {}\n", range.error().message);
       return kExitUsageError;

@@ -26,7 +26,9 @@
 #include "engine/device_fixture.h"
 #include "lod/lod_policy.h"
 #include "scene/scene_file.h"
+#include "support/diagnostic_renderer.h"
 #include "tune/format_selection.h"
+#include "tune/parameter_range.h"
 #include "tune/pareto.h"
 #include "tune/results_csv.h"
 #include "tune/tune_cli.h"
@@ -104,6 +106,54 @@ TEST(TuneSpace, SamplesLargeProductsDeterministically) {
       EXPECT_LT(a->points[i - 1].index, a->points[i].index);
     }
   }
+}
+
+// --param on a texture: NAME=MIN:MAX gives all four channels the range,
+// NAME alone the texture's own per-channel range; a number input needs a
+// range, and an unbound name is an error.
+TEST(ParameterRange, ATextureAloneSweepsItsOwnTexelRange) {
+  SourceManager sources;
+  DiagnosticList diags;
+  const auto scene = scene::parseSceneFile("params.json", R"({
+    "camera": {"views": [{"position": [0, 1, 2], "target": [0, 0, 0]}]},
+    "meshes": {"plane": {"type": "plane"}},
+    "textures": {"chk": {"type": "checker", "size": 8, "cells": 2, "color": [0.2, 0.4, 0.6, 1.0],
+                         "color2": [0.8, 0.1, 0.3, 1.0]}},
+    "instances": [{"mesh": "plane", "source": "s.spire", "shader": "S",
+                   "material": {"maskMap": "chk", "color": [0.5, 0.5, 0.5]}}]})",
+                                           ".", sources, diags);
+  ASSERT_TRUE(scene) << renderDiagnostics(sources, diags, DiagnosticFormat::Text);
+  const scene::InstanceDesc& instance = scene->instances.front();
+  const auto own = parseParameter("maskMap", instance, *scene);
+  ASSERT_TRUE(own) << own.error().message;
+  EXPECT_TRUE(own->texture);
+  const std::vector<double> low{0.2, 0.1, 0.3, 1.0};
+  const std::vector<double> high{0.8, 0.4, 0.6, 1.0};
+  for (size_t c = 0; c < 4; ++c) {
+    EXPECT_NEAR(own->minimum[c], low[c], 1.0 / 255) << c;
+    EXPECT_NEAR(own->maximum[c], high[c], 1.0 / 255) << c;
+  }
+  const auto solid = parseParameter("maskMap=0:1", instance, *scene);
+  ASSERT_TRUE(solid);
+  EXPECT_EQ(solid->minimum, std::vector<double>(4, 0.0));
+  const auto color = parseParameter("color=0:2", instance, *scene);
+  ASSERT_TRUE(color);
+  EXPECT_EQ(color->maximum, std::vector<double>(3, 2.0));
+  EXPECT_FALSE(color->texture);
+  const std::vector<ParameterSample> samples = parameterSamples({*own, *color}, 2, 7);
+  ASSERT_EQ(samples.size(), 4U);
+  EXPECT_EQ(samples[0].at("maskMap"), own->minimum);
+  EXPECT_EQ(samples[1].at("color"), color->maximum);
+  for (size_t c = 0; c < 4; ++c) {
+    EXPECT_GE(samples[2].at("maskMap")[c], own->minimum[c]);
+    EXPECT_LE(samples[3].at("maskMap")[c], own->maximum[c]);
+  }
+  const auto noRange = parseParameter("color", instance, *scene);
+  ASSERT_FALSE(noRange);
+  EXPECT_NE(noRange.error().message.find("only a texture has a range of its own"), std::string::npos);
+  const auto unbound = parseParameter("nothing=0:1", instance, *scene);
+  ASSERT_FALSE(unbound);
+  EXPECT_NE(unbound.error().message.find("binds no numbers or texture to 'nothing'"), std::string::npos);
 }
 
 TEST(Pareto, KeepsOnlyUndominatedFiniteVariants) {
