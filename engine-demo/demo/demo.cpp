@@ -97,6 +97,7 @@ void defineOptions(CLI::App& app, Options& options) {
   addOutputDirectory(app, options.outputDir, "Write PNGs, comparison.png and report.md to DIR");
   app.add_option("--frames", options.frames,
                  "Measured frames per variant (default: the scene's); with --window, close it after N frames")
+      ->check(CLI::Range(1U, 1000000U))
       ->type_name("N");
   app.add_option("--warmup", options.warmup, "Unmeasured frames first (default: the scene's; at least 1)")
       ->type_name("N");

@@ -47,8 +47,11 @@ TEST(DemoCommandLine, FollowsTheToolConventions) {
   std::ostringstream out, err;
   EXPECT_EQ(runDemo({"--version"}, out, err), kExitSuccess);
   EXPECT_EQ(out.str().rfind("spire-demo ", 0), 0U) << out.str();
-  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
-           {"examples/scenes/terrain.json", "-o", ""}, {"examples/scenes/terrain.json", "--no-such-flag"}, {}}) {
+  for (const std::vector<std::string>& args :
+       std::vector<std::vector<std::string>>{{"examples/scenes/terrain.json", "-o", ""},
+                                             {"examples/scenes/terrain.json", "--no-such-flag"},
+                                             {"examples/scenes/terrain.json", "--frames", "0"},
+                                             {}}) {
     std::ostringstream usageOut, usageErr;
     EXPECT_EQ(runDemo(args, usageOut, usageErr), kExitUsageError) << usageErr.str();
     EXPECT_NE(usageErr.str().find("Run 'spire-demo --help' for usage."), std::string::npos) << usageErr.str();
