@@ -252,6 +252,10 @@ int measureLod(const LodRunOptions& options, engine::ToolRun& run, std::array<Co
 int runLodDemo(const LodRunOptions& options, engine::ToolRun& run, GlfwWindow* window, std::ostream& out) {
   auto configs = createConfigurations(run);
   if (!configs) return run.fail(configs.error());
+  // Every level is prepared now: a material value that none of them reads
+  // is worth a warning (W7101), as for variants.
+  run.renderer().reportUnreadBindings();
+  run.reporter().flush();
   if (!window) return run.finish(measureLod(options, run, *configs, out));
   FrameSource source;
   source.names.assign(kNames.begin(), kNames.end());

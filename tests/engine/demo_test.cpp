@@ -238,5 +238,28 @@ TEST_F(DemoTest, LodSceneWithoutItsPolicyFileFails) {
   fs::remove_all(sceneDir);
 }
 
+// A material value that no level of the LOD library reads is reported, as
+// for variants (W7101), and the run goes on.
+TEST_F(DemoTest, LodSceneWarnsAboutAValueNoLevelReads) {
+  const fs::path dir = outputDir();
+  const fs::path sceneDir = fs::path(dir.string() + "_scene");
+  fs::create_directories(sceneDir);
+  std::ofstream(sceneDir / "policy.json") << spire::testing::lodTestPolicyJson();
+  std::string json = smallLodScene("policy.json");
+  const std::string stave = R"("staveCount": 16)";
+  ASSERT_NE(json.find(stave), std::string::npos);
+  json.replace(json.find(stave), stave.size(), R"("staveCount": 16, "unreadByAnyLevel": 2)");
+  std::ofstream(sceneDir / "scene.json") << json;
+  std::ostringstream out;
+  std::ostringstream err;
+  ASSERT_EQ(
+      runDemo({(sceneDir / "scene.json").string(), "--validation", "--frames", "1", "-o", dir.string()}, out, err), 0)
+      << err.str();
+  EXPECT_NE(err.str().find("W7101"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("unreadByAnyLevel"), std::string::npos) << err.str();
+  fs::remove_all(dir);
+  fs::remove_all(sceneDir);
+}
+
 }  // namespace
 }  // namespace spire::demo
