@@ -190,6 +190,8 @@ std::string reportText(const LodRunOptions& options, const engine::ToolRun& run,
 // without fading, and both side by side.
 engine::Expected<void> addImages(engine::ToolRun& run, std::array<Configuration, 3>& configs, const Summary& summary,
                                  FileSet& files) {
+  // Panels refer to their images, which must outlive them.
+  std::array<scene::Image, 2> images;
   std::vector<measure::Panel> panels;
   const scene::CameraView& view = run.scene().camera.views.front();
   for (size_t c : {kFull, kLod}) {
@@ -197,7 +199,8 @@ engine::Expected<void> addImages(engine::ToolRun& run, std::array<Configuration,
     if (auto timing = configs[c].scene->render(view, 0.0F); !timing) return timing.error();
     auto image = configs[c].scene->readColor();
     if (!image) return image.error();
-    scene::Image rgba = measure::toRgba8(*image);
+    scene::Image& rgba = images[c == kFull ? 0 : 1];
+    rgba = measure::toRgba8(*image);
     for (size_t i = 3; i < rgba.bytes.size(); i += 4) rgba.bytes[i] = 255;
     auto png = scene::encodePng(rgba);
     if (!png) return engine::Error{png.error().message, {}, {}};
