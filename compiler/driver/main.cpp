@@ -1,8 +1,13 @@
 #include <iostream>
 
+#include "driver/library_location.h"
 #include "driver/spirec.h"
 
 int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
-  return spire::runSpirec(std::vector<std::string>(argv + 1, argv + argc), std::cout, std::cerr);
+  spire::SpirecEnvironment environment;
+  if (const auto self = spire::runningExecutable()) {
+    if (const auto library = spire::bundledLibraryDir(*self)) environment.libraryDir = library->string();
+  }
+  return spire::runSpirec(std::vector<std::string>(argv + 1, argv + argc), std::cout, std::cerr, environment);
 }

@@ -13,6 +13,7 @@
 #include "reflection/reflection_json.h"
 #include "sema/group_members.h"
 #include "support/atomic_directory.h"
+#include "support/depfile.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
 
@@ -34,6 +35,9 @@ struct Options {
   uint32_t maxErrors = 20;
   bool warningsAsErrors = false;
   std::vector<std::string> warningFlags;  // `-Werror` is `-W error`
+  bool quiet = false;
+  std::string depfile;
+  std::string depfileTarget;
 };
 
 // An empty path or name is a slip (`-o "$OUT"` with OUT unset), never what
@@ -142,6 +146,17 @@ CLI::Option* addOptions(CLI::App& app, Options& options) {
       ->check(CLI::IsMember({"error"}))
       ->type_name("error")
       ->allow_extra_args(false);
+  app.add_flag("-q,--quiet", options.quiet, "Print errors only: no warnings and their notes");
+  auto* depfile = app.add_option("--depfile", options.depfile,
+                                 "Write a Make-syntax depfile to FILE listing every file read: the sources, each "
+                                 "'using' file, the decision file")
+                      ->check(kNotEmpty)
+                      ->type_name("FILE");
+  app.add_option("--depfile-target", options.depfileTarget,
+                 "The depfile's target (default: the -o DIR, else the --choices PATH)")
+      ->check(kNotEmpty)
+      ->needs(depfile)
+      ->type_name("NAME");
   return choices;
 }
 
@@ -185,13 +200,43 @@ void buildOutputs(ShaderLibrary& library, const Options& options, DiagnosticList
   if (!diags.hasErrors()) graph::checkSomeDecisionApplies(decisions, selected, diags);
 }
 
+// The depfile's target when --depfile-target does not name one: the output
+// directory, else the choice file; empty when spirec writes neither.
+std::string defaultDepfileTarget(const Options& options) {
+  if (!options.outputDir.empty()) return options.outputDir;
+  if (options.choices && options.choicesPath != "-") return options.choicesPath;
+  return {};
+}
+
+// Writes --depfile: every file the run read, in the order it read them.
+Expected<void, Failure> writeDepfile(const SourceManager& sources, const Options& options) {
+  std::vector<std::string> read;
+  for (FileId id = 0; id < sources.fileCount(); ++id) read.push_back(sources.file(id).path);
+  auto text = makeDepfile(options.depfileTarget, read);
+  if (!text) return text.error();
+  return writeFileAtomically(options.depfile, text.value());
+}
+
+// --quiet: every diagnostic but the errors is dropped. Without
+// --warnings-as-errors an error's severity is its code's, so reporting it
+// again keeps the counts right.
+void keepErrorsOnly(DiagnosticList& diags) {
+  for (Diagnostic& d : diags.takeSince(0)) {
+    if (d.severity == Severity::Error) diags.report(d.code, d.range, d.message).notes = std::move(d.notes);
+  }
+}
+
 // Prints the diagnostics and, when there are no errors, writes the outputs;
 // returns the exit status.
 int finish(ShaderLibrary& library, const Options& options, const SpirecOutput& result, std::ostream& out,
            std::ostream& err) {
   DiagnosticList& diags = library.diagnostics();
   const DiagnosticFormat format = options.diagnosticsFormat == "json" ? DiagnosticFormat::Json : DiagnosticFormat::Text;
-  if (options.warningsAsErrors) diags.promoteWarnings("treated as an error (--warnings-as-errors)");
+  if (options.warningsAsErrors) {
+    diags.promoteWarnings("treated as an error (--warnings-as-errors)");
+  } else if (options.quiet) {
+    keepErrorsOnly(diags);
+  }
   if (!diags.hasErrors()) writeDirectories(result.directories, diags);
   const std::string rendered = renderDiagnostics(library.sources(), diags, format);
   if (format == DiagnosticFormat::Json || !rendered.empty()) err << rendered;
@@ -204,22 +249,41 @@ int finish(ShaderLibrary& library, const Options& options, const SpirecOutput& r
   } else {
     out << result.choices;
   }
+  if (!options.depfile.empty()) {
+    if (auto written = writeDepfile(library.sources(), options); !written) {
+      err << "spirec: error: " << written.error().message << "\n";
+      return kExitInputError;
+    }
+  }
   out << result.placements;
   return kExitSuccess;
 }
 
 }  // namespace
 
-int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+              const SpirecEnvironment& environment) {
   CLI::App app{"spirec: the Spire shader compiler", "spirec"};
   Options options;
   CLI::Option* choices = addOptions(app, options);
+  if (!environment.libraryDir.empty()) {
+    app.footer("'using' files found neither next to their includer nor under -I are searched in the Spire library, " +
+               environment.libraryDir + " (stdlib/, pipelines/).");
+  }
   if (const auto status = parseToolArguments(app, args, out, err)) return *status;
   options.choices = choices->count() > 0;
   options.warningsAsErrors |= !options.warningFlags.empty();
+  if (!options.depfile.empty() && options.depfileTarget.empty()) {
+    options.depfileTarget = defaultDepfileTarget(options);
+    if (options.depfileTarget.empty()) {
+      return usageError(app.get_name(), "--depfile needs a target: -o DIR, --choices PATH or --depfile-target NAME",
+                        err);
+    }
+  }
 
   FrontEndOptions feOptions;
   feOptions.includeDirs = options.includeDirs;
+  if (!environment.libraryDir.empty()) feOptions.includeDirs.push_back(environment.libraryDir);
   feOptions.pipeline = options.pipeline;
   feOptions.errorLimit = options.maxErrors == 0 ? UINT32_MAX : options.maxErrors;
   ShaderLibrary library(std::move(feOptions));

@@ -10,8 +10,17 @@
 
 namespace spire {
 
+// What spirec takes from its process rather than its arguments.
+struct SpirecEnvironment {
+  // The Spire library (driver/library_location.h), searched for `using`
+  // files after every -I directory; empty: none. The executable passes its
+  // own; in-process callers (tests) choose.
+  std::string libraryDir;
+};
+
 // Runs spirec with `args` (without the program name). Results go to `out`,
 // diagnostics and usage errors to `err`. Returns an ExitCode.
-int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+              const SpirecEnvironment& environment = {});
 
 }  // namespace spire

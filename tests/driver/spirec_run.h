@@ -16,9 +16,9 @@ struct SpirecRun {
   std::string err;
 };
 
-inline SpirecRun spirec(const std::vector<std::string>& args) {
+inline SpirecRun spirec(const std::vector<std::string>& args, const SpirecEnvironment& environment = {}) {
   std::ostringstream out, err;
-  const int code = runSpirec(args, out, err);
+  const int code = runSpirec(args, out, err, environment);
   return {code, out.str(), err.str()};
 }
 
