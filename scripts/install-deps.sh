@@ -8,6 +8,8 @@ set -euo pipefail
 PACKAGES=(
   # toolchain
   cmake g++ ninja-build pkg-config ccache
+  # the InstallAndUsePackage test builds a project with Unix Makefiles too
+  make
   # the Format test (.clang-format) and the .clang-tidy checks
   clang-format clang-tidy
   # shader tooling and Vulkan (code generation checks, engine demo)
