@@ -10,6 +10,7 @@
 #include <set>
 
 #include "codegen/glsl_writer.h"
+#include "codegen/hazard_instrumentation.h"
 #include "codegen/interface_allocation.h"
 #include "reflection/reflection_json.h"
 
@@ -42,7 +43,7 @@ struct KernelText {
 class KernelGenerator {
  public:
   KernelGenerator(const sem::Model& model, const SourceManager& sources, const graph::Variant& variant,
-                  const StrategyRegistry& strategies, DiagnosticList& diags)
+                  const StrategyRegistry& strategies, DiagnosticList& diags, const KernelOptions& options)
       : model_(model),
         sources_(sources),
         variant_(variant),
@@ -50,6 +51,7 @@ class KernelGenerator {
         pipeline_(graph_.pipeline()),
         strategies_(strategies),
         diags_(diags),
+        options_(options),
         interfaces_(variant) {}
 
   std::optional<Kernel> generate(sem::WorldId world);
@@ -83,8 +85,13 @@ class KernelGenerator {
   // Interface declarations, globals, functions and block bodies' functions.
   void writeDefinitions(GlslOutput& out, const KernelBuilder& kernel, const KernelText& text, const GlslNameMaps& maps,
                         GlslWriter& writer) const;
-  void writeMain(GlslOutput& out, const KernelBuilder& kernel, const KernelText& text, GlslWriter& writer) const;
-  Kernel packageKernel(const sem::World& world, ShaderStage stage, std::string glsl, const KernelBuilder& kernel) const;
+  void writeMain(GlslOutput& out, const KernelBuilder& kernel, const KernelText& text, GlslWriter& writer,
+                 const HazardInstrumentation* hazards) const;
+  // What the instrumentation sees: the kernel's inputs, then its computed
+  // values in evaluation order.
+  std::vector<InstrumentedValue> instrumentedValues(const graph::WorldPlan& plan, const KernelText& text) const;
+  Kernel packageKernel(const sem::World& world, ShaderStage stage, std::string glsl, const KernelBuilder& kernel,
+                       const HazardInstrumentation* hazards) const;
 
   const sem::Model& model_;
   const SourceManager& sources_;
@@ -93,6 +100,7 @@ class KernelGenerator {
   const sem::Pipeline& pipeline_;
   const StrategyRegistry& strategies_;
   DiagnosticList& diags_;
+  KernelOptions options_;
   InterfaceAllocation interfaces_;
   std::string currentWorld_;
 };
@@ -300,17 +308,21 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
   if (!emitImports(w, kernel, text.names, writer)) return std::nullopt;
   declareComputed(kernel, text);
   if (!emitExports(w, exportStrategy, kernel, text.names, writer)) return std::nullopt;
+  // After every strategy's bindings, so the instrumented kernel binds its
+  // resources where the plain one does.
+  std::optional<HazardInstrumentation> hazards;
+  if (options_.instrumentHazards) hazards.emplace(kernel, instrumentedValues(plan, text));
 
   GlslOutput out(world.name + ".glsl");
   writeHeader(out, world, *stage,
               structDeclarations(usedStructs(text.touched, text.computed, text.functions), kernel.structNames()));
   writeDefinitions(out, kernel, text, maps, writer);
-  writeMain(out, kernel, text, writer);
+  writeMain(out, kernel, text, writer, hazards ? &*hazards : nullptr);
   if (const auto& problem = writer.problem()) {
     fail(problem->message, problem->range);
     return std::nullopt;
   }
-  return packageKernel(world, *stage, out.text(), kernel);
+  return packageKernel(world, *stage, out.text(), kernel, hazards ? &*hazards : nullptr);
 }
 
 void KernelGenerator::claimNames(const graph::WorldPlan& plan, const std::vector<Located>& outputs,
@@ -399,9 +411,36 @@ void KernelGenerator::writeDefinitions(GlslOutput& out, const KernelBuilder& ker
   }
 }
 
+std::vector<InstrumentedValue> KernelGenerator::instrumentedValues(const graph::WorldPlan& plan,
+                                                                   const KernelText& text) const {
+  std::vector<InstrumentedValue> values;
+  std::set<sem::ComponentId> inputs;
+  for (const graph::Transfer& t : plan.inputs) inputs.insert(t.component);
+  for (sem::ComponentId id : byName(inputs)) {
+    const sem::Component& c = *graph_.node(id).component;
+    values.push_back({c.name, text.names.at(id), c.type, false, {}, {}, {}});
+  }
+  for (sem::ComponentId id : text.computed) {
+    const graph::ComponentNode& node = graph_.node(id);
+    const graph::Alternative& alt = node.alternatives[*variant_.choice(id)];
+    const SourceRange where = alt.definition->decl->range;
+    InstrumentedValue v{node.component->name,
+                        text.names.at(id),
+                        node.component->type,
+                        true,
+                        graph_.altName(node, *variant_.choice(id)),
+                        fmt::format("{}:{}", sources_.file(where.file).logicalName, sources_.begin(where).line),
+                        {}};
+    for (sem::ComponentId dep : alt.definition->dependencies) v.reads.push_back(graph_.node(dep).component->name);
+    values.push_back(std::move(v));
+  }
+  return values;
+}
+
 void KernelGenerator::writeMain(GlslOutput& out, const KernelBuilder& kernel, const KernelText& text,
-                                GlslWriter& writer) const {
+                                GlslWriter& writer, const HazardInstrumentation* hazards) const {
   out.line("void main() {");
+  if (hazards) out.line("    " + hazards->entry());
   for (const std::string& statement : kernel.entry()) out.line("    " + statement);
   for (const std::string& statement : kernel.fetches()) out.line("    " + statement);
   for (sem::ComponentId id : text.computed) {
@@ -412,14 +451,21 @@ void KernelGenerator::writeMain(GlslOutput& out, const KernelBuilder& kernel, co
     const std::string value = decl.init ? writer.statementExpr(*decl.init, before) : text.helpers.at(id) + "()";
     writer.writeHoisted(out, "    ", before, where);
     out.line(fmt::format("    {} = {};", text.names.at(id), value));
+    if (hazards) {
+      if (const std::string check = hazards->checkAfter(graph_.node(id).component->name); !check.empty())
+        out.line("    " + check);
+    }
   }
   out.mapToKernel();
   for (const std::string& statement : kernel.stores()) out.line("    " + statement);
+  if (hazards) {
+    for (const std::string& statement : hazards->record()) out.line("    " + statement);
+  }
   out.line("}");
 }
 
 Kernel KernelGenerator::packageKernel(const sem::World& world, ShaderStage stage, std::string glsl,
-                                      const KernelBuilder& kernel) const {
+                                      const KernelBuilder& kernel, const HazardInstrumentation* hazards) const {
   Kernel result;
   result.world = world.name;
   result.stage = stage;
@@ -433,6 +479,7 @@ Kernel KernelGenerator::packageKernel(const sem::World& world, ShaderStage stage
   r.inputs = kernel.inputs();
   r.outputs = kernel.outputs();
   r.blocks = kernel.blocks();
+  if (hazards) r.hazards = hazards->reflection();
   r.key = reflection::kernelKey(result.glsl, r);
   return result;
 }
@@ -457,7 +504,7 @@ reflection::Variant GeneratedShader::reflection(const graph::Variant& variant) c
 
 std::optional<GeneratedShader> generateKernels(const sem::Model& model, const SourceManager& sources,
                                                const graph::Variant& variant, const StrategyRegistry& strategies,
-                                               DiagnosticList& diags) {
+                                               DiagnosticList& diags, const KernelOptions& options) {
   GeneratedShader result;
   result.shader = variant.graph().shader().name;
   result.directory = result.shader;
@@ -465,7 +512,7 @@ std::optional<GeneratedShader> generateKernels(const sem::Model& model, const So
     if (c == '<') c = '-';
   }
   result.directory.erase(std::remove(result.directory.begin(), result.directory.end(), '>'), result.directory.end());
-  KernelGenerator generator(model, sources, variant, strategies, diags);
+  KernelGenerator generator(model, sources, variant, strategies, diags, options);
   const sem::Pipeline& pipeline = variant.graph().pipeline();
   const uint32_t errors = diags.errorCount();
   for (sem::WorldId w : pipeline.topologicalOrder) {

@@ -34,11 +34,17 @@ struct GeneratedShader {
   reflection::Variant reflection(const graph::Variant& variant) const;
 };
 
+struct KernelOptions {
+  // Kernels that record the first value to go NaN or Inf in each invocation
+  // (hazard_instrumentation.h), for diagnosis.
+  bool instrumentHazards = false;
+};
+
 // Generates the kernels of `variant`. Problems a strategy cannot handle
 // (say, an integer through a texture) are errors (E6001) at the shader.
 std::optional<GeneratedShader> generateKernels(const sem::Model& model, const SourceManager& sources,
                                                const graph::Variant& variant, const StrategyRegistry& strategies,
-                                               DiagnosticList& diags);
+                                               DiagnosticList& diags, const KernelOptions& options = {});
 
 // Kernel content keys (reflection::kernelKey) let an engine draw kernels in
 // one batch: shaders derived from a base that finalizes a world get equal keys

@@ -22,7 +22,7 @@ std::string variantKey(const graph::Variant& variant, const CompileOptions& opti
   for (sem::ComponentId c : variant.live()) {
     for (const auto& [name, value] : variant.attributes(c)) key += fmt::format("{}[{}={}]\n", c, name, value);
   }
-  return key + (options.spirv ? "spirv" : "glsl");
+  return key + (options.spirv ? "spirv" : "glsl") + (options.instrumentHazards ? "+hazards" : "");
 }
 
 std::string spirvBytes(const std::vector<uint32_t>& words) {
@@ -125,8 +125,9 @@ CompiledVariantPtr compileVariant(ShaderLibrary& library, const graph::Variant& 
   auto& cache = library.compiledVariants();
   const std::string key = variantKey(variant, options);
   if (const auto it = cache.find(key); it != cache.end()) return it->second;
-  const auto generated = codegen::generateKernels(library.model(), library.sources(), variant,
-                                                  codegen::StrategyRegistry::builtin(), diags);
+  const auto generated =
+      codegen::generateKernels(library.model(), library.sources(), variant, codegen::StrategyRegistry::builtin(), diags,
+                               {.instrumentHazards = options.instrumentHazards});
   if (!generated) return nullptr;
   auto compiled = std::make_shared<CompiledVariant>();
   compiled->shader = generated->shader;

@@ -32,6 +32,10 @@ struct CompileOptions {
   // validator rejects is saved, as ROOT/<directory>/<World>.glsl, for a bug
   // report; empty: nowhere.
   std::string saveRejectedTo;
+  // Kernels that record, per pixel, vertex or texel, the first component to
+  // go NaN or Inf (reflection::HazardRecord): for diagnosis only, since the
+  // checks change what the kernels cost.
+  bool instrumentHazards = false;
 };
 
 struct CompiledKernel {

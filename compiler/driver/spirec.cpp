@@ -30,6 +30,7 @@ struct Options {
   std::string outputDir;
   std::string emit = "both";
   bool dumpPlacement = false;
+  bool instrumentHazards = false;
   std::string shader;
   std::string pipeline;
   uint32_t maxErrors = 20;
@@ -87,6 +88,7 @@ bool buildVariantOutputs(ShaderLibrary& library, const graph::ChoiceSpace& space
     CompileOptions compileOptions;
     compileOptions.spirv = options.emit != "glsl";
     compileOptions.saveRejectedTo = options.outputDir;
+    compileOptions.instrumentHazards = options.instrumentHazards;
     const CompiledVariantPtr compiled = compileVariant(library, *variant, compileOptions, stageDiags);
     if (compiled) files = variantFiles(*compiled, options);
     return compiled != nullptr;
@@ -134,6 +136,9 @@ CLI::Option* addOptions(CLI::App& app, Options& options) {
       ->type_name("glsl|spirv|both");
   app.add_flag("--dump-placement", options.dumpPlacement,
                "Print each variant's placement (as a decision file) and what each world computes, imports and exports");
+  app.add_flag("--instrument-hazards", options.instrumentHazards,
+               "With -o: kernels that record the first component to go NaN or Inf per pixel, vertex or texel "
+               "(for diagnosis; docs/engine.md, hazard reports)");
   app.add_option("--shader", options.shader, "Restrict output to one shader")->check(kNotEmpty)->type_name("NAME");
   app.add_option("--pipeline", options.pipeline,
                  "Retarget every shader written 'using' a pipeline to pipeline NAME (declared in one of the files)")

@@ -137,6 +137,17 @@ const Block* Kernel::block(DescriptorSlot slot) const {
   return it == blocks.end() ? nullptr : &*it;
 }
 
+const HazardValue* HazardRecord::byCode(uint32_t code) const {
+  const auto it = std::find_if(values.begin(), values.end(), [&](const HazardValue& v) { return v.code == code; });
+  return code == 0 || it == values.end() ? nullptr : &*it;
+}
+
+const HazardValue* HazardRecord::value(std::string_view component) const {
+  const auto it =
+      std::find_if(values.begin(), values.end(), [&](const HazardValue& v) { return v.component == component; });
+  return it == values.end() ? nullptr : &*it;
+}
+
 const Kernel* Variant::kernel(std::string_view world) const {
   const auto it = std::find_if(kernels.begin(), kernels.end(), [&](const Kernel& k) { return k.world == world; });
   return it == kernels.end() ? nullptr : &*it;

@@ -138,6 +138,53 @@ struct KernelOutput {
   bool operator==(const KernelOutput&) const = default;
 };
 
+// One value an instrumented kernel knows (CompileOptions::instrumentHazards):
+// a value it computes, which it checks for NaN and Inf, or an input it
+// reads; either may be dumped at the first invocation where a check fails.
+struct HazardValue {
+  std::string component;
+  ValueType type;
+  // Computed here and checked: its code, 1-based in evaluation order, its
+  // definition ("World" or "World:variation"), where that is ("file:line")
+  // and the values it reads. An input, or a value with no float in it: 0.
+  uint32_t code = 0;
+  std::string definition;
+  std::string source;
+  std::vector<std::string> reads;
+  // Numeric values (scalars, vectors, matrices): the index of its first float
+  // in a slot's dump; others are not dumped.
+  std::optional<uint32_t> dumpOffset;
+  bool operator==(const HazardValue&) const = default;
+};
+
+// Where an instrumented kernel records, for each of its invocations, the
+// first value it computes that is not finite. A storage buffer, std430:
+//   uint width; uint reserved[3];   // written by the engine: a fragment kernel's target width
+//   uint claims[slots];             // per code: set by the first invocation with that code
+//   uint first[slots];              // per code: that invocation's index
+//   float dumps[slots * dumpFloats];// per code: the dumped values at that invocation
+//   uint codes[];                   // per invocation: code << 2 | kind, 0 while finite
+// where kind is kHazardInf or kHazardNaN (NaN wins when a value has both). A
+// fragment invocation's index is y * width + x of its pixel.
+struct HazardRecord {
+  DescriptorSlot slot;
+  std::string index;  // "pixel", "gl_VertexIndex" or "gl_GlobalInvocationID.x"
+  uint32_t slots = 1;
+  uint32_t dumpFloats = 1;
+  std::vector<HazardValue> values;  // inputs, then computed values in evaluation order
+
+  uint32_t claimsOffset() const { return 16; }
+  uint32_t firstOffset() const { return claimsOffset() + 4 * slots; }
+  uint32_t dumpsOffset() const { return firstOffset() + 4 * slots; }
+  uint32_t codesOffset() const { return dumpsOffset() + 4 * slots * dumpFloats; }
+  const HazardValue* byCode(uint32_t code) const;
+  const HazardValue* value(std::string_view component) const;
+  bool operator==(const HazardRecord&) const = default;
+};
+
+inline constexpr uint32_t kHazardInf = 1;
+inline constexpr uint32_t kHazardNaN = 2;
+
 struct Kernel {
   std::string world;
   Stage stage = Stage::Fragment;
@@ -150,6 +197,7 @@ struct Kernel {
   std::vector<KernelInput> inputs;
   std::vector<KernelOutput> outputs;
   std::vector<Block> blocks;
+  std::optional<HazardRecord> hazards;  // instrumented kernels only
 
   const Block* block(DescriptorSlot slot) const;
   bool operator==(const Kernel&) const = default;

@@ -157,6 +157,49 @@ Expected<KernelOutput, std::string> readOutput(const Json& json, const std::stri
   return output;
 }
 
+Expected<HazardValue, std::string> readHazardValue(const Json& json, const std::string& what) {
+  HazardValue value;
+  value.component = json.at("component").get<std::string>();
+  value.type = parseValueType(json.at("type").get<std::string>());
+  const std::string where = fmt::format("{}, value '{}'", what, value.component);
+  if (json.contains("code")) {
+    if (auto r = readNumber(json, "code", where, value.code); !r) return r.error();
+    value.definition = json.at("definition").get<std::string>();
+    value.source = json.at("source").get<std::string>();
+    value.reads = json.at("reads").get<std::vector<std::string>>();
+  }
+  if (json.contains("dumpOffset")) {
+    uint32_t offset = 0;
+    if (auto r = readNumber(json, "dumpOffset", where, offset); !r) return r.error();
+    value.dumpOffset = offset;
+  }
+  return value;
+}
+
+// The record's numbers must describe a buffer the engine can index: every
+// code within `slots`, every dump within `dumpFloats`.
+Expected<HazardRecord, std::string> readHazards(const Json& json, const std::string& world) {
+  HazardRecord record;
+  const std::string what = fmt::format("kernel '{}', hazard record", world);
+  if (auto r = readSlot(json, what, record.slot); !r) return r.error();
+  record.index = json.at("index").get<std::string>();
+  if (auto r = readNumber(json, "slots", what, record.slots); !r) return r.error();
+  if (auto r = readNumber(json, "dumpFloats", what, record.dumpFloats); !r) return r.error();
+  if (record.slots == 0 || record.dumpFloats == 0 || record.slots > 4096 || record.dumpFloats > 4096) {
+    return fmt::format("{}: \"slots\" and \"dumpFloats\" must be 1 to 4096", what);
+  }
+  for (const Json& v : json.at("values")) {
+    auto value = readHazardValue(v, what);
+    if (!value) return value.error();
+    const uint32_t floats = value->type.componentCount();
+    if (value->code > record.slots || (value->dumpOffset && *value->dumpOffset + floats > record.dumpFloats)) {
+      return fmt::format("{}: value '{}' lies outside the record", what, value->component);
+    }
+    record.values.push_back(std::move(value).value());
+  }
+  return record;
+}
+
 template <class T, class Read>
 Result readEach(const Json& list, const std::string& world, std::vector<T>& into, Read read) {
   if (!list.is_array()) return fmt::format("kernel '{}': expected an array, not {}", world, list.type_name());
@@ -184,6 +227,11 @@ Expected<Kernel, std::string> readKernel(const Json& k) {
     if (auto r = readEach(k.at("inputs"), kernel.world, kernel.inputs, readInput); !r) return r.error();
     if (auto r = readEach(k.at("outputs"), kernel.world, kernel.outputs, readOutput); !r) return r.error();
     if (auto r = readEach(k.at("blocks"), kernel.world, kernel.blocks, readBlock); !r) return r.error();
+    if (k.contains("hazards")) {
+      auto hazards = readHazards(k.at("hazards"), kernel.world);
+      if (!hazards) return hazards.error();
+      kernel.hazards = std::move(hazards).value();
+    }
   } catch (const nlohmann::json::exception& e) {
     return fmt::format("kernel '{}': {}", kernel.world, e.what());
   }

@@ -107,6 +107,32 @@ Json blockJson(const Block& block) {
   return entry;
 }
 
+Json hazardValueJson(const HazardValue& value) {
+  Json entry;
+  entry["component"] = value.component;
+  entry["type"] = value.type.name;
+  if (value.code != 0) {
+    entry["code"] = value.code;
+    entry["definition"] = value.definition;
+    entry["source"] = value.source;
+    entry["reads"] = value.reads;
+  }
+  if (value.dumpOffset) entry["dumpOffset"] = *value.dumpOffset;
+  return entry;
+}
+
+Json hazardJson(const HazardRecord& record) {
+  Json entry;
+  putSlot(entry, record.slot);
+  entry["index"] = record.index;
+  entry["slots"] = record.slots;
+  entry["dumpFloats"] = record.dumpFloats;
+  Json values = Json::array();
+  for (const HazardValue& v : record.values) values.push_back(hazardValueJson(v));
+  entry["values"] = std::move(values);
+  return entry;
+}
+
 template <class T, class ToJson>
 Json arrayOf(const std::vector<T>& items, ToJson toJson) {
   Json list = Json::array();
@@ -139,6 +165,7 @@ Json toJson(const Kernel& kernel) {
   entry["inputs"] = arrayOf(kernel.inputs, inputJson);
   entry["outputs"] = arrayOf(kernel.outputs, outputJson);
   entry["blocks"] = arrayOf(kernel.blocks, blockJson);
+  if (kernel.hazards) entry["hazards"] = hazardJson(*kernel.hazards);
   entry["key"] = kernel.key;
   return entry;
 }

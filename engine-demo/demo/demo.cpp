@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <ostream>
@@ -20,6 +21,7 @@
 #include "scene/texture.h"
 #include "support/atomic_directory.h"
 #include "support/file_io.h"
+#include "tool/hazard_diagnosis.h"
 #include "tool/tool_run.h"
 #include "vk/context.h"
 
@@ -52,10 +54,15 @@ struct VariantRun {
 
 struct VariantResult {
   std::string name;
+  std::optional<fs::path> decisions;
   engine::FrameStats stats;
   std::vector<engine::BakeRecord> bakes;
   std::vector<engine::Capture> views;
   scene::Image image;  // view 0, 8 bits
+  // With NaN or Inf pixels: the first view that has them, and what the
+  // instrumented variant found there (or why it could not say).
+  std::optional<size_t> hazardView;
+  std::vector<std::string> hazards;
 };
 
 // A variant that could not be compiled or prepared, and why.
@@ -193,7 +200,7 @@ std::optional<int> prepareVariants(engine::ToolRun& run, const std::vector<Varia
       reportFailure(run, variant, scenePrepared.error(), failed);
       continue;
     }
-    results.push_back({variant.name, {}, scenePrepared->bakes, {}, {}});
+    results.push_back({variant.name, variant.decisions, {}, scenePrepared->bakes, {}, {}, {}, {}});
     prepared.push_back(std::move(scenePrepared).value());
   }
   renderer.reportUnreadBindings();
@@ -288,6 +295,35 @@ std::optional<int> reportRows(engine::ToolRun& run, const std::vector<VariantRes
   return std::nullopt;
 }
 
+std::optional<size_t> firstHazardousView(const std::vector<engine::Capture>& views) {
+  for (size_t v = 0; v < views.size(); ++v) {
+    const auto& rgba = views[v].color.rgba;
+    if (std::any_of(rgba.begin(), rgba.end(), [](float x) { return !std::isfinite(x); })) return v;
+  }
+  return std::nullopt;
+}
+
+// Finds, for each variant with NaN or Inf pixels, the component that went
+// non-finite first, with its instrumented kernels (tool/hazard_diagnosis.h).
+void diagnoseVariants(engine::ToolRun& run, std::vector<VariantResult>& results, std::ostream& err) {
+  for (VariantResult& result : results) {
+    result.hazardView = firstHazardousView(result.views);
+    if (!result.hazardView) continue;
+    const engine::HazardSample sample{&run.scene().camera.views[*result.hazardView], {}};
+    const auto compile = [&](engine::SceneRenderer& renderer) { return renderer.compile(result.decisions); };
+    auto hazards = engine::diagnoseHazards(run.renderer(), compile, sample);
+    if (!hazards) {
+      result.hazards.push_back(fmt::format("(no diagnosis: {})", hazards.error().message));
+    } else {
+      result.hazards = engine::hazardLines(*hazards);
+    }
+    for (const std::string& line : result.hazards) {
+      err << fmt::format("spire-demo: hazard: variant '{}', camera view {}: {}\n", result.name, *result.hazardView,
+                         line);
+    }
+  }
+}
+
 // <variant>.png and comparison.png, captioned with speedup and RMSE.
 std::optional<int> encodeImages(engine::ToolRun& run, const std::vector<VariantResult>& results,
                                 const std::vector<measure::ReportRow>& rows, FileSet& files) {
@@ -307,6 +343,21 @@ std::optional<int> encodeImages(engine::ToolRun& run, const std::vector<VariantR
   return std::nullopt;
 }
 
+// What the instrumented kernels found in each variant with NaN or Inf pixels.
+std::string hazardSection(const std::vector<VariantResult>& results) {
+  std::string text;
+  for (const VariantResult& result : results) {
+    if (!result.hazardView) continue;
+    text += fmt::format("\nVariant `{}`, camera view {}:\n\n", result.name, *result.hazardView);
+    for (const std::string& line : result.hazards) text += fmt::format("- {}\n", line);
+  }
+  if (text.empty()) return text;
+  return "\n## Hazards\n\nThe first component to go NaN or Inf, per pixel, vertex or texel, found by rendering the "
+         "variant again with instrumented kernels; origins first, then values that only carried a non-finite "
+         "input on.\n" +
+         text;
+}
+
 std::string reportText(const Options& options, const engine::ToolRun& run, const FramePlan& plan,
                        const std::vector<VariantResult>& results, const std::vector<measure::ReportRow>& rows,
                        const std::vector<FailedVariant>& failed) {
@@ -319,6 +370,7 @@ std::string reportText(const Options& options, const engine::ToolRun& run, const
   for (const VariantResult& result : results) {
     report += fmt::format("| {} | {} |\n", result.name, bakeSummary(result.bakes));
   }
+  report += hazardSection(results);
   if (failed.empty()) return report;
   report +=
       "\n## Failed variants\n\nNot measured; the run exits with status 1.\n\n| variant | decisions | why |\n"
@@ -359,6 +411,7 @@ int measureVariants(const Options& options, engine::ToolRun& run, const std::vec
   if (const auto status = captureViews(options, run, prepared, plan, results, out)) return *status;
   std::vector<measure::ReportRow> rows;
   if (const auto status = reportRows(run, results, rows, err)) return *status;
+  diagnoseVariants(run, results, err);
   out << measure::formatTextTable(rows);
   if (const auto status = writeOutputs(options, run, plan, results, rows, failed, out)) return *status;
   if (failed.empty()) return kExitSuccess;

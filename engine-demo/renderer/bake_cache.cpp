@@ -46,11 +46,13 @@ Expected<const Result*> cached(std::map<std::string, Result>& results, std::map<
 }  // namespace
 
 Expected<BakedInputs> BakeCache::bake(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
-                                      const GpuMesh& mesh, const std::string& meshKey, const MaterialValues& material) {
+                                      const GpuMesh& mesh, const std::string& meshKey, const MaterialValues& material,
+                                      HazardCollector* hazards) {
   BakedInputs baked;
   BindingSources sources;
   sources.mesh = &mesh;
   sources.material = &material;
+  sources.hazards = hazards;
   std::map<WorldRole, std::string> upstream;
   for (const WorldPass& pass : worldPassTable()) {
     const KernelProgram* kernel = program.kernelWithRole(pass.kind);

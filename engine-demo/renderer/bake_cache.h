@@ -32,10 +32,13 @@ class BakeCache {
 
   // Runs (or reuses) every bake kernel of `program` in world-table order for
   // one instance: `meshKey` names the mesh, `material` its resolved values.
+  // Instrumented bake kernels give their records to `hazards`.
   Expected<BakedInputs> bake(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
-                             const GpuMesh& mesh, const std::string& meshKey, const MaterialValues& material);
+                             const GpuMesh& mesh, const std::string& meshKey, const MaterialValues& material,
+                             HazardCollector* hazards = nullptr);
 
   size_t size() const { return uniform_.size() + vertex_.size() + texture_.size(); }
+  const TextureBakeOptions& textureOptions() const { return textureOptions_; }
 
  private:
   TextureBakeOptions textureOptions_;

@@ -95,6 +95,7 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
   BindingSources drawSources = sources;
   drawSources.passTextures = &passTextures;
   drawSources.instanceCapacity = placement.instanceCapacity;
+  drawSources.fragmentExtent = placement.screen;
   if (placement.textureArrays) drawSources.textureArrays = placement.textureArrays;
   if (auto arrays = addBakeArrays(ctx, *vertex, *fragment, drawSources, item); !arrays) return arrays.error();
   for (const KernelProgram* kernel : {vertex, fragment}) {

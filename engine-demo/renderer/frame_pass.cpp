@@ -41,8 +41,10 @@ class FramePassBuilder {
     pass->extent_ = kind_.screen ? VkExtent2D{std::max(1U, (settings_.screen.width + 1) / 2),
                                               std::max(1U, (settings_.screen.height + 1) / 2)}
                                  : VkExtent2D{targets->size, targets->size};
+    BindingSources passSources = sources;
+    passSources.fragmentExtent = pass->extent_;
     for (const KernelProgram* kernel : {&vertex, &fragment}) {
-      auto bound = bindKernel(ctx_, *kernel, sources);
+      auto bound = bindKernel(ctx_, *kernel, passSources);
       if (!bound) return bound.error();
       pass->kernels_.push_back(std::move(bound).value());
     }

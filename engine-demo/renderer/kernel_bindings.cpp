@@ -54,6 +54,9 @@ class KernelBinder {
       auto result = bindImage(input);
       if (!result) return result.error();
     }
+    if (kernel_.hazards) {
+      if (auto result = bindHazardRecord(*kernel_.hazards); !result) return result.error();
+    }
     return std::move(bound_);
   }
 
@@ -198,6 +201,31 @@ class KernelBinder {
       return {};
     }
     return missing(kernel_, input, "no engine pass provides per-vertex records from that world");
+  }
+
+  Expected<void> bindHazardRecord(const reflection::HazardRecord& layout) {
+    const bool fragment = kernel_.stage == codegen::ShaderStage::Fragment;
+    const VkExtent2D extent = sources_.fragmentExtent;
+    if (fragment && (extent.width == 0 || extent.height == 0)) {
+      return Error{fmt::format("the instrumented {} kernel is bound without its target's size", kernel_.world), {}, {}};
+    }
+    if (!fragment && !sources_.mesh) {
+      return Error{fmt::format("the instrumented {} kernel is bound without a mesh", kernel_.world), {}, {}};
+    }
+    const uint32_t invocations = fragment ? extent.width * extent.height : sources_.mesh->vertexCount();
+    VkBuffer handle = VK_NULL_HANDLE;
+    if (sources_.hazards) {
+      auto attached = sources_.hazards->attach(ctx_, kernel_, invocations, extent.width);
+      if (!attached) return attached.error();
+      handle = *attached;
+    } else {
+      auto buffer = newBuffer(layout.codesOffset() + VkDeviceSize{invocations} * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+      if (!buffer) return buffer.error();
+      handle = (*buffer)->handle();
+    }
+    bound_.descriptors.push_back(
+        {layout.slot, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, handle, VK_NULL_HANDLE, VK_NULL_HANDLE, "hazard record"});
+    return {};
   }
 
   Expected<void> bindImage(const KernelInput& input) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "renderer/gpu_resources.h"
+#include "renderer/hazard_records.h"
 #include "renderer/supplied_values.h"
 #include "renderer/value_layout.h"
 #include "renderer/variant_program.h"
@@ -70,6 +71,11 @@ struct BindingSources {
   // Records of each per-instance storage block (instanceImport): 1 for a
   // draw of one object, the batch's size for an instanced draw.
   uint32_t instanceCapacity = 1;
+  // Instrumented kernels (hazard_records.h): who reads their records, and
+  // the size of the target a fragment kernel renders to. Without a
+  // collector, an instrumented kernel records into a buffer nobody reads.
+  HazardCollector* hazards = nullptr;
+  VkExtent2D fragmentExtent{};
 };
 
 // One member of a per-instance record and where its value comes from.

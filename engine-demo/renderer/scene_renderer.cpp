@@ -132,6 +132,7 @@ Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDes
   }
   CompileOptions options;
   options.strictDecisions = strictDecisions_;
+  options.instrumentHazards = hazards_ != nullptr;
   const CompileResult compiled = spire::compileVariant(lib, instance.shader, decisionFile, options);
   if (!compiled) {
     const CompileError& error = compiled.error();
@@ -155,7 +156,9 @@ Expected<VariantProgram> SceneRenderer::compileVariant(size_t index,
   ShaderLibrary& lib = **library;
   // The tuner's points may decide what is infeasible: it records the skipped
   // decisions instead of refusing them.
-  const CompileResult compiled = spire::compileVariant(lib, instance.shader, Decisions{decisions, attributes});
+  CompileOptions options;
+  options.instrumentHazards = hazards_ != nullptr;
+  const CompileResult compiled = spire::compileVariant(lib, instance.shader, Decisions{decisions, attributes}, options);
   if (!compiled) {
     return Error{fmt::format("'{}': {}", instance.source.string(), compiled.error().message), instance.shaderRange,
                  renderAll(lib.sources(), compiled.error().diagnostics)};
@@ -293,7 +296,8 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
 
   for (size_t i = 0; i < programs.size(); ++i) {
     const scene::InstanceDesc& instance = scene_.instances[i];
-    auto baked = bakes_.bake(ctx_, modules_, programs[i], *meshes[i], instance.mesh, prepared.materials[i]);
+    if (hazards_) hazards_->setInstance(fmt::format("instance {} ({})", i, programs[i].shader));
+    auto baked = bakes_.bake(ctx_, modules_, programs[i], *meshes[i], instance.mesh, prepared.materials[i], hazards_);
     if (!baked) return Error{baked.error().message, instance.range, baked.error().details};
     prepared.bakes.insert(prepared.bakes.end(), baked->records.begin(), baked->records.end());
     prepared.textureBakes.push_back(baked->texture);
@@ -304,6 +308,7 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
     sources.uniformBake = baked->uniform;
     sources.vertexBake = baked->vertex;
     sources.textureBake = baked->texture;
+    sources.hazards = hazards_;
     const DrawPlacement placement{instance.transform, instance.doubleSided.value_or(meshes[i]->mesh.doubleSided),
                                   VkExtent2D{scene_.width, scene_.height}};
     auto item = createDrawItem(ctx_, modules_, programs[i], sources, placement, (*target)->formats());

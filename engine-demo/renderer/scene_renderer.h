@@ -15,6 +15,7 @@
 
 #include "driver/shader_library.h"
 #include "renderer/bake_cache.h"
+#include "renderer/hazard_records.h"
 #include "renderer/render_target.h"
 #include "scene/scene_file.h"
 
@@ -79,6 +80,11 @@ class SceneRenderer {
   // conflicting) fails the instance's compile; on by default, since
   // measuring a variant other than the one asked for is worthless.
   void setStrictDecisions(bool strict) { strictDecisions_ = strict; }
+  // With a collector, compile() and compileVariant() make instrumented
+  // kernels (CompileOptions::instrumentHazards) and prepare() gives their
+  // records to `hazards`; for diagnosis, in a renderer of its own, since
+  // instrumented kernels cost more and bakes are cached per renderer.
+  void collectHazards(HazardCollector* hazards) { hazards_ = hazards; }
 
   // Material values that replace the scene's for every instance that binds
   // the component, in the next prepare() calls: the tuner samples uniform
@@ -112,6 +118,7 @@ class SceneRenderer {
   Expected<Capture> capture(const PreparedScene& prepared, const scene::CameraView& view);
 
   const std::string& compilerWarnings() const { return compilerWarnings_; }
+  const TextureBakeOptions& textureBakeOptions() const { return bakes_.textureOptions(); }
   const vk::Context& context() const { return ctx_; }
   ModuleCache& modules() { return modules_; }
   // The frame's target; nullptr before prepare().
@@ -161,6 +168,7 @@ class SceneRenderer {
   // to compile read nothing, and says so itself).
   std::vector<std::optional<std::set<std::string, std::less<>>>> readBindings_;
   bool strictDecisions_ = true;
+  HazardCollector* hazards_ = nullptr;
 };
 
 }  // namespace spire::engine

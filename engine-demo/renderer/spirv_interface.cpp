@@ -66,6 +66,7 @@ SpirvInterface reflectedInterface(const reflection::Kernel& kernel) {
   for (const reflection::Block& block : kernel.blocks) {
     out.descriptors[block.slot] = block.storage ? DescriptorClass::Storage : DescriptorClass::Uniform;
   }
+  if (kernel.hazards) out.descriptors[kernel.hazards->slot] = DescriptorClass::Storage;
   return out;
 }
 

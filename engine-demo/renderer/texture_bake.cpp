@@ -268,7 +268,9 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
   auto shaderModules = loadBakeModules(ctx, modules, kernel, uvLocation);
   if (!shaderModules) return shaderModules.error();
 
-  auto bound = bindKernel(ctx, kernel, sources);
+  BindingSources bakeSources = sources;
+  bakeSources.fragmentExtent = {size, size};
+  auto bound = bindKernel(ctx, kernel, bakeSources);
   if (!bound) return bound.error();
   const BoundKernel* kernels[] = {&*bound};
   auto descriptors = createDescriptors(ctx, kernels);

@@ -1,6 +1,7 @@
 #include "tune/results_csv.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <charconv>
 #include <cmath>
@@ -14,7 +15,7 @@ namespace {
 constexpr const char* kTrailing[] = {"status",  "frame_ms",      "first_frame_ms", "prebake_ms", "rmse",
                                      "psnr",    "max_error",     "nan_pixels",     "inf_pixels", "same_as",
                                      "kernels", "hazard_inputs", "time_ratio",     "ratio_low",  "ratio_high",
-                                     "pairs",   "worst_rmse"};
+                                     "pairs",   "worst_rmse",    "hazard_causes"};
 
 std::string quote(const std::string& field) {
   if (field.find_first_of(",\"\n") == std::string::npos) return field;
@@ -88,8 +89,9 @@ std::string csvRow(const VariantResult& r) {
                   number(r.prebakeMs), number(r.rmse), number(r.psnr), number(r.maxError), r.nanPixels, r.infPixels,
                   r.sameAs ? std::to_string(*r.sameAs) : "", quote(r.kernels), quote(r.hazardInputs));
   row.pop_back();  // the newline, after the columns below
-  row += fmt::format(",{},{},{},{},{}\n", number(r.time.median), number(r.time.interval.low),
-                     number(r.time.interval.high), r.time.pairs, number(r.worstRmse));
+  row += fmt::format(",{},{},{},{},{},{}\n", number(r.time.median), number(r.time.interval.low),
+                     number(r.time.interval.high), r.time.pairs, number(r.worstRmse),
+                     quote(fmt::format("{}", fmt::join(r.hazardCauses, " | "))));
   return row;
 }
 
@@ -126,6 +128,11 @@ Expected<std::vector<VariantResult>, Failure> readResults(const std::filesystem:
     const auto high = parseNumber(f[i + 14]);
     const auto pairs = parseCount(f[i + 15]);
     const auto worst = parseNumber(f[i + 16]);
+    for (size_t start = 0; start < f[i + 17].size();) {
+      const size_t end = std::min(f[i + 17].find(" | ", start), f[i + 17].size());
+      r.hazardCauses.push_back(f[i + 17].substr(start, end - start));
+      start = end + 3;
+    }
     if (!index || !frame || !first || !prebake || !rmse || !psnr || !maxError || !nan || !inf || !ratio || !low ||
         !high || !pairs || !worst) {
       return Failure{fmt::format("{}:{}: malformed row", path.string(), lineNumber)};

@@ -10,6 +10,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/expected.h"
@@ -36,6 +37,11 @@ struct VariantResult {
   // plus the parameter sample's values ("roughness=0 shininess=1"); empty
   // without hazards.
   std::string hazardInputs;
+  // What the instrumented variant found there (tool/hazard_diagnosis.h): the
+  // components that went non-finite first, one per line.
+  std::vector<std::string> hazardCauses;
+  // In this run only: the parameter sample and camera view of hazardInputs.
+  std::optional<std::pair<size_t, size_t>> hazardSample;
   // The variant's frame time over the reference's, frame for frame (see
   // tune/paired_timing.h).
   TimeRatio time;

@@ -226,6 +226,7 @@ std::string reportFindings(const TuneOptions& options, const TuneSession& sessio
     if (r.nanPixels + r.infPixels > 0 && !r.sameAs) {
       text += fmt::format("\nHazard: variant {} ({}) has {} NaN and {} Inf pixels, first under {}.", r.index,
                           placementsText(session.components, r), r.nanPixels, r.infPixels, r.hazardInputs);
+      for (const std::string& cause : r.hazardCauses) text += fmt::format("\n  - {}", cause);
     }
   }
   if (!summary.offTrade.empty()) {
@@ -272,6 +273,7 @@ void printSummary(const TuneOptions& options, const TuneSession& session, const 
     if (r.nanPixels + r.infPixels > 0 && !r.sameAs) {
       err << fmt::format("spire-tune: warning: variant {} ({}) produced {} NaN and {} Inf pixels, first under {}\n",
                          r.index, placementsText(session.components, r), r.nanPixels, r.infPixels, r.hazardInputs);
+      for (const std::string& cause : r.hazardCauses) err << fmt::format("spire-tune:   {}\n", cause);
     }
   }
   for (size_t k = 0; k < summary.offTrade.size() && k < kConsoleListed; ++k) {

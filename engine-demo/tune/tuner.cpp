@@ -8,6 +8,7 @@
 
 #include "measure/image_metrics.h"
 #include "renderer/view_error.h"
+#include "tool/hazard_diagnosis.h"
 #include "vk/timer.h"
 
 namespace spire::tune {
@@ -40,18 +41,27 @@ std::string sampleText(const ParameterSample& sample) {
 
 }  // namespace
 
-engine::Expected<void> Tuner::checkReference(const std::optional<std::filesystem::path>& decisions) const {
+std::vector<std::string> Tuner::diagnose(const engine::CompileForDiagnosis& compile, size_t sample, size_t view) {
+  const std::vector<ParameterSample> parameterSamples = samples();
+  const engine::HazardSample where{&renderer_.scene().camera.views.at(view), parameterSamples.at(sample)};
+  auto hazards = engine::diagnoseHazards(renderer_, compile, where);
+  if (!hazards) return {fmt::format("(no diagnosis: {})", hazards.error().message)};
+  return engine::hazardLines(*hazards);
+}
+
+engine::Expected<void> Tuner::checkReference(const std::optional<std::filesystem::path>& decisions) {
   const std::vector<ParameterSample> parameterSamples = samples();
   for (size_t s = 0; s < reference_.size(); ++s) {
     for (size_t v = 0; v < reference_[s].size(); ++v) {
       const uint64_t broken = nonFinitePixels(reference_[s][v].color);
       if (broken == 0) continue;
+      const auto causes = diagnose([&](engine::SceneRenderer& renderer) { return renderer.compile(decisions); }, s, v);
       return engine::Error{
           fmt::format("the reference ({}) has {} NaN or Inf pixels under camera view {}{}: every variant's error "
                       "against it would be infinite. Fix the shader, or choose a reference without the hazard with "
-                      "--reference DECISIONS",
+                      "--reference DECISIONS. There, {}",
                       decisions ? decisions->string() : std::string("each instance's own decisions"), broken, v,
-                      sampleText(parameterSamples[s])),
+                      sampleText(parameterSamples[s]), fmt::join(causes, "; ")),
           {},
           {}};
     }
@@ -172,6 +182,17 @@ VariantResult Tuner::measure(const TunePoint& point) {
     result.status = "failed: " + measured.error().message;
     return result;
   }
+  if (result.hazardSample) {
+    const auto compile = [&](engine::SceneRenderer& renderer) -> engine::Expected<std::vector<engine::VariantProgram>> {
+      auto others = renderer.compile(std::nullopt);
+      if (!others) return others.error();
+      auto own = renderer.compileVariant(instance_, point.decisions);
+      if (!own) return own.error();
+      others->at(instance_) = std::move(own).value();
+      return others;
+    };
+    result.hazardCauses = diagnose(compile, result.hazardSample->first, result.hazardSample->second);
+  }
   byKernels_[result.kernels] = result;
   return result;
 }
@@ -241,6 +262,7 @@ engine::Expected<void> Tuner::compareViews(const engine::PreparedScene& prepared
     totals.sample.add(*error);
     if (result.hazardInputs.empty() && error->nanPixels + error->infPixels > 0) {
       result.hazardInputs = fmt::format("camera view {}{}", v, sampleText(sample));
+      result.hazardSample = std::pair{s, v};
     }
   }
   return {};

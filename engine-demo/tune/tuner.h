@@ -13,6 +13,7 @@
 #include "measure/image_metrics.h"
 #include "renderer/scene_renderer.h"
 #include "renderer/view_error.h"
+#include "tool/hazard_diagnosis.h"
 #include "tune/paired_timing.h"
 #include "tune/results_csv.h"
 #include "tune/tune_space.h"
@@ -94,7 +95,10 @@ class Tuner {
   // variant's, until `rule` is met.
   engine::Expected<TimeRatio> measurePaired(const engine::PreparedScene& variant, uint32_t warmup,
                                             const StoppingRule& rule);
-  engine::Expected<void> checkReference(const std::optional<std::filesystem::path>& decisions) const;
+  engine::Expected<void> checkReference(const std::optional<std::filesystem::path>& decisions);
+  // What the instrumented programs find under parameter sample `sample`
+  // and camera view `view` (tool/hazard_diagnosis.h), as lines.
+  std::vector<std::string> diagnose(const engine::CompileForDiagnosis& compile, size_t sample, size_t view);
   engine::Expected<std::vector<engine::VariantProgram>> programsFor(const TunePoint& point,
                                                                     std::vector<std::string>* skipped);
 

@@ -271,9 +271,19 @@ Expected<void> Context::createDevice() {
   VkPhysicalDeviceDynamicRenderingFeatures enabledDynamic{};
   enabledDynamic.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES;
   enabledDynamic.dynamicRendering = VK_TRUE;
+  // Storage writes from vertex and fragment kernels: instrumented kernels
+  // record hazards that way (renderer/hazard_records.h).
+  VkPhysicalDeviceFeatures supported{};
+  vkGetPhysicalDeviceFeatures(physicalDevice(), &supported);
+  VkPhysicalDeviceFeatures enabled{};
+  enabled.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
+  enabled.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
+  graphicsStores_ =
+      supported.vertexPipelineStoresAndAtomics == VK_TRUE && supported.fragmentStoresAndAtomics == VK_TRUE;
   VkDeviceCreateInfo deviceInfo{};
   deviceInfo.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
   deviceInfo.pNext = &enabledDynamic;
+  deviceInfo.pEnabledFeatures = &enabled;
   deviceInfo.queueCreateInfoCount = 1;
   deviceInfo.pQueueCreateInfos = &queueInfo;
   deviceInfo.enabledExtensionCount = static_cast<uint32_t>(extensions->size());
@@ -355,6 +365,14 @@ Expected<void> Context::submitAndWait(const std::function<void(VkCommandBuffer)>
   beginInfo.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   if (auto ok = check(vkBeginCommandBuffer(cmd, &beginInfo), "vkBeginCommandBuffer"); !ok) return ok;
   record(cmd);
+  // Whatever the commands wrote to host-visible memory is read once the
+  // fence signals (bakes, hazard records): make it visible to the host.
+  VkMemoryBarrier toHost{};
+  toHost.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+  toHost.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
+  toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
+                       0, nullptr);
   if (auto ok = check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer"); !ok) return ok;
 
   VkFenceCreateInfo fenceInfo{};

@@ -83,6 +83,9 @@ class Context {
   // The API version the device was created for: min(instance, device), >= 1.1.
   uint32_t apiVersion() const { return apiVersion_; }
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  // Whether vertex and fragment kernels may write storage buffers (enabled
+  // whenever the device supports it).
+  bool graphicsStores() const { return graphicsStores_; }
   uint32_t timestampValidBits() const { return timestampValidBits_; }
 
   // vkCmdBeginRendering / vkCmdEndRendering: core on 1.3, otherwise the
@@ -139,6 +142,7 @@ class Context {
   VkPhysicalDeviceMemoryProperties memory_{};
   uint32_t apiVersion_ = 0;
   uint32_t timestampValidBits_ = 0;
+  bool graphicsStores_ = false;
   Device device_;
   uint32_t queueFamily_ = 0;
   VkQueue queue_ = VK_NULL_HANDLE;

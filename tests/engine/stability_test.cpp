@@ -870,6 +870,48 @@ TEST_F(StabilityTest, UsersDivisionByZeroIsCountedAndNamed) {
   EXPECT_EQ(std::stoul(match[1].str()) + std::stoul(match[2].str()), covered) << errText;
 }
 
+// Hazard attribution (tool/hazard_diagnosis.h) in each kind of world: the
+// division by a zero uniform placed per fragment, per vertex and in the
+// texture bake. Each variant's report names `scaled` in the world that
+// computes it, with the divisor's value there; where another world only
+// carries the non-finite value on, that is said and listed after the origin.
+TEST_F(StabilityTest, HazardsAreTracedToTheComponentAndInputInEveryWorld) {
+  const fs::path outputDir = fs::temp_directory_path() / ("spire_stability_attribution_" + std::to_string(::getpid()));
+  std::ostringstream out;
+  std::ostringstream err;
+  std::vector<std::string> args{(kDataDir / "user_divide.json").string(), "--validation", "-o", outputDir.string()};
+  for (const char* v : {"user_divide_fragment", "user_divide_vertex", "user_divide_texture"}) {
+    args.push_back("--variant");
+    args.push_back((kDataDir / (std::string(v) + ".decisions")).string());
+  }
+  ASSERT_EQ(demo::runDemo(args, out, err), 0) << err.str();
+  std::ifstream reportFile(outputDir / "report.md");
+  const std::string report{std::istreambuf_iterator<char>(reportFile), std::istreambuf_iterator<char>()};
+  fs::remove_all(outputDir);
+  const std::string text = err.str();
+  const std::string tail = "; color = (0.5, 0.5, 0.5, 1), divisor = 0 there [instance 0 (UserDivide), first at ";
+  EXPECT_NE(text.find("hazard: variant 'user_divide_fragment', camera view 0: scaled (Fragment) went Inf in 289 px" +
+                      tail + "pixel"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("hazard: variant 'user_divide_vertex', camera view 0: scaled (Vertex) went Inf in 25 vertices" +
+                      tail + "vertex"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("hazard: variant 'user_divide_texture', camera view 0: scaled (PrebakeTex) went Inf in "),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("texels" + tail + "texel ("), std::string::npos) << text;
+  // Per vertex, Fragment's output only carries the interpolated NaN on: after the origin.
+  const size_t origin = text.find("'user_divide_vertex', camera view 0: scaled (Vertex)");
+  const size_t carried = text.find("'user_divide_vertex', camera view 0: output (Fragment) went NaN");
+  ASSERT_NE(carried, std::string::npos) << text;
+  EXPECT_LT(origin, carried);
+  EXPECT_NE(text.find("(it came in with its input)", carried), std::string::npos);
+  EXPECT_NE(report.find("## Hazards"), std::string::npos) << report;
+  EXPECT_NE(report.find("- scaled (Vertex) went Inf in 25 vertices"), std::string::npos) << report;
+}
+
 // A variant that averages the position per object (collapse.json) draws
 // every vertex on one point and covers nothing: spire-demo flags its image
 // as degenerate (no speedup in the table, the report or the caption) and

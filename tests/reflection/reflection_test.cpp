@@ -61,6 +61,66 @@ TEST(ReflectionJson, EveryKernelOfTheExamplesSurvivesTheRoundTrip) {
   EXPECT_GT(variants, 40U);
 }
 
+// Instrumented kernels (CompileOptions::instrumentHazards) of every single
+// decision of the examples compile to validated SPIR-V, bind every resource
+// where the plain kernel does, add their record at a slot of their own, give
+// each checked value a code in evaluation order, and survive the JSON round
+// trip with their hazard records.
+TEST(ReflectionJson, InstrumentedKernelsKeepTheirInterfaceAndRecordHazards) {
+  size_t kernels = 0;
+  for (const char* file : {"couch.spire", "terrain_five_world.spire"}) {
+    ShaderLibrary library;
+    library.addFile(std::string(SPIRE_SOURCE_DIR) + "/examples/" + file);
+    ASSERT_TRUE(library.compile()) << file;
+    CompileOptions instrumented;
+    instrumented.instrumentHazards = true;
+    for (const std::string& shader : library.shaderNames()) {
+      std::vector<Decisions> all{{}};
+      for (const graph::Choice& choice : library.choices(shader)) {
+        const std::string component = choice.key.substr(choice.key.find('.') + 1);
+        all.push_back({{{component, choice.names.front()}}, {}});
+      }
+      for (const Decisions& decisions : all) {
+        const auto plain = compileVariant(library, shader, decisions);
+        const auto checked = compileVariant(library, shader, decisions, instrumented);
+        ASSERT_TRUE(plain && checked) << shader;
+        const reflection::Variant& a = (*plain)->reflection;
+        const reflection::Variant& b = (*checked)->reflection;
+        ASSERT_EQ(a.kernels.size(), b.kernels.size());
+        for (size_t k = 0; k < a.kernels.size(); ++k) {
+          const reflection::Kernel& p = a.kernels[k];
+          const reflection::Kernel& q = b.kernels[k];
+          EXPECT_FALSE(p.hazards);
+          ASSERT_TRUE(q.hazards) << q.world;
+          EXPECT_EQ(p.inputs, q.inputs);
+          EXPECT_EQ(p.outputs, q.outputs);
+          EXPECT_EQ(p.blocks, q.blocks);
+          for (const reflection::Block& block : q.blocks) EXPECT_NE(block.slot, q.hazards->slot);
+          for (const reflection::KernelInput& input : q.inputs) {
+            if (input.kind != reflection::InputKind::Varying && input.kind != reflection::InputKind::PushConstant) {
+              EXPECT_NE(input.slot, q.hazards->slot);
+            }
+          }
+          uint32_t code = 0;
+          for (const reflection::HazardValue& v : q.hazards->values) {
+            if (v.code == 0) continue;
+            EXPECT_EQ(v.code, ++code) << v.component;
+            EXPECT_FALSE(v.source.empty());
+          }
+          EXPECT_EQ(std::max(code, 1U), q.hazards->slots);
+          EXPECT_FALSE((*checked)->kernels[k].spirv.empty());
+          ++kernels;
+        }
+        const auto json = toJson(b);
+        const auto reread = fromJson(json);
+        ASSERT_TRUE(reread) << reread.error();
+        EXPECT_EQ(*reread, b);
+      }
+    }
+  }
+  EXPECT_GT(kernels, 30U);
+}
+
 nlohmann::ordered_json terrainReflection() {
   ShaderLibrary library;
   library.addFile(std::string(SPIRE_SOURCE_DIR) + "/examples/terrain.spire");
