@@ -4,7 +4,6 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <ostream>
@@ -297,8 +296,7 @@ std::optional<int> reportRows(engine::ToolRun& run, const std::vector<VariantRes
 
 std::optional<size_t> firstHazardousView(const std::vector<engine::Capture>& views) {
   for (size_t v = 0; v < views.size(); ++v) {
-    const auto& rgba = views[v].color.rgba;
-    if (std::any_of(rgba.begin(), rgba.end(), [](float x) { return !std::isfinite(x); })) return v;
+    if (measure::nonFinitePixels(views[v].color) > 0) return v;
   }
   return std::nullopt;
 }

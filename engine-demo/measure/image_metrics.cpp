@@ -98,6 +98,12 @@ ImageError ErrorAccumulator::total() const {
   return total;
 }
 
+uint64_t nonFinitePixels(const FloatImage& image) {
+  uint64_t count = 0;
+  for (size_t p = 0; p + 3 < image.rgba.size(); p += 4) count += pixelHazard(&image.rgba[p]) == Hazard::None ? 0 : 1;
+  return count;
+}
+
 scene::Image toRgba8(const FloatImage& image) {
   scene::Image out;
   if (!consistent(image)) return out;

@@ -61,6 +61,10 @@ class ErrorAccumulator {
   ImageError sum_;
 };
 
+// Pixels with a NaN or Inf in any channel, covered or not: a hazard shows
+// wherever it is, also in a reference that has no image to compare with.
+uint64_t nonFinitePixels(const FloatImage& image);
+
 // For PNGs of the renderings: each channel clamped to [0, 1] and rounded to
 // 8 bits (no sRGB encoding). Hazards are painted so they stand out: a pixel
 // with a NaN becomes opaque magenta, one with an Inf (and no NaN) opaque white.

@@ -111,8 +111,8 @@ void HazardCollector::readRecord(const Record& record, std::vector<Hazard>& out)
     hazard.nan = (code & 3) == reflection::kHazardNaN;
     hazard.count = count;
     hazard.unit = record.unit;
-    hazard.firstIndex = readAt<uint32_t>(memory, layout.firstOffset() + uint64_t{slot} * 4);
-    hazard.where = invocationName(record.unit, hazard.firstIndex, record.width);
+    hazard.where =
+        invocationName(record.unit, readAt<uint32_t>(memory, layout.firstOffset() + uint64_t{slot} * 4), record.width);
     const uint64_t dumps = layout.dumpsOffset() + uint64_t{slot} * layout.dumpFloats * 4;
     for (const std::string& read : value->reads) {
       const reflection::HazardValue* input = layout.value(read);

@@ -27,8 +27,7 @@ struct Hazard {
   bool nan = false;        // NaN; otherwise Inf
   uint64_t count = 0;      // invocations whose first non-finite value it is
   std::string unit;        // "px", "texels" or "vertices"
-  uint32_t firstIndex = 0;
-  std::string where;  // the first invocation: "pixel (3, 7)", "vertex 12", "texel (40, 2)"
+  std::string where;       // the first invocation: "pixel (3, 7)", "vertex 12", "texel (40, 2)"
   // The values its definition reads, at that invocation, as the kernel held
   // them; those the kernel could not dump are left out.
   std::vector<std::pair<std::string, std::vector<double>>> reads;

@@ -23,16 +23,6 @@ std::vector<ParameterSample> Tuner::samples() const {
 
 namespace {
 
-uint64_t nonFinitePixels(const measure::FloatImage& image) {
-  uint64_t count = 0;
-  for (size_t p = 0; p + 3 < image.rgba.size(); p += 4) {
-    bool finite = true;
-    for (size_t c = 0; c < 4; ++c) finite = finite && std::isfinite(image.rgba[p + c]);
-    count += finite ? 0 : 1;
-  }
-  return count;
-}
-
 std::string sampleText(const ParameterSample& sample) {
   std::string text;
   for (const auto& [component, values] : sample) text += fmt::format(" {}={}", component, fmt::join(values, ","));
@@ -53,7 +43,7 @@ engine::Expected<void> Tuner::checkReference(const std::optional<std::filesystem
   const std::vector<ParameterSample> parameterSamples = samples();
   for (size_t s = 0; s < reference_.size(); ++s) {
     for (size_t v = 0; v < reference_[s].size(); ++v) {
-      const uint64_t broken = nonFinitePixels(reference_[s][v].color);
+      const uint64_t broken = measure::nonFinitePixels(reference_[s][v].color);
       if (broken == 0) continue;
       const auto causes = diagnose([&](engine::SceneRenderer& renderer) { return renderer.compile(decisions); }, s, v);
       return engine::Error{
