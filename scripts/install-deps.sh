@@ -25,6 +25,11 @@ PACKAGES=(
   # libFuzzer targets (fuzz preset); llvm: llvm-symbolizer, which
   # bench/fuzz-all's coverage report (-print_coverage) needs
   clang libclang-rt-14-dev llvm
+  # the VsCodeGrammar test (editors/vscode) runs Node.js and npm. Only
+  # nodejs: NodeSource's nodejs bundles npm and conflicts with Debian's npm
+  # package, so where Debian's own nodejs lacks npm, install npm by hand
+  # (the test says so when npm is missing).
+  nodejs
 )
 
 missing=()
