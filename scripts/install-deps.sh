@@ -30,6 +30,10 @@ PACKAGES=(
   # package, so where Debian's own nodejs lacks npm, install npm by hand
   # (the test says so when npm is missing).
   nodejs
+  # the ReportHtmlInChromium test opens spire-tune's report.html in a real
+  # browser (headless, no display): the page must render without console
+  # errors and show its plot
+  chromium
 )
 
 missing=()

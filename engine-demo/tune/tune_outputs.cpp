@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -17,6 +18,7 @@
 #include "tune/error_plot.h"
 #include "tune/format_selection.h"
 #include "tune/pareto.h"
+#include "tune/report_html.h"
 
 namespace spire::tune {
 namespace {
@@ -248,9 +250,46 @@ std::string reportFindings(const TuneOptions& options, const TuneSession& sessio
   return text;
 }
 
+// Why a variant with NaN or Inf pixels is off the trade, for the page.
+std::string hazardReason(const VariantResult& r) {
+  std::string reason = fmt::format("{} NaN and {} Inf pixels (infinite error), first under {}", r.nanPixels,
+                                   r.infPixels, r.hazardInputs);
+  for (const std::string& cause : r.hazardCauses) reason += "; " + cause;
+  return reason;
+}
+
+// What report.html shows: the results as report.md has them, the front's
+// images and the decision files written for the budgets.
+ReportPage reportPage(const TuneOptions& options, const engine::ToolRun& run, const TuneSession& session,
+                      const std::vector<VariantResult>& results, const FrontSummary& summary,
+                      const BudgetChoice& choice) {
+  ReportPage page;
+  page.title = fmt::format("spire-tune report: {} on {}", options.shader, options.scenePath);
+  page.summary = fmt::format(
+      "Shader {} on {} ({}), {} variants of {} components{}. Error: RMSE against the reference over {} camera "
+      "view(s) and every parameter sample. Time: the median of the variant's per-pair frame time ratios to the "
+      "reference, times the reference's median frame ({:.3f} ms).",
+      options.shader, options.scenePath, run.context().selectedDevice().name, results.size(), session.components.size(),
+      session.space.sampled ? " (sampled)" : "", run.scene().camera.views.size(), session.tuner->referenceMs());
+  page.components = session.components;
+  page.results = results;
+  page.front = summary.front;
+  page.referenceMs = session.tuner->referenceMs();
+  for (size_t i : summary.front) page.images[i] = fmt::format("front/{}.png", results[i].index);
+  if (choice.bestInTime) page.decisionFiles[*choice.bestInTime].push_back("best_time_budget.decisions");
+  if (choice.bestInError) page.decisionFiles[*choice.bestInError].push_back("best_error_budget.decisions");
+  for (size_t i : summary.offTrade) page.offTrade.push_back({i, offTradeReason(results[i])});
+  for (size_t i = 0; i < results.size(); ++i) {
+    if (results[i].ok() && !std::isfinite(summary.measured[i].error)) {
+      page.offTrade.push_back({i, hazardReason(results[i])});
+    }
+  }
+  return page;
+}
+
 std::optional<int> writeReport(const TuneOptions& options, engine::ToolRun& run, TuneSession& session,
                                const std::vector<VariantResult>& results, const FrontSummary& summary,
-                               const TimeSplit& split, const std::string& layoutReport) {
+                               const TimeSplit& split, const BudgetChoice& choice, const std::string& layoutReport) {
   std::string report = reportHeader(options, run, session, results.size());
   if (const auto status = appendFrontTable(options, run, session, results, summary, report)) return status;
   report += reportFindings(options, session, results, summary, split);
@@ -261,6 +300,10 @@ std::optional<int> writeReport(const TuneOptions& options, engine::ToolRun& run,
         layoutReport;
   }
   if (auto written = writeFileAtomically((fs::path(options.outputDir) / "report.md").string(), report); !written) {
+    return run.fail(written.error().message);
+  }
+  const std::string page = renderReportHtml(reportPage(options, run, session, results, summary, choice));
+  if (auto written = writeFileAtomically((fs::path(options.outputDir) / "report.html").string(), page); !written) {
     return run.fail(written.error().message);
   }
   return std::nullopt;
@@ -293,7 +336,8 @@ void printSummary(const TuneOptions& options, const TuneSession& session, const 
   out << fmt::format(
       "time split (summed over workers): compile {:.1f} s, first use {:.1f} s, render {:.1f} s, error {:.1f} s\n",
       split.compileMs / 1000, split.firstUseMs / 1000, split.renderMs / 1000, split.errorMs / 1000);
-  out << fmt::format("wrote {0}/variants.csv, pareto.csv, plot.png, report.md, front/\n", options.outputDir);
+  out << fmt::format("wrote {0}/variants.csv, pareto.csv, plot.png, report.md, report.html, front/\n",
+                     options.outputDir);
   out << fmt::format("{} variants in {:.1f} s\n", results.size(), wall.elapsedMs() / 1000.0);
 }
 
@@ -309,7 +353,8 @@ int writeTuneOutputs(const TuneOptions& options, engine::ToolRun& run, TuneSessi
   if (const auto status = writeBudgetVariants(options, run, session, results, choice, layoutReport, out)) {
     return *status;
   }
-  if (const auto status = writeReport(options, run, session, results, summary, split, layoutReport)) return *status;
+  if (const auto status = writeReport(options, run, session, results, summary, split, choice, layoutReport))
+    return *status;
   printSummary(options, session, results, summary, split, wall, out, err);
   return run.finish(kExitSuccess);
 }

@@ -1,7 +1,8 @@
 // What a tuning run writes once every point is measured: the Pareto front
 // (pareto.csv, plot.png), the best variant under each budget as a decision
 // file with its data-layout selection, report.md with the front's images,
-// and the summary on stdout.
+// report.html (tune/report_html.h) from the same results, and the summary on
+// stdout.
 #pragma once
 
 #include <ostream>

@@ -323,7 +323,8 @@ TEST_F(TuneRun, WritesEveryOutputAndResumes) {
   // The run's own shader cache does not outlive it, in this process either.
   EXPECT_EQ(environment("MESA_SHADER_CACHE_DIR"), cacheDir);
   EXPECT_EQ(environment("MESA_SHADER_CACHE_DISABLE"), cacheDisable);
-  for (const char* file : {"variants.csv", "pareto.csv", "plot.png", "report.md", "best_error_budget.decisions"}) {
+  for (const char* file :
+       {"variants.csv", "pareto.csv", "plot.png", "report.md", "report.html", "best_error_budget.decisions"}) {
     EXPECT_TRUE(fs::exists(dir / file)) << file;
   }
   const auto rows = readResults(dir / "variants.csv", {"albedo", "lighting"});
