@@ -16,6 +16,8 @@ PACKAGES=(
   glslang-dev glslang-tools spirv-tools
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libglfw3-dev libglm-dev libtinygltf-dev libstb-dev
+  # spire-explore's panels (libimgui.a has the GLFW and Vulkan backends)
+  libimgui-dev
   # libraries used by the compiler
   nlohmann-json3-dev libcli11-dev libfmt-dev
   # tests and benchmarks (python3-jsonschema: the reflection schema test;

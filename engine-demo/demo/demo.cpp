@@ -20,6 +20,7 @@
 #include "scene/texture.h"
 #include "support/atomic_directory.h"
 #include "support/file_io.h"
+#include "tool/engine_options.h"
 #include "tool/hazard_diagnosis.h"
 #include "tool/tool_run.h"
 #include "vk/context.h"
@@ -38,10 +39,8 @@ struct Options {
   std::string outputDir = "out/demo";
   std::optional<uint32_t> frames;
   std::optional<uint32_t> warmup;
-  std::string device;
-  uint32_t bakeSize = 1024;
+  engine::EngineOptions engine;
   bool listDevices = false;
-  bool validation = false;
   bool window = false;
   bool keepAlpha = false;
 };
@@ -107,16 +106,10 @@ void defineOptions(CLI::App& app, Options& options) {
       ->type_name("N");
   app.add_option("--warmup", options.warmup, "Unmeasured frames first (default: the scene's; at least 1)")
       ->type_name("N");
-  app.add_option("--device", options.device, "Use the Vulkan device whose name contains TEXT (default: llvmpipe)")
-      ->type_name("TEXT");
-  app.add_option("--bake-size", options.bakeSize, "PrebakeTex texture size without a TextureSize hint")
-      ->check(CLI::Range(1, 8192))
-      ->type_name("N");
+  engine::addEngineOptions(app, options.engine);
   app.add_flag("--keep-alpha", options.keepAlpha,
                "Write variant images with the alpha the shader wrote (default: opaque, as image viewers expect)");
   app.add_flag("--list-devices", options.listDevices, "List the Vulkan devices and exit");
-  app.add_flag("--validation", options.validation,
-               "Enable VK_LAYER_KHRONOS_validation; any message makes the run fail");
   app.add_flag("--window", options.window,
                "Show the variants in a window instead of measuring them (needs a display): keys 1-9 switch "
                "variants, dragging orbits the camera, Space pauses it, Escape quits");
@@ -124,7 +117,7 @@ void defineOptions(CLI::App& app, Options& options) {
 
 int listDevices(const Options& options, std::ostream& out, std::ostream& err) {
   engine::ToolRun run(kTool, err);
-  if (const auto status = run.openDevice({options.device, false, {}, {}})) return *status;
+  if (const auto status = run.openDevice({options.engine.device, false, {}, {}})) return *status;
   const vk::Context& ctx = run.context();
   for (const vk::PhysicalDeviceInfo& device : ctx.physicalDevices()) {
     out << fmt::format("{} {} ({}){}\n", &device == &ctx.selectedDevice() ? "*" : " ", device.name,
@@ -148,7 +141,7 @@ std::vector<VariantRun> variantRuns(const Options& options, const scene::SceneFi
 // context presents to; prints the device.
 std::optional<int> openDevice(const Options& options, engine::ToolRun& run, std::optional<GlfwWindow>& window,
                               std::ostream& out, std::ostream& err) {
-  engine::DeviceOptions device{options.device, options.validation, {}, {}};
+  engine::DeviceOptions device{options.engine.device, options.engine.validation, {}, {}};
   if (options.window) {
     auto opened =
         GlfwWindow::open(run.scene().width, run.scene().height, fmt::format("spire-demo | {}", options.scenePath));
@@ -458,7 +451,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (const auto status = run.loadLodPolicy()) return *status;
   }
   if (const auto status = openDevice(options, run, window, out, err)) return *status;
-  run.startRenderer(options.bakeSize);
+  run.startRenderer(options.engine.bakeSize);
   if (run.scene().lod) return runLod(options, run, window ? &*window : nullptr, out);
   std::vector<engine::PreparedScene> prepared;
   std::vector<VariantResult> results;

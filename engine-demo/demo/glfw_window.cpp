@@ -126,6 +126,8 @@ VkExtent2D GlfwWindow::framebufferExtent() const {
   return {static_cast<uint32_t>(std::max(width, 0)), static_cast<uint32_t>(std::max(height, 0))};
 }
 
+GLFWwindow* GlfwWindow::glfwHandle() const { return state_->window; }
+
 void GlfwWindow::setTitle(const std::string& title) { glfwSetWindowTitle(state_->window, title.c_str()); }
 
 }  // namespace spire::demo

@@ -16,6 +16,8 @@
 #include "support/expected.h"
 #include "vk/result.h"
 
+struct GLFWwindow;
+
 namespace spire::demo {
 
 // What the user did since the last poll.
@@ -53,6 +55,9 @@ class GlfwWindow {
   // The drawable size in pixels; zero while minimized.
   VkExtent2D framebufferExtent() const;
   void setTitle(const std::string& title);
+  // For libraries that drive the window themselves (the explorer's Dear ImGui
+  // backend installs its callbacks over this class's and chains to them).
+  GLFWwindow* glfwHandle() const;
 
  private:
   struct State;

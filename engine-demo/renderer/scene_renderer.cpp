@@ -60,11 +60,9 @@ std::string libraryKey(const scene::InstanceDesc& instance) {
 
 }  // namespace
 
-Expected<ShaderLibrary*> SceneRenderer::libraryFor(const scene::InstanceDesc& instance) {
+Expected<std::unique_ptr<ShaderLibrary>> SceneRenderer::loadLibrary(const scene::InstanceDesc& instance) const {
   const std::string source = instance.source.string();
   const std::string pipelineSource = instance.pipelineSource ? instance.pipelineSource->string() : "";
-  const std::string key = libraryKey(instance);
-  if (const auto it = assets_->libraries.find(key); it != assets_->libraries.end()) return it->second.get();
   FrontEndOptions options;
   for (const auto& dir : scene_.includePaths) options.includeDirs.push_back(dir.string());
   options.pipeline = instance.pipeline;
@@ -82,7 +80,15 @@ Expected<ShaderLibrary*> SceneRenderer::libraryFor(const scene::InstanceDesc& in
                  instance.pipeline.empty() ? instance.sourceRange : instance.pipelineRange,
                  renderDiagnostics(library->sources(), library->diagnostics(), DiagnosticFormat::Text)};
   }
-  return assets_->libraries.emplace(key, std::move(library)).first->second.get();
+  return library;
+}
+
+Expected<ShaderLibrary*> SceneRenderer::libraryFor(const scene::InstanceDesc& instance) {
+  const std::string key = libraryKey(instance);
+  if (const auto it = assets_->libraries.find(key); it != assets_->libraries.end()) return it->second.get();
+  auto library = loadLibrary(instance);
+  if (!library) return library.error();
+  return assets_->libraries.emplace(key, std::move(library).value()).first->second.get();
 }
 
 Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDesc& instance,
@@ -150,10 +156,16 @@ Expected<VariantProgram> SceneRenderer::compileVariant(size_t index,
                                                        const std::map<std::string, std::string>& decisions,
                                                        std::vector<std::string>* skipped,
                                                        const ShaderLibrary::Attributes& attributes) {
-  const scene::InstanceDesc& instance = scene_.instances.at(index);
-  auto library = libraryFor(instance);
+  auto library = libraryFor(scene_.instances.at(index));
   if (!library) return library.error();
-  ShaderLibrary& lib = **library;
+  return compileVariantIn(**library, index, decisions, skipped, attributes);
+}
+
+Expected<VariantProgram> SceneRenderer::compileVariantIn(ShaderLibrary& lib, size_t index,
+                                                         const std::map<std::string, std::string>& decisions,
+                                                         std::vector<std::string>* skipped,
+                                                         const ShaderLibrary::Attributes& attributes) const {
+  const scene::InstanceDesc& instance = scene_.instances.at(index);
   // The tuner's points may decide what is infeasible: it records the skipped
   // decisions instead of refusing them.
   CompileOptions options;

@@ -70,6 +70,19 @@ class SceneRenderer {
   Expected<VariantProgram> compileVariant(size_t index, const std::map<std::string, std::string>& decisions,
                                           std::vector<std::string>* skipped = nullptr,
                                           const ShaderLibrary::Attributes& attributes = {});
+  // As compileVariant, in `library` (one of instance `index`'s source, such
+  // as loadLibrary made): touches nothing else of the renderer, so a tool may
+  // call it on a thread of its own while this renderer draws.
+  Expected<VariantProgram> compileVariantIn(ShaderLibrary& library, size_t index,
+                                            const std::map<std::string, std::string>& decisions,
+                                            std::vector<std::string>* skipped = nullptr,
+                                            const ShaderLibrary::Attributes& attributes = {}) const;
+  // A fresh library of instance `index`'s source, read from disk again (the
+  // explorer's live source editing); the renderer's own stays as it is. The
+  // error's details are the compiler's diagnostics, rendered.
+  Expected<std::unique_ptr<ShaderLibrary>> loadLibrary(size_t index) const {
+    return loadLibrary(scene_.instances.at(index));
+  }
   // Instance `index`'s source compiled as another of its shaders, e.g. a
   // member of a group (`Rock<LodMQ>`), with the instance's own decisions.
   Expected<VariantProgram> compileShader(size_t index, const std::string& shader);
@@ -140,6 +153,7 @@ class SceneRenderer {
   Expected<VariantProgram> compileInstance(const scene::InstanceDesc& instance,
                                            const std::optional<std::filesystem::path>& decisions);
   Expected<ShaderLibrary*> libraryFor(const scene::InstanceDesc& instance);
+  Expected<std::unique_ptr<ShaderLibrary>> loadLibrary(const scene::InstanceDesc& instance) const;
   const GpuMesh* meshFor(const std::string& name, SourceRange range);
   const GpuTexture* textureFor(const std::string& name, SourceRange range);
   // The name of a solid texture of `rgba`, made on first use, that

@@ -60,6 +60,9 @@ class ToolRun {
   const vk::Context& context() const { return *context_; }
   SceneRenderer& renderer() { return *renderer_; }
   DiagnosticList& diagnostics() { return diags_; }
+  // The sources diagnostics are rendered with: a tool adds the other files it
+  // reads (a script, a decision file) here so their errors print the same way.
+  SourceManager& sources() { return sources_; }
   ErrorReporter& reporter() { return reporter_; }
   // Prints `error` after any pending diagnostics; returns kExitInputError.
   int fail(const Error& error) { return reporter_.fail(error); }

@@ -110,6 +110,8 @@ using PipelineHandle = DeviceHandle<VkPipeline, vkDestroyPipeline>;
 using DescriptorSetLayout = DeviceHandle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout>;
 using DescriptorPool = DeviceHandle<VkDescriptorPool, vkDestroyDescriptorPool>;
 using QueryPool = DeviceHandle<VkQueryPool, vkDestroyQueryPool>;
+using RenderPass = DeviceHandle<VkRenderPass, vkDestroyRenderPass>;
+using Framebuffer = DeviceHandle<VkFramebuffer, vkDestroyFramebuffer>;
 using Semaphore = DeviceHandle<VkSemaphore, vkDestroySemaphore>;
 using SwapchainHandle = DeviceHandle<VkSwapchainKHR, vkDestroySwapchainKHR>;
 

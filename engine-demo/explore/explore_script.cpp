@@ -1,0 +1,155 @@
+#include "explore/explore_script.h"
+
+#include "explore/explorer_model.h"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <charconv>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <type_traits>
+
+#include "explore/explorer_model.h"
+
+namespace spire::explore {
+namespace {
+
+struct Word {
+  std::string_view text;
+  uint32_t offset = 0;  // in the file
+};
+
+// The line's words, up to a comment.
+std::vector<Word> splitWords(std::string_view line, uint32_t lineOffset) {
+  std::vector<Word> words;
+  size_t i = 0;
+  while (i < line.size()) {
+    if (line[i] == ' ' || line[i] == '\t' || line[i] == '\r') {
+      ++i;
+      continue;
+    }
+    if (line[i] == '#' || line.substr(i, 2) == "//") break;
+    const size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
+    words.push_back({line.substr(start, i - start), lineOffset + static_cast<uint32_t>(start)});
+  }
+  return words;
+}
+
+struct Verb {
+  std::string_view name;
+  ActionKind kind;
+  size_t arguments;  // words after the verb; `set` is special (NAME = VALUE)
+};
+
+constexpr std::array<Verb, 13> kVerbs{{{"set", ActionKind::Set, 3},
+                                       {"unset", ActionKind::Unset, 1},
+                                       {"reset", ActionKind::Reset, 0},
+                                       {"load", ActionKind::Load, 1},
+                                       {"save", ActionKind::Save, 1},
+                                       {"undo", ActionKind::Undo, 0},
+                                       {"walk", ActionKind::Walk, 2},
+                                       {"view", ActionKind::View, 1},
+                                       {"wait-frames", ActionKind::WaitFrames, 1},
+                                       {"wait-reload", ActionKind::WaitReload, 0},
+                                       {"screenshot", ActionKind::Screenshot, 1},
+                                       {"screenshot-window", ActionKind::WindowShot, 1},
+                                       {"quit", ActionKind::Quit, 0}}};
+
+const char* usageOf(ActionKind kind) {
+  switch (kind) {
+    case ActionKind::Set: return "set CHOICE = PLACEMENT";
+    case ActionKind::Unset: return "unset CHOICE";
+    case ActionKind::Load: return "load FILE";
+    case ActionKind::Save: return "save FILE";
+    case ActionKind::View: return "view variant|reference|error|hazards|split";
+    case ActionKind::WaitFrames: return "wait-frames N";
+    case ActionKind::Walk: return "walk N SEED";
+    case ActionKind::Screenshot: return "screenshot FILE";
+    case ActionKind::WindowShot: return "screenshot-window FILE";
+    default: return "";
+  }
+}
+
+template <class T>
+bool parseNumber(std::string_view text, std::type_identity_t<T> lowest, std::type_identity_t<T> highest, T& value) {
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return ec == std::errc{} && end == text.data() + text.size() && value >= lowest && value <= highest;
+}
+
+SourceRange rangeOf(FileId file, const Word& word) {
+  return {file, word.offset, word.offset + static_cast<uint32_t>(word.text.size())};
+}
+
+// The action of one line's words, or the error's message and where.
+std::optional<ScriptAction> parseLine(FileId file, const std::vector<Word>& words, SourceRange line,
+                                      DiagnosticList& diags) {
+  const Verb* verb = nullptr;
+  for (const Verb& v : kVerbs) verb = v.name == words.front().text ? &v : verb;
+  if (!verb) {
+    std::string names;
+    for (const Verb& v : kVerbs) names += fmt::format("{}{}", names.empty() ? "" : ", ", v.name);
+    diags.report(DiagCode::E7201, rangeOf(file, words.front()),
+                 fmt::format("unknown action '{}' (actions: {})", words.front().text, names));
+    return std::nullopt;
+  }
+  const bool badSet = verb->kind == ActionKind::Set && words.size() == 4 && words[2].text != "=";
+  if (words.size() != verb->arguments + 1 || badSet) {
+    const Word& at = words.size() > verb->arguments + 1 ? words[verb->arguments + 1] : words.back();
+    const std::string usage = verb->arguments == 0 ? fmt::format("'{}' takes nothing after it", verb->name)
+                                                   : fmt::format("expected '{}'", usageOf(verb->kind));
+    diags.report(DiagCode::E7201, badSet ? rangeOf(file, words[2]) : rangeOf(file, at), usage);
+    return std::nullopt;
+  }
+  ScriptAction action{verb->kind, {}, {}, 0, 0, line};
+  if (words.size() > 1) action.target = std::string(words[1].text);
+  if (verb->kind == ActionKind::Set) action.value = std::string(words[3].text);
+  if (verb->kind == ActionKind::WaitFrames || verb->kind == ActionKind::Walk) {
+    const char* what = verb->kind == ActionKind::Walk ? "a change count" : "a frame count";
+    if (!parseNumber<uint32_t>(words[1].text, 1, 100000, action.count)) {
+      diags.report(DiagCode::E7201, rangeOf(file, words[1]), fmt::format("expected {} from 1 to 100000", what));
+      return std::nullopt;
+    }
+  }
+  if (verb->kind == ActionKind::Walk && !parseNumber<uint64_t>(words[2].text, 0, UINT64_MAX, action.seed)) {
+    diags.report(DiagCode::E7201, rangeOf(file, words[2]), "expected a seed (a whole number)");
+    return std::nullopt;
+  }
+  if (verb->kind == ActionKind::View) {
+    if (!viewModeNamed(action.target)) {
+      diags.report(DiagCode::E7201, rangeOf(file, words[1]),
+                   fmt::format("unknown view '{}' (views: variant, reference, error, hazards, split)", action.target));
+      return std::nullopt;
+    }
+  }
+  return action;
+}
+
+}  // namespace
+
+std::vector<ScriptAction> parseScript(const SourceManager& sources, FileId file, DiagnosticList& diags) {
+  const SourceFile& source = sources.file(file);
+  std::vector<ScriptAction> actions;
+  bool failed = false;
+  for (size_t i = 0; i < source.lineStarts.size(); ++i) {
+    const uint32_t start = source.lineStarts[i];
+    const std::string_view line = sources.lineText(file, static_cast<uint32_t>(i + 1));
+    const std::vector<Word> words = splitWords(line, start);
+    if (words.empty()) continue;
+    const SourceRange range{file, words.front().offset,
+                            words.back().offset + static_cast<uint32_t>(words.back().text.size())};
+    std::optional<ScriptAction> action = parseLine(file, words, range, diags);
+    failed = failed || !action;
+    if (action) actions.push_back(std::move(*action));
+  }
+  if (failed) actions.clear();
+  return actions;
+}
+
+std::string describeAction(const SourceManager& sources, const ScriptAction& action) {
+  return std::string(sources.text(action.range));
+}
+
+}  // namespace spire::explore

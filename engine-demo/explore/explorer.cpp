@@ -1,0 +1,741 @@
+#include "explore/explorer.h"
+
+#include <fmt/format.h>
+#include <glm/gtc/constants.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <memory>
+#include <random>
+
+#include "demo/camera_path.h"
+#include "driver/exit_codes.h"
+#include "explore/decision_state.h"
+#include "explore/explore_script.h"
+#include "explore/explorer_model.h"
+#include "explore/explorer_panels.h"
+#include "explore/imgui_overlay.h"
+#include "explore/live_compiler.h"
+#include "explore/source_watch.h"
+#include "explore/view_images.h"
+#include "graph/decision_file.h"
+#include "scene/texture.h"
+#include "support/diagnostic_renderer.h"
+#include "support/file_io.h"
+#include "vk/buffer.h"
+#include "vk/frame_blit.h"
+#include "vk/swapchain.h"
+#include "vk/timer.h"
+
+namespace spire::explore {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kSecondsPerView = 4.0;     // the camera's loop in interactive use, as spire-demo --window
+constexpr float kRadiansPerPixel = 0.005F;  // orbit speed of a mouse drag
+constexpr uint32_t kReferenceFrames = 10;   // frames timed for the reference's frame time
+constexpr float kHeatScale = 0.25F;         // error shown yellow in the heat map
+
+// The images of the fixed camera view that metrics and the derived views
+// come from.
+struct ViewCaptures {
+  std::optional<engine::Capture> reference;
+  std::optional<engine::Capture> variant;
+  std::vector<uint8_t> coverage;  // either image covered
+};
+
+// The worker's side of compiling: the library variants are compiled in,
+// replaced by a fresh one when a source was saved and still defines the
+// shader.
+class VariantCompiler {
+ public:
+  VariantCompiler(const engine::SceneRenderer& renderer, size_t instance, std::string shader, ShaderLibrary& library)
+      : renderer_(renderer),
+        instance_(instance),
+        shader_(std::move(shader)),
+        // Not owned: the renderer's own library outlives the worker.
+        library_(std::shared_ptr<void>(), &library) {}
+
+  void operator()(const CompileJob& job, CompileOutcome& outcome) {
+    if (job.reload) {
+      auto fresh = renderer_.loadLibrary(instance_);
+      if (!fresh) {
+        outcome.program = fresh.error();
+        return;
+      }
+      if ((*fresh)->choiceSpace(shader_) == nullptr) {
+        outcome.program = engine::Error{fmt::format("the edited source no longer defines the shader '{}'", shader_)};
+        return;
+      }
+      library_ = std::shared_ptr<ShaderLibrary>(std::move(fresh).value());
+      outcome.library = library_;
+    }
+    outcome.program = renderer_.compileVariantIn(*library_, instance_, job.placement, &outcome.skipped, job.attributes);
+  }
+
+ private:
+  const engine::SceneRenderer& renderer_;
+  size_t instance_;
+  std::string shader_;
+  std::shared_ptr<ShaderLibrary> library_;
+};
+
+std::vector<fs::path> sourcePaths(const ShaderLibrary& library) {
+  std::vector<fs::path> paths;
+  for (size_t i = 0; i < library.sources().fileCount(); ++i)
+    paths.emplace_back(library.sources().file(static_cast<FileId>(i)).path);
+  return paths;
+}
+
+class Explorer {
+ public:
+  Explorer(const ExploreOptions& options, engine::ToolRun& run, demo::GlfwWindow& window, std::ostream& out)
+      : options_(options), run_(run), renderer_(run.renderer()), window_(window), out_(out) {}
+  int run();
+
+ private:
+  std::optional<int> start();
+  std::optional<int> startPresentation();
+  struct FileDecisions {
+    Placement placement;
+    ShaderLibrary::Attributes attributes;
+  };
+  engine::Expected<FileDecisions> readDecisions(const fs::path& path);
+  std::optional<int> loadScript();
+  // Script: runs actions until one has to wait (a change, wait-frames) or the
+  // script ends. False when the explorer should close.
+  bool stepScript();
+  bool runAction(const ScriptAction& action);
+  bool changeAction(const ScriptAction& action);
+  // One random single-decision change to an alternative still possible;
+  // false when no choice has one.
+  bool walkStep();
+  bool scriptError(const ScriptAction& action, const std::string& message);
+  void handleRequests(const PanelRequests& requests);
+  void startChange(std::string action, bool reload = false);
+  void adoptLibrary(const std::shared_ptr<ShaderLibrary>& library);
+  void pollCompile();
+  void failChange(const std::string& message, const std::string& details);
+  void finishChange();
+  engine::Expected<void> updateMetrics();
+  engine::Expected<void> updateStaticImage();
+  engine::Expected<void> screenshot(const fs::path& path);
+  // The image the window shows: the renderer's frame, or the panel copy of
+  // a derived view's.
+  vk::Image& shownImage();
+  // The image just presented, panels included, read back.
+  engine::Expected<void> windowScreenshot(const fs::path& path);
+  engine::Expected<void> present();
+  scene::CameraView cameraView(const demo::WindowInput& input, double now);
+  fs::path scriptRelative(const std::string& path) const;
+  // The diagnostics reported since the list's size was `mark`, rendered.
+  std::string renderSince(size_t mark) const;
+  std::optional<int> startSession();
+  // One frame: script, compile results, render, panels, present.
+  engine::Expected<bool> frame(const demo::WindowInput& input);
+  PanelState panelState() const;
+  int finish(int status);
+
+  const ExploreOptions& options_;
+  engine::ToolRun& run_;
+  engine::SceneRenderer& renderer_;
+  demo::GlfwWindow& window_;
+  std::ostream& out_;
+  std::string shader_;
+  std::optional<DecisionState> state_;
+  // Every library the session's choices and programs came from: a program
+  // or the choice space may still point into an older one.
+  std::vector<std::shared_ptr<ShaderLibrary>> libraries_;
+  SourceWatch watch_;
+  bool waitReload_ = false;
+  std::optional<fs::path> windowShot_;  // written after the next presented frame
+  std::unique_ptr<LiveCompiler> compiler_;
+  std::unique_ptr<ImGuiOverlay> overlay_;
+  std::optional<vk::Swapchain> swapchain_;
+  std::optional<vk::FrameBlit> blit_;
+  std::optional<vk::Image> staticImage_;  // error, hazards and split views
+  // What the panels are drawn on in those views: a copy of staticImage_ per
+  // frame, so the panels of earlier frames do not stay in it.
+  std::optional<vk::Image> panelImage_;
+  measure::FloatImage staticPixels_;  // what staticImage_ holds
+  std::vector<engine::VariantProgram> programs_;
+  std::optional<engine::PreparedScene> reference_;
+  std::optional<engine::PreparedScene> current_;
+  std::optional<engine::PreparedScene> incoming_;  // prepared, its first frame not yet presented
+  ViewCaptures captures_;
+  Metrics metrics_;
+  ViewMode view_ = ViewMode::Variant;
+  uint64_t requests_ = 0;
+  std::optional<ChangeRecord> pending_;
+  std::optional<ChangeRecord> lastChange_;
+  std::vector<ChangeRecord> changes_;
+  std::string diagnostics_;
+  std::vector<ScriptAction> script_;
+  size_t scriptNext_ = 0;
+  uint64_t waitFrames_ = 0;
+  uint64_t walkLeft_ = 0;  // random changes still to make (`walk`)
+  std::mt19937_64 walkRandom_;
+  bool scriptFailed_ = false;
+  float yaw_ = 0.0F;
+  float pitch_ = 0.0F;
+  vk::HostTimer clock_;
+};
+
+std::string Explorer::renderSince(size_t mark) const {
+  std::string text;
+  const std::vector<Diagnostic>& all = run_.diagnostics().all();
+  for (size_t i = mark; i < all.size(); ++i) text += renderDiagnostic(run_.sources(), all[i]);
+  return text;
+}
+
+fs::path Explorer::scriptRelative(const std::string& path) const {
+  const fs::path p(path);
+  if (p.is_absolute() || !options_.script) return p;
+  return options_.script->parent_path() / p;
+}
+
+engine::Expected<Explorer::FileDecisions> Explorer::readDecisions(const fs::path& path) {
+  auto text = readFileBytes(path.string());
+  if (!text)
+    return engine::Error{fmt::format("cannot read decision file '{}': {}", path.string(), text.error().message())};
+  const FileId file = run_.sources().addFile(path.string(), std::move(text).value());
+  DiagnosticList& diags = run_.diagnostics();
+  const size_t mark = diags.size();
+  const size_t errors = diags.errorCount();
+  const graph::DecisionFile decisions = graph::parseDecisionFile(run_.sources(), file, diags);
+  if (diags.errorCount() > errors) {
+    return engine::Error{fmt::format("decision file '{}' has errors", path.string()), {}, renderSince(mark)};
+  }
+  FileDecisions result;
+  for (const graph::DecisionLine& line : decisions.lines) {
+    const std::string key = line.prefix + "." + line.component;
+    // A scene variant's file may decide for other shaders too.
+    if (!state_->isChoice(key)) continue;
+    result.placement[key] = line.variation.empty() ? line.world : line.world + ":" + line.variation;
+    if (!line.attributes.empty()) result.attributes[key] = line.attributes;
+  }
+  return result;
+}
+
+// The instance, its shader's choices, the reference and the starting
+// decisions; every variant compiled and prepared before the window shows.
+std::optional<int> Explorer::start() {
+  const scene::SceneFile& scene = renderer_.scene();
+  if (scene.lod)
+    return run_.fail(
+        {"spire-explore explores one instance's shader; a level-of-detail scene selects shaders per instance and "
+         "frame, which it does not support yet",
+         {},
+         {}});
+  if (options_.instance >= scene.instances.size()) {
+    return run_.fail(
+        {fmt::format("--instance {}: the scene has {} instance(s)", options_.instance, scene.instances.size()),
+         {},
+         {}});
+  }
+  const scene::InstanceDesc& instance = scene.instances[options_.instance];
+  if (instance.kernels) {
+    return run_.fail(
+        {"the instance is loaded from a spirec output directory ('kernels'); the explorer compiles its source",
+         instance.kernelsRange,
+         {}});
+  }
+  auto library = renderer_.library(options_.instance);
+  if (!library) return run_.fail(library.error());
+  shader_ = instance.shader;
+  watch_.reset(sourcePaths(**library));
+  const graph::ChoiceSpace* space = (*library)->choiceSpace(shader_);
+  if (!space)
+    return run_.fail({fmt::format("'{}' is not a concrete shader of its source", shader_), instance.shaderRange, {}});
+  state_.emplace(*space);
+  std::optional<fs::path> referencePath = options_.reference;
+  if (!referencePath && !scene.variants.empty()) referencePath = scene.variants.front().decisions;
+  auto programs = renderer_.compile(referencePath);
+  if (!programs) return run_.fail(programs.error());
+  programs_ = std::move(programs).value();
+  auto reference = renderer_.prepare(programs_);
+  if (!reference) return run_.fail(reference.error());
+  reference_ = std::move(reference).value();
+  auto current = renderer_.prepare(programs_);
+  if (!current) return run_.fail(current.error());
+  current_ = std::move(current).value();
+  if (const std::optional<fs::path> from = referencePath ? referencePath : instance.decisions) {
+    auto placement = readDecisions(*from);
+    if (!placement) return run_.fail(placement.error());
+    if (auto ok = state_->replace(placement->placement, placement->attributes); !ok) {
+      return run_.fail({ok.error().message, {}, {}});
+    }
+    state_->clearHistory();
+  }
+  return std::nullopt;
+}
+
+// The reference's frame time and image, the compile worker, and the
+// starting decisions when they are not the reference's.
+std::optional<int> Explorer::startSession() {
+  auto stats = renderer_.measure(*reference_, 1, kReferenceFrames);
+  if (!stats) return run_.fail(stats.error());
+  metrics_.referenceGpuMs = stats->medianGpuMs;
+  auto reference = renderer_.capture(*reference_, renderer_.scene().camera.views.front());
+  if (!reference) return run_.fail(reference.error());
+  captures_.reference = std::move(reference).value();
+  if (auto ok = updateMetrics(); !ok) return run_.fail(ok.error());
+  auto library = renderer_.library(options_.instance);
+  if (!library) return run_.fail(library.error());
+  compiler_ = std::make_unique<LiveCompiler>(VariantCompiler(renderer_, options_.instance, shader_, **library));
+  if (options_.decisions) {
+    auto placement = readDecisions(*options_.decisions);
+    if (!placement) return run_.fail(placement.error());
+    if (auto ok = state_->replace(placement->placement, placement->attributes); !ok) {
+      return run_.fail({ok.error().message, {}, {}});
+    }
+    startChange("load " + options_.decisions->string());
+  }
+  return std::nullopt;
+}
+
+std::optional<int> Explorer::startPresentation() {
+  const vk::Context& ctx = renderer_.context();
+  vk::Image* color = renderer_.colorImage();
+  if (color == nullptr) return run_.fail({"the scene renders no color output to show", {}, {}});
+  auto swapchain = vk::Swapchain::create(ctx, window_.framebufferExtent());
+  if (!swapchain) return run_.fail(engine::Error::fromVk(swapchain.error()));
+  swapchain_.emplace(std::move(swapchain).value());
+  auto blit = vk::FrameBlit::create(ctx, vk::chooseBlitPath(ctx, swapchain_->format()), color->format(),
+                                    color->extent(), swapchain_->format());
+  if (!blit) return run_.fail(engine::Error::fromVk(blit.error()));
+  blit_.emplace(std::move(blit).value());
+  const VkImageUsageFlags usage =
+      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  auto image = vk::Image::create(ctx, {color->extent().width, color->extent().height, color->format(), usage, 0});
+  if (!image) return run_.fail(engine::Error::fromVk(image.error()));
+  staticImage_.emplace(std::move(image).value());
+  auto panelImage = vk::Image::create(ctx, {color->extent().width, color->extent().height, color->format(), usage, 0});
+  if (!panelImage) return run_.fail(engine::Error::fromVk(panelImage.error()));
+  panelImage_.emplace(std::move(panelImage).value());
+  auto overlay = ImGuiOverlay::create(ctx, window_.glfwHandle(), color->format());
+  if (!overlay) return run_.fail(engine::Error::fromVk(overlay.error()));
+  overlay_ = std::move(overlay).value();
+  return std::nullopt;
+}
+
+std::optional<int> Explorer::loadScript() {
+  if (!options_.script) return std::nullopt;
+  auto text = readFileBytes(options_.script->string());
+  if (!text) {
+    return run_.fail(
+        {fmt::format("cannot read script '{}': {}", options_.script->string(), text.error().message()), {}, {}});
+  }
+  const FileId file = run_.sources().addFile(options_.script->string(), std::move(text).value());
+  script_ = parseScript(run_.sources(), file, run_.diagnostics());
+  if (run_.diagnostics().hasErrors()) {
+    run_.reporter().flush();
+    return kExitInputError;
+  }
+  return std::nullopt;
+}
+
+bool Explorer::scriptError(const ScriptAction& action, const std::string& message) {
+  run_.diagnostics().report(DiagCode::E7202, action.range, message);
+  run_.reporter().flush();
+  scriptFailed_ = true;
+  return false;
+}
+
+bool Explorer::changeAction(const ScriptAction& action) {
+  Expected<void, Failure> ok;
+  switch (action.kind) {
+    case ActionKind::Set: ok = state_->set(action.target, action.value); break;
+    case ActionKind::Unset: ok = state_->unset(action.target); break;
+    case ActionKind::Reset: ok = state_->replace({}); break;
+    case ActionKind::Undo:
+      if (!state_->undo()) ok = Failure{"there is no change to undo"};
+      break;
+    default: {
+      auto placement = readDecisions(scriptRelative(action.target));
+      if (!placement) return scriptError(action, placement.error().message + "\n" + placement.error().details);
+      ok = state_->replace(placement->placement, placement->attributes);
+    }
+  }
+  if (!ok) return scriptError(action, ok.error().message);
+  startChange(describeAction(run_.sources(), action));
+  return true;
+}
+
+bool Explorer::runAction(const ScriptAction& action) {
+  switch (action.kind) {
+    case ActionKind::Save: {
+      auto ok = writeFileAtomically(scriptRelative(action.target).string(),
+                                    state_->decisionFileText("written by spire-explore"));
+      return ok ? true : scriptError(action, ok.error().message);
+    }
+    case ActionKind::View: {
+      view_ = viewModeNamed(action.target).value_or(ViewMode::Variant);
+      auto ok = updateStaticImage();
+      return ok ? true : scriptError(action, ok.error().message);
+    }
+    case ActionKind::WaitFrames: waitFrames_ = action.count; return true;
+    case ActionKind::WaitReload: waitReload_ = true; return true;
+    case ActionKind::Walk:
+      walkLeft_ = action.count;
+      walkRandom_.seed(action.seed);
+      return true;
+    case ActionKind::WindowShot: windowShot_ = scriptRelative(action.target); return true;
+    case ActionKind::Screenshot: {
+      auto ok = screenshot(scriptRelative(action.target));
+      return ok ? true : scriptError(action, ok.error().message);
+    }
+    case ActionKind::Quit: return false;
+    default: return changeAction(action);
+  }
+}
+
+bool Explorer::stepScript() {
+  while (!pending_ && !incoming_ && waitFrames_ == 0 && !waitReload_ && !windowShot_) {
+    if (walkLeft_ > 0) {
+      --walkLeft_;
+      if (walkStep()) continue;
+      walkLeft_ = 0;
+    }
+    if (scriptNext_ == script_.size()) return false;
+    if (!runAction(script_[scriptNext_++])) return false;
+  }
+  return true;
+}
+
+bool Explorer::walkStep() {
+  std::vector<std::pair<std::string, std::string>> candidates;
+  for (const ChoiceRow& row : state_->rows()) {
+    for (const Alternative& alt : row.alternatives) {
+      if (alt.possible && row.decided != alt.placement) candidates.emplace_back(row.key, alt.placement);
+    }
+  }
+  if (candidates.empty()) return false;
+  const auto& [key, placement] = candidates[walkRandom_() % candidates.size()];
+  if (!state_->set(key, placement)) return false;
+  startChange(fmt::format("set {} = {}", key, placement));
+  return true;
+}
+
+void Explorer::handleRequests(const PanelRequests& requests) {
+  if (requests.view) {
+    view_ = *requests.view;
+    if (auto ok = updateStaticImage(); !ok) diagnostics_ = ok.error().message;
+  }
+  const auto apply = [this](const Expected<void, Failure>& ok, std::string action) {
+    if (ok)
+      startChange(std::move(action));
+    else
+      diagnostics_ = ok.error().message;
+  };
+  if (requests.set)
+    apply(state_->set(requests.set->first, requests.set->second),
+          fmt::format("set {} = {}", requests.set->first, requests.set->second));
+  if (requests.unset) apply(state_->unset(*requests.unset), "unset " + *requests.unset);
+  if (requests.undo && state_->undo()) startChange("undo");
+  if (requests.reset) apply(state_->replace({}), "reset");
+  if (requests.save) {
+    auto ok = writeFileAtomically(options_.saveTo, state_->decisionFileText("written by spire-explore"));
+    diagnostics_ = ok ? "" : ok.error().message;
+  }
+  if (requests.load) {
+    auto placement = readDecisions(options_.saveTo);
+    if (!placement)
+      diagnostics_ = placement.error().message;
+    else
+      apply(state_->replace(placement->placement, placement->attributes), "load " + options_.saveTo);
+  }
+}
+
+void Explorer::startChange(std::string action, bool reload) {
+  ChangeRecord change;
+  change.action = std::move(action);
+  change.reload = reload;
+  change.request = ++requests_;
+  change.startMs = clock_.elapsedMs();
+  pending_ = std::move(change);
+  incoming_.reset();  // a variant of older decisions is not worth showing now
+  compiler_->submit({pending_->request, state_->decisions(), state_->attributes(), reload});
+}
+
+// The sources were read again: the choices are the new library's, keeping
+// the decisions that still name a choice and an alternative of it.
+void Explorer::adoptLibrary(const std::shared_ptr<ShaderLibrary>& library) {
+  libraries_.push_back(library);
+  const Placement previous = state_->decisions();
+  const ShaderLibrary::Attributes attributes = state_->attributes();
+  state_.emplace(*library->choiceSpace(shader_));
+  Placement kept;
+  for (const auto& [component, placement] : previous) {
+    if (state_->isChoice(component)) kept.emplace(component, placement);
+  }
+  if (!state_->replace(kept, attributes)) (void)state_->replace({});
+  state_->clearHistory();
+  watch_.reset(sourcePaths(*library));
+}
+
+void Explorer::pollCompile() {
+  std::optional<CompileOutcome> outcome = compiler_->poll();
+  if (!outcome || !pending_ || outcome->request != pending_->request) return;
+  pending_->compileMs = outcome->milliseconds;
+  pending_->skipped = outcome->skipped;
+  if (outcome->library) adoptLibrary(outcome->library);
+  if (!outcome->program) return failChange(outcome->program.error().message, outcome->program.error().details);
+  std::vector<engine::VariantProgram> programs = programs_;
+  programs[options_.instance] = std::move(outcome->program).value();
+  const size_t mark = run_.diagnostics().size();
+  const vk::HostTimer timer;
+  auto prepared = renderer_.prepare(programs);
+  pending_->prepareMs = timer.elapsedMs();
+  if (!prepared) return failChange(prepared.error().message, prepared.error().details + renderSince(mark));
+  for (const engine::BakeRecord& bake : prepared->bakes) pending_->bakeMs += bake.reused ? 0.0 : bake.milliseconds;
+  programs_ = std::move(programs);
+  incoming_ = std::move(prepared).value();
+}
+
+void Explorer::failChange(const std::string& message, const std::string& details) {
+  pending_->ok = false;
+  pending_->error = details.empty() ? message : message + "\n" + details;
+  pending_->totalMs = clock_.elapsedMs() - pending_->startMs;
+  finishChange();
+}
+
+void Explorer::finishChange() {
+  ChangeRecord& change = *pending_;
+  diagnostics_ = change.ok ? "" : change.error;
+  if (change.reload) waitReload_ = false;
+  if (change.ok) {
+    out_ << fmt::format(
+        "spire-explore: {}: decision to image {:.0f} ms (compile {:.0f}, prepare {:.0f} with bakes {:.0f}, first frame "
+        "{:.0f})\n",
+        change.action, change.totalMs, change.compileMs, change.prepareMs, change.bakeMs, change.firstFrameMs);
+  } else {
+    out_ << fmt::format("spire-explore: {}: failed: {}\n", change.action, change.error);
+  }
+  out_ << std::flush;
+  changes_.push_back(change);
+  lastChange_ = std::move(change);
+  pending_.reset();
+}
+
+engine::Expected<void> Explorer::updateMetrics() {
+  auto variant = renderer_.capture(*current_, renderer_.scene().camera.views.front());
+  if (!variant) return variant.error();
+  captures_.variant = std::move(variant).value();
+  const engine::Capture& ref = *captures_.reference;
+  const engine::Capture& var = *captures_.variant;
+  captures_.coverage = var.coverage;
+  for (size_t i = 0; i < captures_.coverage.size() && i < ref.coverage.size(); ++i) {
+    captures_.coverage[i] = static_cast<uint8_t>(captures_.coverage[i] | ref.coverage[i]);
+  }
+  auto error = measure::compareImages(ref.color, var.color, &captures_.coverage);
+  metrics_.error = error ? std::optional(*error) : std::nullopt;
+  metrics_.nonFinitePixels = measure::nonFinitePixels(var.color);
+  metrics_.gpuMs.clear();
+  return updateStaticImage();
+}
+
+// The derived view's image, made on the host and uploaded for the blit.
+engine::Expected<void> Explorer::updateStaticImage() {
+  if (view_ == ViewMode::Variant || view_ == ViewMode::Reference || !captures_.variant) return {};
+  const measure::FloatImage& ref = captures_.reference->color;
+  const measure::FloatImage& var = captures_.variant->color;
+  staticPixels_ = view_ == ViewMode::Error     ? errorHeatMap(ref, var, captures_.coverage, kHeatScale)
+                  : view_ == ViewMode::Hazards ? hazardMask(var)
+                                               : splitImage(ref, var);
+  const vk::Context& ctx = renderer_.context();
+  const VkDeviceSize bytes = staticPixels_.rgba.size() * sizeof(float);
+  if (bytes != staticImage_->byteSize()) return engine::Error{"the view's image does not match the frame's size"};
+  auto staging = vk::Buffer::create(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  if (!staging) return engine::Error::fromVk(staging.error());
+  if (auto ok = staging->upload(staticPixels_.rgba.data(), bytes); !ok) return engine::Error::fromVk(ok.error());
+  vk::Expected<void> copied;
+  auto ok = ctx.submitAndWait([&](VkCommandBuffer cmd) { copied = staticImage_->copyFromBuffer(cmd, *staging); });
+  if (!ok) return engine::Error::fromVk(ok.error());
+  if (!copied) return engine::Error::fromVk(copied.error());
+  return {};
+}
+
+engine::Expected<void> writeOpaquePng(const fs::path& path, const measure::FloatImage& image) {
+  scene::Image rgba = measure::toRgba8(image);
+  // Opaque, as spire-demo writes its images.
+  for (size_t i = 3; i < rgba.bytes.size(); i += 4) rgba.bytes[i] = 255;
+  auto ok = scene::writePng(path, rgba);
+  if (!ok) return engine::Error{ok.error()};
+  return {};
+}
+
+// What the view shows without the panels, at the fixed camera view.
+engine::Expected<void> Explorer::screenshot(const fs::path& path) {
+  return writeOpaquePng(path, view_ == ViewMode::Variant     ? captures_.variant->color
+                              : view_ == ViewMode::Reference ? captures_.reference->color
+                                                             : staticPixels_);
+}
+
+vk::Image& Explorer::shownImage() {
+  return view_ == ViewMode::Variant || view_ == ViewMode::Reference ? *renderer_.colorImage() : *panelImage_;
+}
+
+engine::Expected<void> Explorer::windowScreenshot(const fs::path& path) {
+  vk::Image& shown = shownImage();
+  const vk::Context& ctx = renderer_.context();
+  auto buffer = vk::Buffer::create(ctx, shown.byteSize(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  if (!buffer) return engine::Error::fromVk(buffer.error());
+  vk::Expected<void> copied;
+  if (auto ok = ctx.submitAndWait([&](VkCommandBuffer cmd) { copied = shown.copyToBuffer(cmd, *buffer); }); !ok) {
+    return engine::Error::fromVk(ok.error());
+  }
+  if (!copied) return engine::Error::fromVk(copied.error());
+  measure::FloatImage image{shown.extent().width, shown.extent().height,
+                            std::vector<float>(static_cast<size_t>(shown.byteSize() / sizeof(float)))};
+  if (auto ok = buffer->readback(image.rgba.data(), shown.byteSize()); !ok) return engine::Error::fromVk(ok.error());
+  return writeOpaquePng(path, image);
+}
+
+scene::CameraView Explorer::cameraView(const demo::WindowInput& input, double now) {
+  const scene::SceneFile& scene = renderer_.scene();
+  if (options_.script) return scene.camera.views.front();
+  if (!overlay_->wantsMouse()) {
+    yaw_ -= input.drag.x * kRadiansPerPixel;
+    pitch_ = std::clamp(pitch_ + input.drag.y * kRadiansPerPixel, -glm::pi<float>(), glm::pi<float>());
+  }
+  return demo::orbit(demo::cameraOnLoop(scene.camera.views, now / 1000.0 / kSecondsPerView), scene.camera.up, yaw_,
+                     pitch_);
+}
+
+PanelState Explorer::panelState() const {
+  PanelState state;
+  state.shader = shader_;
+  state.rows = state_->rows();
+  state.view = view_;
+  state.metrics = &metrics_;
+  state.lastChange = lastChange_;
+  state.compiling = pending_.has_value();
+  state.diagnostics = diagnostics_;
+  state.decisionsPath = options_.saveTo;
+  return state;
+}
+
+// Draws the panels over the shown image and presents it.
+engine::Expected<void> Explorer::present() {
+  auto frame = swapchain_->beginFrame(window_.framebufferExtent());
+  if (!frame) return engine::Error::fromVk(frame.error());
+  if (!frame->has_value()) return {};  // minimized: nothing to present to
+  const vk::SwapchainFrame& target = **frame;
+  vk::Image& shown = shownImage();
+  if (&shown == &*panelImage_) {
+    if (auto ok = panelImage_->copyLayerFrom(target.cmd, *staticImage_, 0); !ok)
+      return engine::Error::fromVk(ok.error());
+  }
+  overlay_->beginFrame(shown.extent());
+  const PanelRequests requests = drawPanels(panelState());
+  if (auto ok = overlay_->record(target.cmd, shown); !ok) return engine::Error::fromVk(ok.error());
+  if (auto ok = blit_->record(target.cmd, shown, target.image, target.extent, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR); !ok) {
+    return engine::Error::fromVk(ok.error());
+  }
+  if (auto ok = swapchain_->endFrame(); !ok) return engine::Error::fromVk(ok.error());
+  handleRequests(requests);
+  return {};
+}
+
+// False when the explorer should close.
+engine::Expected<bool> Explorer::frame(const demo::WindowInput& input) {
+  if (options_.script && !stepScript()) return false;
+  if (const std::optional<fs::path> saved = watch_.poll()) startChange("reload " + saved->string(), true);
+  pollCompile();
+  const double now = clock_.elapsedMs();
+  const scene::CameraView view = cameraView(input, now);
+  const float time = options_.script ? 0.0F : static_cast<float>(now / 1000.0);
+  std::optional<engine::FrameTiming> first;  // of a new variant, shown for the first time
+  if (incoming_) {
+    auto timing = renderer_.renderView(*incoming_, view, time);
+    if (!timing) return timing.error();
+    first = *timing;
+    current_ = std::move(incoming_);
+    incoming_.reset();
+  }
+  if (view_ == ViewMode::Reference || (view_ == ViewMode::Variant && !first)) {
+    auto timing = renderer_.renderView(view_ == ViewMode::Reference ? *reference_ : *current_, view, time);
+    if (!timing) return timing.error();
+    if (view_ == ViewMode::Variant) metrics_.addFrame(timing->gpuMs);
+  }
+  if (auto ok = present(); !ok) return ok.error();
+  if (windowShot_) {
+    if (auto ok = windowScreenshot(*windowShot_); !ok) return ok.error();
+    windowShot_.reset();
+  }
+  if (first && pending_) {
+    pending_->firstFrameMs = first->hostMs;
+    pending_->totalMs = clock_.elapsedMs() - pending_->startMs;
+    pending_->ok = true;
+    if (auto ok = updateMetrics(); !ok) return ok.error();
+    finishChange();
+    // The panels' frame time starts with the new variant; its first frame
+    // (lavapipe's shader compile) is not typical of it.
+  }
+  if (waitFrames_ > 0) --waitFrames_;
+  return true;
+}
+
+int Explorer::finish(int status) {
+  std::vector<double> totals;
+  size_t failed = 0;
+  nlohmann::ordered_json log = nlohmann::ordered_json::array();
+  for (const ChangeRecord& change : changes_) {
+    if (change.ok) totals.push_back(change.totalMs);
+    failed += change.ok ? 0 : 1;
+    log.push_back({{"action", change.action},
+                   {"ok", change.ok},
+                   {"compile_ms", change.compileMs},
+                   {"prepare_ms", change.prepareMs},
+                   {"bake_ms", change.bakeMs},
+                   {"first_frame_ms", change.firstFrameMs},
+                   {"total_ms", change.totalMs},
+                   {"error", change.error},
+                   {"skipped", change.skipped}});
+  }
+  if (!totals.empty()) {
+    std::sort(totals.begin(), totals.end());
+    const double median = totals[totals.size() / 2];
+    const double p90 = totals[std::min(totals.size() - 1, totals.size() * 9 / 10)];
+    out_ << fmt::format(
+        "spire-explore: decision to image: median {:.0f} ms, p90 {:.0f} ms over {} changes ({} failed)\n", median, p90,
+        totals.size(), failed);
+  }
+  if (options_.log) {
+    const nlohmann::ordered_json document{{"scene", options_.scenePath}, {"shader", shader_}, {"changes", log}};
+    if (auto ok = writeFileAtomically(options_.log->string(), document.dump(2) + "\n"); !ok) {
+      return run_.fail({ok.error().message, {}, {}});
+    }
+  }
+  return run_.finish(status);
+}
+
+int Explorer::run() {
+  if (auto status = start()) return *status;
+  if (auto status = startPresentation()) return *status;
+  if (auto status = loadScript()) return *status;
+  if (auto status = startSession()) return *status;
+  out_ << fmt::format("spire-explore: {} ({} choices); {}\n", shader_, state_->rows().size(),
+                      options_.script ? "running the script" : "close the window or press Escape to quit")
+       << std::flush;
+  uint64_t shown = 0;
+  while (!options_.maxFrames || shown < *options_.maxFrames) {
+    const demo::WindowInput input = window_.poll();
+    if (input.quit) break;
+    auto more = frame(input);
+    if (!more) return run_.fail(more.error());
+    if (!*more) break;
+    ++shown;
+  }
+  return finish(scriptFailed_ ? kExitInputError : kExitSuccess);
+}
+
+}  // namespace
+
+int runExplorer(const ExploreOptions& options, engine::ToolRun& run, demo::GlfwWindow& window, std::ostream& out) {
+  Explorer explorer(options, run, window, out);
+  return explorer.run();
+}
+
+}  // namespace spire::explore

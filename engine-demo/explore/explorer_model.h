@@ -1,0 +1,73 @@
+// What the explorer knows and shows, as plain data: shared by the loop that
+// changes it (explorer.cpp) and the panels that draw it (explorer_panels.cpp).
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "explore/decision_state.h"
+#include "measure/image_metrics.h"
+
+namespace spire::explore {
+
+enum class ViewMode { Variant, Reference, Error, Hazards, Split };
+
+// "variant", "reference", "error", "hazards", "split" (the script's names).
+const char* viewModeName(ViewMode mode);
+std::optional<ViewMode> viewModeNamed(std::string_view name);
+
+// One change of decisions, from the moment it was made to the first frame of
+// its variant on screen: where the time went.
+struct ChangeRecord {
+  std::string action;  // "set Terrain.albedo = PrebakeTex", "undo", "reload FILE", ...
+  uint64_t request = 0;
+  bool reload = false;        // the sources were read again (a file was saved)
+  double startMs = 0.0;       // when the change was made (explorer clock)
+  double compileMs = 0.0;     // compiler library: code generation, glslang, validation (worker thread)
+  double prepareMs = 0.0;     // pipelines, descriptor sets and bakes
+  double bakeMs = 0.0;        // of prepareMs, bakes run (not reused)
+  double firstFrameMs = 0.0;  // the first frame's host time: lavapipe compiles shaders at first draw
+  double totalMs = 0.0;       // decision to the first presented frame of the new variant
+  bool ok = false;
+  std::string error;                 // compile or prepare failure, rendered
+  std::vector<std::string> skipped;  // decisions the compiler did not apply
+};
+
+// Live metrics of the variant on screen.
+struct Metrics {
+  std::deque<double> gpuMs;                  // the last frames' GPU times
+  std::optional<measure::ImageError> error;  // against the reference, at the fixed camera view
+  uint64_t nonFinitePixels = 0;
+  double referenceGpuMs = 0.0;  // median of the reference's last measured frames
+
+  // Median of the sliding window; 0 without frames.
+  double medianGpuMs() const;
+  void addFrame(double ms);
+};
+
+// What the user asked for through the panels during one frame.
+struct PanelRequests {
+  std::optional<std::pair<std::string, std::string>> set;  // choice key, placement
+  std::optional<std::string> unset;
+  bool undo = false;
+  bool reset = false;
+  bool save = false;
+  bool load = false;
+  std::optional<ViewMode> view;
+};
+
+struct PanelState {
+  std::string shader;
+  std::vector<ChoiceRow> rows;
+  ViewMode view = ViewMode::Variant;
+  const Metrics* metrics = nullptr;
+  std::optional<ChangeRecord> lastChange;
+  bool compiling = false;
+  std::string diagnostics;    // the last failure, rendered with file:line:col
+  std::string decisionsPath;  // where Save writes and Load reads
+};
+
+}  // namespace spire::explore

@@ -1,0 +1,13 @@
+// The explorer's Dear ImGui panels: choices, metrics with the last change's
+// timing, view modes and diagnostics. Drawing only: what the user clicks
+// comes back as requests for the loop to carry out.
+#pragma once
+
+#include "explore/explorer_model.h"
+
+namespace spire::explore {
+
+// Draws the panels of `state` into the current ImGui frame.
+PanelRequests drawPanels(const PanelState& state);
+
+}  // namespace spire::explore

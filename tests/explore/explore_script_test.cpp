@@ -1,0 +1,82 @@
+// spire-explore --script files: every action parses, and every malformed
+// line is an E7201 error at its place, all of them reported, none run.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "explore/explore_script.h"
+#include "support/diagnostic_renderer.h"
+
+namespace spire::explore {
+namespace {
+
+struct Parsed {
+  SourceManager sources;
+  DiagnosticList diags;
+  std::vector<ScriptAction> actions;
+};
+
+void parse(Parsed& p, std::string text) {
+  const FileId file = p.sources.addFile("s.explore", std::move(text));
+  p.actions = parseScript(p.sources, file, p.diags);
+}
+
+TEST(ExploreScript, ParsesEveryAction) {
+  Parsed p;
+  parse(p,
+        "# a comment\n"
+        "set Terrain.albedo = PrebakeTex   // trailing comment\n"
+        "unset albedo\nreset\nload a.decisions\nsave b.decisions\nundo\nview split\n"
+        "wait-frames 12\nwait-reload\nscreenshot x.png\nscreenshot-window y.png\nwalk 30 7\n\n   quit\n");
+  ASSERT_FALSE(p.diags.hasErrors()) << renderDiagnostics(p.sources, p.diags, DiagnosticFormat::Text);
+  ASSERT_EQ(p.actions.size(), 13U);
+  EXPECT_EQ(p.actions[0].kind, ActionKind::Set);
+  EXPECT_EQ(p.actions[0].target, "Terrain.albedo");
+  EXPECT_EQ(p.actions[0].value, "PrebakeTex");
+  EXPECT_EQ(describeAction(p.sources, p.actions[0]), "set Terrain.albedo = PrebakeTex");
+  EXPECT_EQ(p.actions[1].kind, ActionKind::Unset);
+  EXPECT_EQ(p.actions[6].kind, ActionKind::View);
+  EXPECT_EQ(p.actions[6].target, "split");
+  EXPECT_EQ(p.actions[7].count, 12U);
+  EXPECT_EQ(p.actions[8].kind, ActionKind::WaitReload);
+  EXPECT_EQ(p.actions[10].kind, ActionKind::WindowShot);
+  EXPECT_EQ(p.actions[11].kind, ActionKind::Walk);
+  EXPECT_EQ(p.actions[11].count, 30U);
+  EXPECT_EQ(p.actions[11].seed, 7U);
+  EXPECT_EQ(p.actions[12].kind, ActionKind::Quit);
+  EXPECT_EQ(p.sources.begin(p.actions[12].range).column, 4U);
+}
+
+TEST(ExploreScript, EveryMalformedLineIsAnErrorAtItsPlace) {
+  Parsed p;
+  parse(p,
+        "set albedo PrebakeTex x\n"
+        "wait-frames 0\n"
+        "view sideways\n"
+        "explode now\n"
+        "undo twice\n"
+        "set albedo = Fragment\n");
+  EXPECT_TRUE(p.actions.empty()) << "a script with errors runs nothing";
+  EXPECT_EQ(
+      renderDiagnostics(p.sources, p.diags, DiagnosticFormat::Text),
+      "s.explore:1:12: error[E7201]: expected 'set CHOICE = PLACEMENT'\n"
+      " 1 | set albedo PrebakeTex x\n"
+      "   |            ^~~~~~~~~~\n"
+      "s.explore:2:13: error[E7201]: expected a frame count from 1 to 100000\n"
+      " 2 | wait-frames 0\n"
+      "   |             ^\n"
+      "s.explore:3:6: error[E7201]: unknown view 'sideways' (views: variant, reference, error, hazards, split)\n"
+      " 3 | view sideways\n"
+      "   |      ^~~~~~~~\n"
+      "s.explore:4:1: error[E7201]: unknown action 'explode' (actions: set, unset, reset, load, save, undo, walk, "
+      "view, wait-frames, wait-reload, screenshot, screenshot-window, quit)\n"
+      " 4 | explode now\n"
+      "   | ^~~~~~~\n"
+      "s.explore:5:6: error[E7201]: 'undo' takes nothing after it\n"
+      " 5 | undo twice\n"
+      "   |      ^~~~~\n"
+      "5 errors generated.\n");
+}
+
+}  // namespace
+}  // namespace spire::explore

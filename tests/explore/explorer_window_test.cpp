@@ -1,0 +1,191 @@
+// spire-explore end to end, in a real window (under xvfb-run; skipped
+// without a display): a scripted decision change shows a new image, the one
+// spire-demo renders from the decision file the explorer saves; an edit that
+// breaks a source keeps the window and its last good variant, shows the
+// compiler's diagnostic and lets the session go on; bad scripts fail with
+// their line and column before anything renders.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include <unistd.h>
+
+#include "demo/demo.h"
+#include "explore/explore_cli.h"
+#include "scene/texture.h"
+#include "support/file_io.h"
+
+namespace spire::explore {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool haveDisplay() {
+  for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY"}) {
+    const char* value = std::getenv(name);
+    if (value != nullptr && value[0] != '\0') return true;
+  }
+  return false;
+}
+
+class ExplorerWindowTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("spire-explore-" + std::to_string(getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  fs::path script(const std::string& text) const {
+    const fs::path path = dir_ / "script.explore";
+    std::ofstream(path) << text;
+    return path;
+  }
+  int explore(std::vector<std::string> args) { return runExploreTool(args, out_, err_); }
+  nlohmann::json log() const {
+    return nlohmann::json::parse(readWholeFile((dir_ / "log.json").string()).value_or("null"));
+  }
+
+  fs::path dir_;
+  std::ostringstream out_;
+  std::ostringstream err_;
+};
+
+// Largest channel difference and the share of differing bytes.
+struct PngDifference {
+  int largest = 0;
+  double differing = 0.0;
+};
+
+PngDifference comparePngs(const fs::path& a, const fs::path& b) {
+  auto left = scene::loadImage(a);
+  auto right = scene::loadImage(b);
+  EXPECT_TRUE(left && right) << a << " " << b;
+  if (!left || !right || left->bytes.size() != right->bytes.size()) return {255, 1.0};
+  PngDifference d;
+  size_t count = 0;
+  for (size_t i = 0; i < left->bytes.size(); ++i) {
+    const int diff = std::abs(int{left->bytes[i]} - int{right->bytes[i]});
+    d.largest = std::max(d.largest, diff);
+    count += diff > 0 ? 1 : 0;
+  }
+  d.differing = static_cast<double>(count) / static_cast<double>(left->bytes.size());
+  return d;
+}
+
+TEST_F(ExplorerWindowTest, AScriptedChangeShowsWhatSpireDemoRendersOfTheSavedDecisions) {
+  if (!haveDisplay()) GTEST_SKIP() << "no display (run under xvfb-run to cover this)";
+  const fs::path decisions = fs::absolute("examples/decisions/terrain_baked_albedo.decisions");
+  const fs::path path = script(
+      "screenshot before.png\n"
+      "load " +
+      decisions.string() +
+      "\n"
+      "set Terrain.lighting = Fragment:basic\n"
+      "save after.decisions\n"
+      "screenshot after.png\n"
+      "view split\n"
+      "screenshot-window window.png\n"
+      "quit\n");
+  ASSERT_EQ(explore({"examples/scenes/terrain.json", "--validation", "--bake-size", "256", "--script", path.string(),
+                     "--log", (dir_ / "log.json").string()}),
+            0)
+      << err_.str() << out_.str();
+  const nlohmann::json changes = log()["changes"];
+  ASSERT_EQ(changes.size(), 2U) << out_.str();
+  EXPECT_EQ(changes[1]["action"], "set Terrain.lighting = Fragment:basic");
+  EXPECT_TRUE(changes[1]["ok"]);
+  EXPECT_GT(changes[1]["total_ms"].get<double>(), changes[1]["compile_ms"].get<double>());
+  EXPECT_GT(comparePngs(dir_ / "before.png", dir_ / "after.png").differing, 0.01) << "the change must show";
+
+  // spire-demo renders the file the explorer saved: the same image.
+  const fs::path demoDir = dir_ / "demo";
+  std::ostringstream demoOut;
+  std::ostringstream demoErr;
+  ASSERT_EQ(demo::runDemo({"examples/scenes/terrain.json", "--variant", (dir_ / "after.decisions").string(), "--frames",
+                           "1", "--warmup", "1", "--bake-size", "256", "-o", demoDir.string()},
+                          demoOut, demoErr),
+            0)
+      << demoErr.str();
+  const PngDifference same = comparePngs(dir_ / "after.png", demoDir / "after.png");
+  EXPECT_LE(same.largest, 2) << "share of bytes that differ: " << same.differing;
+  EXPECT_TRUE(fs::exists(dir_ / "window.png"));
+  EXPECT_NE(readWholeFile((dir_ / "after.decisions").string()).value_or("").find("[Format: \"RGBA8\"]"),
+            std::string::npos)
+      << "the loaded file's attributes are kept";
+}
+
+TEST_F(ExplorerWindowTest, ABrokenEditKeepsTheWindowAndTheLastGoodVariant) {
+  if (!haveDisplay()) GTEST_SKIP() << "no display (run under xvfb-run to cover this)";
+  for (const char* folder : {"examples", "pipelines", "stdlib"}) {
+    fs::copy(folder, dir_ / folder, fs::copy_options::recursive);
+  }
+  const fs::path source = dir_ / "examples/terrain.spire";
+  const std::string good = readWholeFile(source.string()).value();
+  const fs::path path = script(
+      "screenshot before.png\n"
+      "save marker.decisions\n"
+      "wait-reload\n"
+      "screenshot after-error.png\n"
+      "set Terrain.lighting = Fragment:basic\n"
+      "quit\n");
+  // The edit comes from outside, as from an editor, once the script says it
+  // is waiting for it.
+  std::thread editor([&] {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (!fs::exists(dir_ / "marker.decisions") && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    std::string broken = good;
+    broken.replace(broken.find("float mixFactor"), 0, "float typo = lightDr;\n    ");
+    std::ofstream(source) << broken;
+  });
+  const int status = explore({(dir_ / "examples/scenes/terrain.json").string(), "--validation", "--bake-size", "256",
+                              "--script", path.string(), "--log", (dir_ / "log.json").string()});
+  editor.join();
+  ASSERT_EQ(status, 0) << err_.str() << out_.str();
+  const nlohmann::json changes = log()["changes"];
+  ASSERT_EQ(changes.size(), 2U) << out_.str();
+  EXPECT_FALSE(changes[0]["ok"]);
+  const std::string error = changes[0]["error"];
+  EXPECT_NE(error.find("terrain.spire:37:18: error[E3001]: use of undeclared identifier 'lightDr'"), std::string::npos)
+      << error;
+  EXPECT_NE(out_.str().find("failed: "), std::string::npos) << "the diagnostic is shown";
+  EXPECT_EQ(comparePngs(dir_ / "before.png", dir_ / "after-error.png").largest, 0) << "the last good variant stays";
+  EXPECT_TRUE(changes[1]["ok"]) << "the session goes on with the last good sources";
+}
+
+TEST_F(ExplorerWindowTest, ABadScriptFailsWithItsLineAndColumn) {
+  if (!haveDisplay()) GTEST_SKIP() << "no display (run under xvfb-run to cover this)";
+  const fs::path path = script("set Terrain.albedo = Nowhere\n");
+  EXPECT_EQ(explore({"examples/scenes/terrain.json", "--script", path.string()}), 1);
+  EXPECT_NE(err_.str().find("script.explore:1:1: error[E7202]: 'Nowhere' is not an alternative of 'Terrain.albedo'"),
+            std::string::npos)
+      << err_.str();
+}
+
+TEST(ExploreCli, NeedsASceneAndDocumentsItsFlags) {
+  std::ostringstream out;
+  std::ostringstream err;
+  EXPECT_EQ(runExploreTool({}, out, err), 2);
+  EXPECT_NE(err.str().find("a scene file is required"), std::string::npos) << err.str();
+  std::ostringstream help;
+  EXPECT_EQ(runExploreTool({"--help"}, help, err), 0);
+  for (const char* flag : {"--script", "--log", "--reference", "--decisions", "--instance", "--save-to"}) {
+    EXPECT_NE(help.str().find(flag), std::string::npos) << flag;
+  }
+}
+
+}  // namespace
+}  // namespace spire::explore
