@@ -13,19 +13,10 @@
 
 namespace spire::tune {
 
-// Parameter samples as in Pellacini 2005: every parameter at its minimum,
-// every one at its maximum, then `randomSamples` uniform draws (seeded, so
-// workers and reruns agree).
-std::vector<ParameterSample> parameterSamples(const std::vector<ParameterRange>& ranges, uint32_t randomSamples,
-                                              uint64_t seed) {
-  if (ranges.empty()) return {};
-  std::vector<ParameterSample> samples(2);
-  for (const ParameterRange& r : ranges) {
-    samples[0][r.component] = r.minimum;
-    samples[1][r.component] = r.maximum;
-  }
+std::vector<ParameterSample> randomSamples(const std::vector<ParameterRange>& ranges, uint32_t count, uint64_t seed) {
+  std::vector<ParameterSample> samples;
   std::mt19937_64 rng(seed);
-  for (uint32_t k = 0; k < randomSamples; ++k) {
+  for (uint32_t k = 0; k < count; ++k) {
     ParameterSample sample;
     for (const ParameterRange& r : ranges) {
       std::vector<double> values(r.minimum.size());
@@ -39,7 +30,17 @@ std::vector<ParameterSample> parameterSamples(const std::vector<ParameterRange>&
   return samples;
 }
 
-namespace {
+std::vector<ParameterSample> parameterSamples(const std::vector<ParameterRange>& ranges, uint32_t randomCount,
+                                              uint64_t seed) {
+  if (ranges.empty()) return {};
+  std::vector<ParameterSample> samples(2);
+  for (const ParameterRange& r : ranges) {
+    samples[0][r.component] = r.minimum;
+    samples[1][r.component] = r.maximum;
+  }
+  for (ParameterSample& sample : randomSamples(ranges, randomCount, seed)) samples.push_back(std::move(sample));
+  return samples;
+}
 
 // The texture's own range: per channel, its smallest and largest texel.
 Expected<ParameterRange, Failure> textureRange(const std::string& text, const scene::MaterialBinding& binding,
@@ -48,7 +49,8 @@ Expected<ParameterRange, Failure> textureRange(const std::string& text, const sc
   if (!desc) return Failure{fmt::format("--param '{}': no texture named '{}'", text, *binding.texture)};
   auto image = scene::buildTexture(*desc, scene);
   if (!image) return Failure{fmt::format("--param '{}': texture '{}': {}", text, desc->name, image.error().message)};
-  ParameterRange range{binding.component, std::vector<double>(4, HUGE_VAL), std::vector<double>(4, -HUGE_VAL), true};
+  ParameterRange range{
+      binding.component, std::vector<double>(4, HUGE_VAL), std::vector<double>(4, -HUGE_VAL), true, {}};
   const size_t bytes = scene::texelBytes(image->format);
   for (size_t at = 0; at + bytes <= image->bytes.size(); at += bytes) {
     const glm::vec4 texel = scene::decodeTexel(image->format, std::span(image->bytes).subspan(at, bytes));
@@ -60,6 +62,8 @@ Expected<ParameterRange, Failure> textureRange(const std::string& text, const sc
   }
   return range;
 }
+
+namespace {
 
 const scene::MaterialBinding* findBinding(const scene::InstanceDesc& instance, const std::string& component) {
   for (const scene::MaterialBinding& binding : instance.material) {
@@ -97,8 +101,11 @@ Expected<ParameterRange, Failure> parseParameter(const std::string& text, const 
     return Failure{fmt::format("--param '{}': MIN and MAX must be numbers with MIN <= MAX", text)};
   }
   const size_t arity = binding->texture ? 4 : binding->numbers.size();
-  return ParameterRange{binding->component, std::vector<double>(arity, minimum), std::vector<double>(arity, maximum),
-                        binding->texture.has_value()};
+  return ParameterRange{binding->component,
+                        std::vector<double>(arity, minimum),
+                        std::vector<double>(arity, maximum),
+                        binding->texture.has_value(),
+                        {}};
 }
 
 }  // namespace spire::tune

@@ -325,6 +325,19 @@ std::string offTradeTable(const ReportPage& page) {
   return html + "</table>\n";
 }
 
+std::string stabilitySection(const ReportPage& page) {
+  if (!page.showStability) return "";
+  std::string html =
+      "<h2>Stability</h2>\n<p>Under each extreme of the material inputs (--extremes), the component that "
+      "instrumented kernels find going NaN or Inf first; also in <a href=\"stability.csv\">stability.csv</a>.</p>\n";
+  if (page.stability.empty()) html += "<p>No component goes NaN or Inf.</p>\n";
+  if (!page.stability.empty()) html += "<ul id=\"stability\">\n";
+  for (const std::string& line : page.stability) html += fmt::format("<li>{}</li>\n", escapeHtml(line));
+  if (!page.stability.empty()) html += "</ul>\n";
+  for (const std::string& note : page.stabilityNotes) html += fmt::format("<p>{}</p>\n", escapeHtml(note));
+  return html;
+}
+
 }  // namespace
 
 std::string escapeHtml(std::string_view text) {
@@ -356,6 +369,7 @@ std::string renderReportHtml(const ReportPage& page) {
   html += svgPlot(page);
   html += frontTable(page);
   html += offTradeTable(page);
+  html += stabilitySection(page);
   return html + "</body>\n</html>\n";
 }
 

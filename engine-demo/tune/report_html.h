@@ -6,7 +6,8 @@
 // error bar. Hovering a point shows its decisions and, on the front, its
 // image; a point with a decision file links to it. Tables of the front and
 // of the variants off the trade (failed, infeasible, degenerate, NaN or Inf
-// pixels) with their reasons follow. The page has no script and no external
+// pixels) with their reasons follow, then, for an --extremes run, the
+// stability table's lines. The page has no script and no external
 // reference: images and decision files are links relative to the page, in
 // the run's output directory.
 #pragma once
@@ -41,6 +42,10 @@ struct ReportPage {
   std::map<size_t, std::string> images;
   std::map<size_t, std::vector<std::string>> decisionFiles;
   std::vector<OffTradeVariant> offTrade;  // in the order the table lists them
+  // --extremes: the stability table's lines and notes (tune/stability_table.h).
+  bool showStability = false;
+  std::vector<std::string> stability;
+  std::vector<std::string> stabilityNotes;
 };
 
 std::string renderReportHtml(const ReportPage& page);

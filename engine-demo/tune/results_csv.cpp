@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -12,17 +13,21 @@ namespace spire::tune {
 
 namespace {
 
-constexpr const char* kTrailing[] = {"status",  "frame_ms",      "first_frame_ms", "prebake_ms", "rmse",
-                                     "psnr",    "max_error",     "nan_pixels",     "inf_pixels", "same_as",
-                                     "kernels", "hazard_inputs", "time_ratio",     "ratio_low",  "ratio_high",
-                                     "pairs",   "worst_rmse",    "hazard_causes"};
+constexpr const char* kTrailing[] = {"status",  "frame_ms",      "first_frame_ms", "prebake_ms",    "rmse",
+                                     "psnr",    "max_error",     "nan_pixels",     "inf_pixels",    "same_as",
+                                     "kernels", "hazard_inputs", "time_ratio",     "ratio_low",     "ratio_high",
+                                     "pairs",   "worst_rmse",    "hazard_causes",  "hazard_samples"};
 
-std::string quote(const std::string& field) {
+}  // namespace
+
+std::string quoteCsv(const std::string& field) {
   if (field.find_first_of(",\"\n") == std::string::npos) return field;
   std::string quoted = "\"";
   for (char c : field) quoted += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
   return quoted + "\"";
 }
+
+namespace {
 
 std::string number(double value) {
   if (std::isnan(value)) return "nan";
@@ -45,6 +50,29 @@ std::optional<uint64_t> parseCount(const std::string& text) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc{} || end != text.data() + text.size()) return std::nullopt;
   return value;
+}
+
+// "S@V;S@V": each hazardous parameter sample with its first hazardous view.
+std::string samplesText(const std::vector<std::pair<size_t, size_t>>& samples) {
+  std::string text;
+  for (const auto& [sample, view] : samples) text += fmt::format("{}{}@{}", text.empty() ? "" : ";", sample, view);
+  return text;
+}
+
+std::optional<std::vector<std::pair<size_t, size_t>>> parseSamples(const std::string& text) {
+  std::vector<std::pair<size_t, size_t>> samples;
+  for (size_t start = 0; start < text.size();) {
+    const size_t end = std::min(text.find(';', start), text.size());
+    const std::string item = text.substr(start, end - start);
+    const size_t at = item.find('@');
+    if (at == std::string::npos) return std::nullopt;
+    const auto sample = parseCount(item.substr(0, at));
+    const auto view = parseCount(item.substr(at + 1));
+    if (!sample || !view) return std::nullopt;
+    samples.emplace_back(*sample, *view);
+    start = end + 1;
+  }
+  return samples;
 }
 
 std::vector<std::string> splitCsv(const std::string& line) {
@@ -76,22 +104,22 @@ std::vector<std::string> splitCsv(const std::string& line) {
 
 std::string csvHeader(const std::vector<std::string>& components) {
   std::string header = "index";
-  for (const std::string& c : components) header += "," + quote(c);
+  for (const std::string& c : components) header += "," + quoteCsv(c);
   for (const char* column : kTrailing) header += std::string(",") + column;
   return header + "\n";
 }
 
 std::string csvRow(const VariantResult& r) {
   std::string row = std::to_string(r.index);
-  for (const std::string& p : r.placements) row += "," + quote(p);
-  row +=
-      fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{}\n", quote(r.status), number(r.frameMs), number(r.firstFrameMs),
-                  number(r.prebakeMs), number(r.rmse), number(r.psnr), number(r.maxError), r.nanPixels, r.infPixels,
-                  r.sameAs ? std::to_string(*r.sameAs) : "", quote(r.kernels), quote(r.hazardInputs));
+  for (const std::string& p : r.placements) row += "," + quoteCsv(p);
+  row += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{}\n", quoteCsv(r.status), number(r.frameMs),
+                     number(r.firstFrameMs), number(r.prebakeMs), number(r.rmse), number(r.psnr), number(r.maxError),
+                     r.nanPixels, r.infPixels, r.sameAs ? std::to_string(*r.sameAs) : "", quoteCsv(r.kernels),
+                     quoteCsv(r.hazardInputs));
   row.pop_back();  // the newline, after the columns below
-  row += fmt::format(",{},{},{},{},{},{}\n", number(r.time.median), number(r.time.interval.low),
+  row += fmt::format(",{},{},{},{},{},{},{}\n", number(r.time.median), number(r.time.interval.low),
                      number(r.time.interval.high), r.time.pairs, number(r.worstRmse),
-                     quote(fmt::format("{}", fmt::join(r.hazardCauses, " | "))));
+                     quoteCsv(fmt::format("{}", fmt::join(r.hazardCauses, " | "))), samplesText(r.hazardSamples));
   return row;
 }
 
@@ -128,13 +156,14 @@ Expected<std::vector<VariantResult>, Failure> readResults(const std::filesystem:
     const auto high = parseNumber(f[i + 14]);
     const auto pairs = parseCount(f[i + 15]);
     const auto worst = parseNumber(f[i + 16]);
+    const auto hazardSamples = parseSamples(f[i + 18]);
     for (size_t start = 0; start < f[i + 17].size();) {
       const size_t end = std::min(f[i + 17].find(" | ", start), f[i + 17].size());
       r.hazardCauses.push_back(f[i + 17].substr(start, end - start));
       start = end + 3;
     }
     if (!index || !frame || !first || !prebake || !rmse || !psnr || !maxError || !nan || !inf || !ratio || !low ||
-        !high || !pairs || !worst) {
+        !high || !pairs || !worst || !hazardSamples) {
       return Failure{fmt::format("{}:{}: malformed row", path.string(), lineNumber)};
     }
     r.index = *index;
@@ -153,6 +182,7 @@ Expected<std::vector<VariantResult>, Failure> readResults(const std::filesystem:
     r.hazardInputs = f[i + 11];
     r.time = {*ratio, {*low, *high}, static_cast<uint32_t>(*pairs)};
     r.worstRmse = *worst;
+    r.hazardSamples = *hazardSamples;
     results.push_back(std::move(r));
   }
   return results;

@@ -42,12 +42,19 @@ struct VariantResult {
   std::vector<std::string> hazardCauses;
   // In this run only: the parameter sample and camera view of hazardInputs.
   std::optional<std::pair<size_t, size_t>> hazardSample;
+  // Every parameter sample that has NaN or Inf pixels, with the first camera
+  // view that has them: the stability table diagnoses them after the run.
+  std::vector<std::pair<size_t, size_t>> hazardSamples;
   // The variant's frame time over the reference's, frame for frame (see
   // tune/paired_timing.h).
   TimeRatio time;
 
   bool ok() const { return status == "ok"; }
 };
+
+// `field` as one CSV field: quoted when it holds a comma, a quote or a
+// newline (a newline becomes a space).
+std::string quoteCsv(const std::string& field);
 
 std::string csvHeader(const std::vector<std::string>& components);
 std::string csvRow(const VariantResult& result);

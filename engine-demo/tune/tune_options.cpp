@@ -85,6 +85,13 @@ void defineTuneOptions(CLI::App& app, TuneOptions& options) {
   app.add_option("--param-samples", options.paramSamples, "Random samples besides the minimum and maximum")
       ->check(CLI::Range(0U, 100U))
       ->type_name("N");
+  app.add_flag("--extremes", options.extremes,
+               "Measure error over the extremes of every material input, unnamed ones too (a number v from 0 to "
+               "max(1, 2|v|) on its side of 0; a texture as solid colors from 0 to 1 per channel and its own darkest "
+               "and brightest texels; --param overrides an input's range): the scene's values, every input at its "
+               "minimum, every one at its maximum, each input alone at its minimum and at its maximum (a texture "
+               "also at its own two), and N random draws; 3 + 2 per input + 2 per automatic texture + N samples. "
+               "Writes stability.csv: which input's extreme makes which component NaN or Inf");
   app.add_option(
          "--shader-cache", options.shaderCache,
          "lavapipe's shader cache: 'run' (default) a fresh one for this run, shared by its workers, so a kernel "

@@ -35,6 +35,7 @@ struct TuneOptions {
   std::string shaderCache = "run";
   std::vector<std::string> params;  // NAME=MIN:MAX
   uint32_t paramSamples = 1;
+  bool extremes = false;  // a range for every material input, and per-input corners (tune/extremes.h)
   // --lod-policy: derive a level-of-detail policy instead of tuning a shader.
   std::string lodPolicyPath;
   std::vector<float> distances;  // empty: doubling from 1 to half the camera's far plane

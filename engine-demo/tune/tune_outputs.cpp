@@ -19,6 +19,7 @@
 #include "tune/format_selection.h"
 #include "tune/pareto.h"
 #include "tune/report_html.h"
+#include "tune/stability_table.h"
 
 namespace spire::tune {
 namespace {
@@ -262,8 +263,13 @@ std::string hazardReason(const VariantResult& r) {
 // images and the decision files written for the budgets.
 ReportPage reportPage(const TuneOptions& options, const engine::ToolRun& run, const TuneSession& session,
                       const std::vector<VariantResult>& results, const FrontSummary& summary,
-                      const BudgetChoice& choice) {
+                      const BudgetChoice& choice, const StabilityTable* stability) {
   ReportPage page;
+  if (stability) {
+    page.stability = stabilityLines(*stability);
+    page.stabilityNotes = stabilityNotes(*stability);
+    page.showStability = true;
+  }
   page.title = fmt::format("spire-tune report: {} on {}", options.shader, options.scenePath);
   page.summary = fmt::format(
       "Shader {} on {} ({}), {} variants of {} components{}. Error: RMSE against the reference over {} camera "
@@ -287,12 +293,20 @@ ReportPage reportPage(const TuneOptions& options, const engine::ToolRun& run, co
   return page;
 }
 
+// The report's sections besides the front and the findings.
+struct ReportExtras {
+  std::string layoutReport;                   // data-layout selection of the decision files
+  const StabilityTable* stability = nullptr;  // --extremes only
+};
+
 std::optional<int> writeReport(const TuneOptions& options, engine::ToolRun& run, TuneSession& session,
                                const std::vector<VariantResult>& results, const FrontSummary& summary,
-                               const TimeSplit& split, const BudgetChoice& choice, const std::string& layoutReport) {
+                               const TimeSplit& split, const BudgetChoice& choice, const ReportExtras& extras) {
+  const std::string& layoutReport = extras.layoutReport;
   std::string report = reportHeader(options, run, session, results.size());
   if (const auto status = appendFrontTable(options, run, session, results, summary, report)) return status;
   report += reportFindings(options, session, results, summary, split);
+  if (extras.stability) report += stabilityMarkdown(*extras.stability);
   if (!layoutReport.empty()) {
     report +=
         "\n## Data-layout selection\n\nEach baked output of the chosen variants, analysed in a 32-bit float "
@@ -302,7 +316,8 @@ std::optional<int> writeReport(const TuneOptions& options, engine::ToolRun& run,
   if (auto written = writeFileAtomically((fs::path(options.outputDir) / "report.md").string(), report); !written) {
     return run.fail(written.error().message);
   }
-  const std::string page = renderReportHtml(reportPage(options, run, session, results, summary, choice));
+  const std::string page =
+      renderReportHtml(reportPage(options, run, session, results, summary, choice, extras.stability));
   if (auto written = writeFileAtomically((fs::path(options.outputDir) / "report.html").string(), page); !written) {
     return run.fail(written.error().message);
   }
@@ -336,8 +351,8 @@ void printSummary(const TuneOptions& options, const TuneSession& session, const 
   out << fmt::format(
       "time split (summed over workers): compile {:.1f} s, first use {:.1f} s, render {:.1f} s, error {:.1f} s\n",
       split.compileMs / 1000, split.firstUseMs / 1000, split.renderMs / 1000, split.errorMs / 1000);
-  out << fmt::format("wrote {0}/variants.csv, pareto.csv, plot.png, report.md, report.html, front/\n",
-                     options.outputDir);
+  out << fmt::format("wrote {0}/variants.csv, pareto.csv, plot.png, report.md, report.html, {1}front/\n",
+                     options.outputDir, options.extremes ? "stability.csv, " : "");
   out << fmt::format("{} variants in {:.1f} s\n", results.size(), wall.elapsedMs() / 1000.0);
 }
 
@@ -348,13 +363,24 @@ int writeTuneOutputs(const TuneOptions& options, engine::ToolRun& run, TuneSessi
                      std::ostream& out, std::ostream& err) {
   const FrontSummary summary = summarize(results);
   if (const auto status = writeFront(options, run, session, results, summary)) return *status;
-  std::string layoutReport;
+  ReportExtras extras;
   const BudgetChoice choice = chooseBest(options, results, summary);
-  if (const auto status = writeBudgetVariants(options, run, session, results, choice, layoutReport, out)) {
+  if (const auto status = writeBudgetVariants(options, run, session, results, choice, extras.layoutReport, out)) {
     return *status;
   }
-  if (const auto status = writeReport(options, run, session, results, summary, split, choice, layoutReport))
+  std::optional<StabilityTable> stability;
+  if (options.extremes) {
+    stability = buildStabilityTable(*session.tuner, session.space.axes, results, kStabilityDiagnoses);
+    const std::string path = (fs::path(options.outputDir) / "stability.csv").string();
+    if (auto written = writeFileAtomically(path, stabilityCsv(*stability)); !written) {
+      return run.fail(written.error().message);
+    }
+    extras.stability = &*stability;
+    for (const std::string& note : stabilityNotes(*stability)) err << "spire-tune: warning: " << note << "\n";
+  }
+  if (const auto status = writeReport(options, run, session, results, summary, split, choice, extras)) {
     return *status;
+  }
   printSummary(options, session, results, summary, split, wall, out, err);
   return run.finish(kExitSuccess);
 }

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "driver/exit_codes.h"
+#include "tune/extremes.h"
 #include "tune/parameter_range.h"
 
 namespace spire::tune {
@@ -63,7 +64,16 @@ std::optional<int> startTuner(const TuneOptions& options, engine::ToolRun& run, 
   tunerOptions.timing.minPairs = options.frames;
   tunerOptions.timing.maxPairs = options.frames;
   tunerOptions.warmupFrames = options.warmup;
-  tunerOptions.parameterSamples = parameterSamples(ranges, options.paramSamples, options.seed);
+  if (options.extremes) {
+    auto all = extremeRanges(*session.instance, run.scene(), ranges);
+    if (!all) return run.fail(all.error().message);
+    SamplePlan plan = extremeSamples(*all, options.paramSamples, options.seed);
+    tunerOptions.parameterSamples = std::move(plan.samples);
+    tunerOptions.sampleLabels = std::move(plan.labels);
+    tunerOptions.extremes = true;
+  } else {
+    tunerOptions.parameterSamples = parameterSamples(ranges, options.paramSamples, options.seed);
+  }
   session.tuner.emplace(run.renderer(), session.instanceIndex, session.space.axes, tunerOptions);
   return std::nullopt;
 }

@@ -31,27 +31,63 @@ std::string sampleText(const ParameterSample& sample) {
 
 }  // namespace
 
-std::vector<std::string> Tuner::diagnose(const engine::CompileForDiagnosis& compile, size_t sample, size_t view) {
+std::string Tuner::inputsText(size_t sample, size_t view) const {
+  return fmt::format("camera view {}{}", view, sampleText(samples().at(sample)));
+}
+
+bool Tuner::excluded(size_t sample) const {
+  return std::any_of(referenceHazards_.begin(), referenceHazards_.end(),
+                     [&](const std::pair<size_t, size_t>& hazard) { return hazard.first == sample; });
+}
+
+engine::Expected<std::vector<engine::Hazard>> Tuner::diagnoseHazards(const engine::CompileForDiagnosis& compile,
+                                                                     size_t sample, size_t view) {
   const std::vector<ParameterSample> parameterSamples = samples();
   const engine::HazardSample where{&renderer_.scene().camera.views.at(view), parameterSamples.at(sample)};
-  auto hazards = engine::diagnoseHazards(renderer_, compile, where);
+  return engine::diagnoseHazards(renderer_, compile, where);
+}
+
+std::vector<std::string> Tuner::diagnose(const engine::CompileForDiagnosis& compile, size_t sample, size_t view) {
+  auto hazards = diagnoseHazards(compile, sample, view);
   if (!hazards) return {fmt::format("(no diagnosis: {})", hazards.error().message)};
   return engine::hazardLines(*hazards);
 }
 
+engine::CompileForDiagnosis Tuner::referenceCompile() const {
+  return [decisions = referenceDecisions_](engine::SceneRenderer& renderer) { return renderer.compile(decisions); };
+}
+
+engine::CompileForDiagnosis Tuner::variantCompile(const TunePoint& point) const {
+  return [instance = instance_, decisions = point.decisions](
+             engine::SceneRenderer& renderer) -> engine::Expected<std::vector<engine::VariantProgram>> {
+    auto others = renderer.compile(std::nullopt);
+    if (!others) return others.error();
+    auto own = renderer.compileVariant(instance, decisions);
+    if (!own) return own.error();
+    others->at(instance) = std::move(own).value();
+    return others;
+  };
+}
+
+// With --extremes only the scene's own values (sample 0) must be finite: a
+// later sample the reference cannot render is left out of every variant's
+// error, since there is nothing to compare against there.
 engine::Expected<void> Tuner::checkReference(const std::optional<std::filesystem::path>& decisions) {
-  const std::vector<ParameterSample> parameterSamples = samples();
   for (size_t s = 0; s < reference_.size(); ++s) {
     for (size_t v = 0; v < reference_[s].size(); ++v) {
       const uint64_t broken = measure::nonFinitePixels(reference_[s][v].color);
       if (broken == 0) continue;
-      const auto causes = diagnose([&](engine::SceneRenderer& renderer) { return renderer.compile(decisions); }, s, v);
+      if (options_.extremes && s > 0) {
+        referenceHazards_.emplace_back(s, v);
+        break;
+      }
+      const auto causes = diagnose(referenceCompile(), s, v);
       return engine::Error{
           fmt::format("the reference ({}) has {} NaN or Inf pixels under camera view {}{}: every variant's error "
                       "against it would be infinite. Fix the shader, or choose a reference without the hazard with "
                       "--reference DECISIONS. There, {}",
                       decisions ? decisions->string() : std::string("each instance's own decisions"), broken, v,
-                      sampleText(parameterSamples[s]), fmt::join(causes, "; ")),
+                      sampleText(samples()[s]), fmt::join(causes, "; ")),
           {},
           {}};
     }
@@ -61,6 +97,7 @@ engine::Expected<void> Tuner::checkReference(const std::optional<std::filesystem
 
 engine::Expected<void> Tuner::renderReference(const std::optional<std::filesystem::path>& decisions) {
   if (!reference_.empty()) return {};
+  referenceDecisions_ = decisions;
   auto programs = renderer_.compile(decisions);
   if (!programs) return programs.error();
   for (const ParameterSample& sample : samples()) {
@@ -173,15 +210,7 @@ VariantResult Tuner::measure(const TunePoint& point) {
     return result;
   }
   if (result.hazardSample) {
-    const auto compile = [&](engine::SceneRenderer& renderer) -> engine::Expected<std::vector<engine::VariantProgram>> {
-      auto others = renderer.compile(std::nullopt);
-      if (!others) return others.error();
-      auto own = renderer.compileVariant(instance_, point.decisions);
-      if (!own) return own.error();
-      others->at(instance_) = std::move(own).value();
-      return others;
-    };
-    result.hazardCauses = diagnose(compile, result.hazardSample->first, result.hazardSample->second);
+    result.hazardCauses = diagnose(variantCompile(point), result.hazardSample->first, result.hazardSample->second);
   }
   byKernels_[result.kernels] = result;
   return result;
@@ -193,6 +222,7 @@ engine::Expected<void> Tuner::measureImages(const std::vector<engine::VariantPro
   ViewTotals totals;
   const std::vector<ParameterSample> parameterSamples = samples();
   for (size_t s = 0; s < parameterSamples.size(); ++s) {
+    if (excluded(s)) continue;
     renderer_.setParameterOverrides(parameterSamples[s]);
     auto prepared = renderer_.prepare(programs);
     renderer_.setParameterOverrides({});
@@ -201,7 +231,7 @@ engine::Expected<void> Tuner::measureImages(const std::vector<engine::VariantPro
       for (const engine::BakeRecord& bake : prepared->bakes) result.prebakeMs += bake.reused ? 0.0 : bake.milliseconds;
     }
     totals.sample = {};
-    if (auto compared = compareViews(*prepared, s, parameterSamples[s], result, totals); !compared) {
+    if (auto compared = compareViews(*prepared, s, result, totals); !compared) {
       return compared;
     }
     totals.worstRmse = std::max(totals.worstRmse, totals.sample.total().rmse);
@@ -231,8 +261,8 @@ engine::Expected<void> Tuner::measureImages(const std::vector<engine::VariantPro
   return {};
 }
 
-engine::Expected<void> Tuner::compareViews(const engine::PreparedScene& prepared, size_t s,
-                                           const ParameterSample& sample, VariantResult& result, ViewTotals& totals) {
+engine::Expected<void> Tuner::compareViews(const engine::PreparedScene& prepared, size_t s, VariantResult& result,
+                                           ViewTotals& totals) {
   const auto& views = renderer_.scene().camera.views;
   for (size_t v = 0; v < views.size(); ++v) {
     auto capture = renderer_.capture(prepared, views[v]);
@@ -250,10 +280,12 @@ engine::Expected<void> Tuner::compareViews(const engine::PreparedScene& prepared
     if (!error) return engine::Error(error.error());
     totals.error.add(*error);
     totals.sample.add(*error);
-    if (result.hazardInputs.empty() && error->nanPixels + error->infPixels > 0) {
-      result.hazardInputs = fmt::format("camera view {}{}", v, sampleText(sample));
+    if (error->nanPixels + error->infPixels == 0) continue;
+    if (result.hazardInputs.empty()) {
+      result.hazardInputs = inputsText(s, v);
       result.hazardSample = std::pair{s, v};
     }
+    if (result.hazardSamples.empty() || result.hazardSamples.back().first != s) result.hazardSamples.emplace_back(s, v);
   }
   return {};
 }

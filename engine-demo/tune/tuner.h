@@ -31,6 +31,12 @@ struct TimeSplit {
 // Material values for one parameter sample: component -> numbers.
 using ParameterSample = std::map<std::string, std::vector<double>>;
 
+// What a sample of an --extremes run is, for the stability table.
+struct SampleLabel {
+  std::string input;  // the one input it changes; empty when it sets every input, or none ("scene")
+  std::string kind;   // "scene", "all-min", "all-max", "min", "max", "texture-min", "texture-max", "sample"
+};
+
 struct TunerOptions {
   // Unmeasured frames before the measured ones. The captures of the camera
   // views come first and count: the first frame pays lavapipe's shader
@@ -42,6 +48,11 @@ struct TunerOptions {
   // Error is measured over every sample (and every camera view); time over
   // the first. Empty: the scene's own values only.
   std::vector<ParameterSample> parameterSamples;
+  std::vector<SampleLabel> sampleLabels;  // one per sample with --extremes, else empty
+  // --extremes: the first sample is the scene's own values, and a reference
+  // that is finite there but not under a later sample leaves that sample
+  // out of every variant's error instead of stopping the run.
+  bool extremes = false;
 };
 
 // What a variant's views add up to against the reference's.
@@ -78,6 +89,22 @@ class Tuner {
 
   const TimeSplit& timeSplit() const { return split_; }
 
+  // The samples: the options' or, without them, the scene's values alone.
+  std::vector<ParameterSample> samples() const;
+  const std::vector<SampleLabel>& sampleLabels() const { return options_.sampleLabels; }
+  // "camera view 0 maskMap=0,0,0,0": where a hazard showed, for people.
+  std::string inputsText(size_t sample, size_t view) const;
+  // The samples (with the first camera view that has them) under which the
+  // reference is non-finite and that every variant's error leaves out.
+  const std::vector<std::pair<size_t, size_t>>& referenceHazards() const { return referenceHazards_; }
+  // Compiles the reference, or the point's variant, in a diagnosis renderer.
+  engine::CompileForDiagnosis referenceCompile() const;
+  engine::CompileForDiagnosis variantCompile(const TunePoint& point) const;
+  // What instrumented kernels find under sample `sample` and camera view
+  // `view` (tool/hazard_diagnosis.h).
+  engine::Expected<std::vector<engine::Hazard>> diagnoseHazards(const engine::CompileForDiagnosis& compile,
+                                                                size_t sample, size_t view);
+
   // Frames rendered before the measured ones: the captures of every camera
   // view, then more if the options ask for more warm-up than that.
   uint32_t unmeasuredFrames() const;
@@ -89,8 +116,8 @@ class Tuner {
   engine::Expected<void> measureImages(const std::vector<engine::VariantProgram>& programs, VariantResult& result);
   // The views of `prepared` (under sample `s`) against the reference's,
   // added to `accumulated`; the first capture of sample 0 is the first use.
-  engine::Expected<void> compareViews(const engine::PreparedScene& prepared, size_t s, const ParameterSample& sample,
-                                      VariantResult& result, ViewTotals& totals);
+  engine::Expected<void> compareViews(const engine::PreparedScene& prepared, size_t s, VariantResult& result,
+                                      ViewTotals& totals);
   // Frames of `variant` and of the reference in turn, after `warmup` of the
   // variant's, until `rule` is met.
   engine::Expected<TimeRatio> measurePaired(const engine::PreparedScene& variant, uint32_t warmup,
@@ -107,9 +134,11 @@ class Tuner {
   std::vector<Axis> axes_;
   TunerOptions options_;
   std::vector<engine::VariantProgram> others_;  // every instance at its own decisions
-  std::vector<ParameterSample> samples() const;
+  bool excluded(size_t sample) const;
 
   std::vector<std::vector<engine::Capture>> reference_;  // [sample][view]
+  std::optional<std::filesystem::path> referenceDecisions_;
+  std::vector<std::pair<size_t, size_t>> referenceHazards_;
   std::optional<engine::PreparedScene> referenceScene_;  // under the first sample: the timing partner
   double referenceMs_ = 0.0;
   std::map<std::string, VariantResult> byKernels_;

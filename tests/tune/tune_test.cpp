@@ -191,6 +191,7 @@ TEST(ResultsCsv, RoundTripsAndRejectsOtherRuns) {
   r.nanPixels = 3;
   r.sameAs = 2;
   r.kernels = "Vertex=00ff;";
+  r.hazardSamples = {{1, 0}, {5, 2}};
   {
     std::ofstream out(path);
     out << csvHeader({"albedo", "lighting"}) << csvRow(r) << "8,Vertex";  // a row cut off by an interruption
@@ -203,6 +204,7 @@ TEST(ResultsCsv, RoundTripsAndRejectsOtherRuns) {
   EXPECT_TRUE(std::isinf((*rows)[0].rmse));
   EXPECT_EQ((*rows)[0].sameAs, 2U);
   EXPECT_EQ((*rows)[0].kernels, r.kernels);
+  EXPECT_EQ((*rows)[0].hazardSamples, r.hazardSamples);
   EXPECT_FALSE(readResults(path, {"normal"}));
   fs::remove(path);
 }
@@ -464,17 +466,20 @@ TEST_F(TuneRun, ATextureDrivenHazardIsFoundBySweepingTheTexture) {
 
 // A reference with NaN or Inf pixels would make every variant's error
 // infinite, clean ones included: the run stops before measuring, naming the
-// reference and the inputs, and writes no results.
+// reference and the inputs, and writes no results. With --extremes too,
+// since the reference is non-finite at the scene's own values (one only
+// non-finite at an extreme is tests/tune/extremes_test.cpp's).
 TEST_F(TuneRun, AHazardousReferenceStopsTheRun) {
   const fs::path dir = fs::temp_directory_path() / ("spire_tune_bad_reference_" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  for (const char* jobs : {"1", "2"}) {
+  for (const char* mode : {"1", "2", "extremes"}) {
+    std::vector<std::string> args{
+        "tests/data/engine/stability/user_divide.json", "--shader",     "UserDivide", "--jobs",
+        mode == std::string_view("2") ? "2" : "1",      "--validation", "-o",         dir.string()};
+    if (mode == std::string_view("extremes")) args.emplace_back("--extremes");
     std::ostringstream out;
     std::ostringstream err;
-    EXPECT_EQ(runTune({"tests/data/engine/stability/user_divide.json", "--shader", "UserDivide", "--jobs", jobs,
-                       "--validation", "-o", dir.string()},
-                      out, err, SPIRE_TUNE_EXE),
-              kExitInputError);
+    EXPECT_EQ(runTune(args, out, err, SPIRE_TUNE_EXE), kExitInputError);
     EXPECT_NE(err.str().find("the reference (tests/data/engine/stability/user_divide_fragment.decisions) has 289 NaN "
                              "or Inf pixels under camera view 0: every variant's error against it would be infinite"),
               std::string::npos)
