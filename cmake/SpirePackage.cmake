@@ -1,5 +1,5 @@
 # The install layout and the CMake package (docs/integration.md):
-#   bin/spirec, bin/spire-demo, bin/spire-tune, bin/spire-explore
+#   bin/spirec, bin/spire-demo, bin/spire-tune, bin/spire-explore, bin/spire-simplify
 #   include/spire/<stage>/*.h   the public compile entry point, driver/compiler.h,
 #                               and the headers it includes
 #   lib/libspire_*.a            the compiler's stage libraries
@@ -25,7 +25,7 @@ set(SPIRE_INSTALL_LIBRARYDIR ${CMAKE_INSTALL_DATADIR}/spire)
 set(SPIRE_STAGES spire_support spire_reflection spire_syntax spire_sema spire_graph spire_codegen spire_compiler)
 
 install(TARGETS spirec EXPORT SpireToolTargets RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(TARGETS spire-demo spire-tune spire-explore RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS spire-demo spire-tune spire-explore spire-simplify RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS ${SPIRE_STAGES} EXPORT SpireCompilerTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # driver/compiler.h and every project header it includes, directly or not
 # (tests/install checks that a program including it builds).

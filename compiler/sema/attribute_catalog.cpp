@@ -61,6 +61,14 @@ const std::vector<AttributeSpec>& catalog() {
        {},
        {},
        "signed"},
+      {"Immutable",
+       {AttributeSite::Component},
+       "automatic simplification leaves the component as written",
+       {},
+       {},
+       {},
+       "",
+       true},
   };
   return specs;
 }
@@ -110,6 +118,10 @@ std::optional<AttributeProblem> checkAttribute(AttributeSite site, std::string_v
     return AttributeProblem{true, false,
                             fmt::format("[{}] ({}) does not belong on {}; it goes on {}", name, spec->meaning,
                                         siteName(site), siteName(spec->sites.front()))};
+  }
+  if (spec->flag) {
+    if (!value) return std::nullopt;
+    return AttributeProblem{true, true, fmt::format("[{}] ({}) takes no value; write [{}]", name, spec->meaning, name)};
   }
   if (!value || !valueAllowed(*spec, *value)) {
     std::string message = fmt::format("[{}] takes {}, as in [{}: \"{}\"]; got {}", name, allowedValues(*spec), name,

@@ -29,6 +29,7 @@ struct AttributeSpec {
   std::optional<long> minimum;
   std::optional<long> maximum;
   std::string_view example;  // a valid value, for messages
+  bool flag = false;         // written without a value (`[Immutable]`)
 };
 
 std::span<const AttributeSpec> attributeCatalog();

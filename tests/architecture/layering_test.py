@@ -25,6 +25,7 @@ ALLOWED = {
     "graph": {"support", "syntax", "sema"},
     "codegen": {"support", "syntax", "sema", "graph", "reflection"},
     "driver": {"support", "syntax", "sema", "graph", "reflection", "codegen"},
+    "simplify": {"support", "syntax", "sema", "graph", "reflection", "codegen", "driver"},
     # engine-demo/
     "vk": {"support"},
     "scene": {"support"},

@@ -33,6 +33,13 @@ TEST(AttributeCatalog, KnownAttributesTakeTheirValuesInTheirPlaces) {
   const auto noValue = checkAttribute(AttributeSite::World, "Stage", std::nullopt);
   ASSERT_TRUE(noValue);
   EXPECT_FALSE(noValue->atValue);
+  // [Immutable] is a flag: it takes no value, and only components have it.
+  EXPECT_FALSE(checkAttribute(AttributeSite::Component, "Immutable", std::nullopt));
+  const auto immutableValue = checkAttribute(AttributeSite::Component, "Immutable", "yes");
+  ASSERT_TRUE(immutableValue);
+  EXPECT_TRUE(immutableValue->isError && immutableValue->atValue);
+  EXPECT_NE(immutableValue->message.find("takes no value; write [Immutable]"), std::string::npos);
+  EXPECT_TRUE(checkAttribute(AttributeSite::Decision, "Immutable", std::nullopt));
   const auto misplaced = checkAttribute(AttributeSite::Decision, "Stage", "vertex");
   ASSERT_TRUE(misplaced);
   EXPECT_NE(misplaced->message.find("does not belong on a decision; it goes on a world declaration"),

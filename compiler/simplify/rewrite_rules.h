@@ -1,0 +1,41 @@
+// Pellacini 2005's simplification rules ("User-Configurable Automatic Shader
+// Simplification", ../shared/seeds/004) as rewrites of one component
+// definition, chosen on the typed syntax tree: each rewrite replaces one
+// piece of the definition's source with a simpler expression of the same
+// type, so the result still type-checks, and keeps everything else of the
+// author's text (layout and comments) for the person who reads or edits it.
+//
+//   constant-operand   a binary +, -, *, / with a constant operand collapses
+//                      to its other operand (`c * 0.5` -> `c`)
+//   call-to-argument   a built-in call collapses to an argument of its own
+//                      type (`mix(a, b, t)` -> `a`, `normalize(n)` -> `n`)
+//   loop-iteration     a loop `i < N` with a constant N drops its last
+//                      iteration (`i < 4` -> `i < 3`)
+//
+// Pellacini's third rule, a subtree replaced by its average over the
+// parameter ranges, needs values measured by rendering and is not here.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sema/semantic_model.h"
+#include "support/source_manager.h"
+#include "syntax/ast.h"
+
+namespace spire::simplify {
+
+struct Rewrite {
+  std::string rule;         // "constant-operand", "call-to-argument", "loop-iteration"
+  SourceRange range;        // the source replaced
+  std::string replacement;  // the Spire source put in its place
+  std::string before;       // the replaced source, for the reader
+};
+
+// Every single rewrite of `decl`'s definition, each to be applied alone:
+// those that remove the most source first, then in source order; duplicates
+// (same range and replacement) once.
+std::vector<Rewrite> proposeRewrites(const sem::Model& model, const SourceManager& sources,
+                                     const ast::ComponentDecl& decl);
+
+}  // namespace spire::simplify

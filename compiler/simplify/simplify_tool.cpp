@@ -1,0 +1,88 @@
+#include "simplify/simplify_tool.h"
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include <ostream>
+
+#include "driver/exit_codes.h"
+#include "driver/shader_library.h"
+#include "driver/tool_arguments.h"
+#include "simplify/simplification.h"
+#include "support/diagnostic_renderer.h"
+#include "support/file_io.h"
+
+namespace spire::simplify {
+namespace {
+
+constexpr const char* kTool = "spire-simplify";
+
+struct CliOptions {
+  std::vector<std::string> files;
+  std::vector<std::string> includeDirs;
+  SimplifyOptions simplify;
+};
+
+void defineOptions(CLI::App& app, CliOptions& options) {
+  addVersionFlag(app);
+  app.add_option("files", options.files, "Spire source files")->required()->type_name("FILE...");
+  app.add_option("-I", options.includeDirs, "Search DIR for 'using' includes after the including file's folder")
+      ->type_name("DIR");
+  app.add_option("--shader", options.simplify.shader, "The shader to simplify")->required()->type_name("NAME");
+  app.add_option("--component", options.simplify.components,
+                 "Simplify only this component (repeatable; default: every one the shader defines)")
+      ->type_name("NAME");
+  app.add_option("--max-per-component", options.simplify.maxPerComponent,
+                 "At most N variations per component (default 4)")
+      ->check(CLI::Range(size_t{1}, size_t{1000}))
+      ->type_name("N");
+  app.add_option("--name", options.simplify.derivedName, "The derived shader's name (default: SHADER + Simplified)")
+      ->type_name("NAME");
+  app.add_option("-o,--output", options.simplify.outputPath, "Write the module of simplified variations to FILE")
+      ->required()
+      ->type_name("FILE");
+}
+
+void printSummary(const Simplified& result, const std::string& path, std::ostream& out) {
+  size_t components = 0;
+  std::string last;
+  for (const Variation& v : result.variations) {
+    components += v.component != last ? 1 : 0;
+    last = v.component;
+  }
+  out << fmt::format("{}: wrote {} variation(s) of {} component(s) to {}", kTool, result.variations.size(), components,
+                     path);
+  out << (result.dropped.empty() ? "\n" : fmt::format("; {} candidate(s) dropped:\n", result.dropped.size()));
+  for (const std::string& dropped : result.dropped) out << "  " << dropped << "\n";
+}
+
+}  // namespace
+
+int runSimplifyTool(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+                    const std::string& libraryDir) {
+  CLI::App app{"spire-simplify: writes simplified variations of a Spire shader's components (Pellacini 2005)", kTool};
+  CliOptions options;
+  defineOptions(app, options);
+  if (const auto status = parseToolArguments(app, args, out, err)) return *status;
+  options.simplify.frontEnd.includeDirs = options.includeDirs;
+  if (!libraryDir.empty()) options.simplify.frontEnd.includeDirs.push_back(libraryDir);
+  ShaderLibrary library(options.simplify.frontEnd);
+  for (const std::string& file : options.files) library.addFile(file);
+  if (!library.compile()) {
+    err << renderDiagnostics(library.sources(), library.diagnostics(), DiagnosticFormat::Text);
+    return kExitInputError;
+  }
+  auto result = simplifyShader(library, options.simplify);
+  if (!result) {
+    err << fmt::format("{}: error: {}\n", kTool, result.error().message);
+    return kExitInputError;
+  }
+  if (auto written = writeFileAtomically(options.simplify.outputPath, result->module); !written) {
+    err << fmt::format("{}: error: {}\n", kTool, written.error().message);
+    return kExitInputError;
+  }
+  printSummary(*result, options.simplify.outputPath, out);
+  return kExitSuccess;
+}
+
+}  // namespace spire::simplify

@@ -1,0 +1,173 @@
+// Automatic simplification: the rules on the typed tree (each rewrite keeps
+// the expression's type; constants, built-ins and loops), [Immutable], the
+// module it writes (it compiles, its variations are choices, the compiler
+// generates different kernels for them), determinism, and the tool's errors.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "driver/compiler.h"
+#include "simplify/rewrite_rules.h"
+#include "simplify/simplification.h"
+#include "simplify/simplify_tool.h"
+#include "support/file_io.h"
+
+namespace spire::simplify {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SimplifyTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("spire-simplify-" + std::to_string(getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  // A library of `shader` written to a file (the module's `using` needs one).
+  ShaderLibrary& load(const std::string& shader) {
+    source_ = dir_ / "s.spire";
+    std::ofstream(source_) << shader;
+    library_ = std::make_unique<ShaderLibrary>(frontEnd());
+    EXPECT_TRUE(library_->addFile(source_.string()));
+    EXPECT_TRUE(library_->compile());
+    return *library_;
+  }
+  // The repository's pipelines and stdlib, as spirec's -I would give them.
+  static FrontEndOptions frontEnd() {
+    FrontEndOptions options;
+    options.includeDirs = {SPIRE_SOURCE_DIR};
+    return options;
+  }
+  std::vector<Rewrite> rewritesOf(const std::string& shaderName, const std::string& component) {
+    const sem::Shader* shader = library_->model().findShader(shaderName);
+    const sem::Component& c = shader->components[shader->componentByName.at(component)];
+    return proposeRewrites(library_->model(), library_->sources(), *c.definitions.front().decl);
+  }
+
+  fs::path dir_;
+  fs::path source_;
+  std::unique_ptr<ShaderLibrary> library_;
+};
+
+constexpr const char* kShader = R"(using "pipelines/engine.spire";
+shader S using EnginePipeline {
+    @FrameUniform mat4 mvp;
+    @MaterialUniform vec3 tint;
+    @MaterialUniform float gain;
+    vec4 projPos = mvp * vec4(vert_pos, 1.0);
+    vec3 lit = tint * 0.5 + vec3(0.1);
+    vec3 typed = vec3(1.0) * gain;
+    float clamped = clamp(gain, 0.0, 1.0) * 2.0;
+    float summed {
+        float s = 0.0;
+        for (int i = 0; i < 4; i++) { s += gain; }
+        return s;
+    }
+    [Immutable] vec3 kept = tint * 0.5;
+    vec4 output = vec4(lit + typed + kept, clamped + summed);
+}
+)";
+
+TEST_F(SimplifyTest, RulesRewriteToExpressionsOfTheSameType) {
+  load(kShader);
+  std::vector<std::string> lit;
+  for (const Rewrite& r : rewritesOf("S", "lit")) lit.push_back(r.rule + ": " + r.before + " -> " + r.replacement);
+  EXPECT_EQ(lit, (std::vector<std::string>{"constant-operand: tint * 0.5 + vec3(0.1) -> (tint * 0.5)",
+                                           "constant-operand: tint * 0.5 -> (tint)"}));
+  // vec3(1.0) * gain is a vec3, gain a float: nothing of the same type to keep.
+  EXPECT_TRUE(rewritesOf("S", "typed").empty());
+  std::vector<std::string> clamped;
+  for (const Rewrite& r : rewritesOf("S", "clamped")) clamped.push_back(r.before + " -> " + r.replacement);
+  // The rewrite that removes more source comes first.
+  EXPECT_EQ(clamped, (std::vector<std::string>{"clamp(gain, 0.0, 1.0) -> (gain)",
+                                               "clamp(gain, 0.0, 1.0) * 2.0 -> (clamp(gain, 0.0, 1.0))"}));
+  const std::vector<Rewrite> loop = rewritesOf("S", "summed");
+  ASSERT_EQ(loop.size(), 1U);
+  EXPECT_EQ(loop[0].rule, "loop-iteration");
+  EXPECT_EQ(loop[0].before + " -> " + loop[0].replacement, "4 -> 3");
+}
+
+TEST_F(SimplifyTest, TheModuleCompilesAndItsVariationsAreChoicesWithTheirOwnKernels) {
+  ShaderLibrary& library = load(kShader);
+  SimplifyOptions options;
+  options.shader = "S";
+  options.outputPath = (dir_ / "out" / "s_simplified.spire").string();
+  options.frontEnd = frontEnd();
+  auto result = simplifyShader(library, options);
+  ASSERT_TRUE(result) << result.error().message;
+  EXPECT_TRUE(result->dropped.empty());
+  for (const Variation& v : result->variations) EXPECT_NE(v.component, "kept") << "[Immutable] is left alone";
+  EXPECT_NE(result->module.find("using \"../s.spire\";"), std::string::npos) << result->module;
+  EXPECT_NE(result->module.find("shader SSimplified : S {"), std::string::npos);
+  EXPECT_NE(result->module.find("vec3 lit:simplified1 = (tint * 0.5);"), std::string::npos) << result->module;
+
+  fs::create_directories(dir_ / "out");
+  ASSERT_TRUE(writeFileAtomically(options.outputPath, result->module));
+  ShaderLibrary simplified(frontEnd());
+  ASSERT_TRUE(simplified.addFile(options.outputPath));
+  ASSERT_TRUE(simplified.compile());
+  bool offered = false;
+  for (const graph::Choice& choice : simplified.choices("SSimplified")) {
+    for (const std::string& name : choice.names) offered = offered || name == "Fragment:simplified2";
+  }
+  EXPECT_TRUE(offered) << "a simplified variation is a choice like a written one";
+  auto plain = compileVariant(simplified, "SSimplified", Decisions{{{"lit", "Fragment"}}, {}}, {});
+  auto simpler = compileVariant(simplified, "SSimplified", Decisions{{{"lit", "Fragment:simplified2"}}, {}}, {});
+  ASSERT_TRUE(plain && simpler);
+  EXPECT_NE((*plain)->kernels.back().glsl, (*simpler)->kernels.back().glsl);
+}
+
+TEST_F(SimplifyTest, TheExamplesSimplifyDeterministically) {
+  for (const std::string example : {"terrain", "couch"}) {
+    ShaderLibrary library;
+    ASSERT_TRUE(library.addFile("examples/" + example + ".spire"));
+    ASSERT_TRUE(library.compile());
+    SimplifyOptions options;
+    options.shader = example == "terrain" ? "Terrain" : "Couch";
+    options.outputPath = (dir_ / (example + "_simplified.spire")).string();
+    auto first = simplifyShader(library, options);
+    auto second = simplifyShader(library, options);
+    ASSERT_TRUE(first && second) << (first ? second.error().message : first.error().message);
+    EXPECT_EQ(first->module, second->module);
+    EXPECT_GE(first->variations.size(), 4U) << example;
+    EXPECT_TRUE(first->dropped.empty()) << first->dropped.front();
+  }
+}
+
+TEST_F(SimplifyTest, TheToolWritesTheModuleAndRefusesWhatItCannotDo) {
+  load(kShader);
+  std::ostringstream out;
+  std::ostringstream err;
+  const std::string output = (dir_ / "m.spire").string();
+  ASSERT_EQ(runSimplifyTool({source_.string(), "-I", SPIRE_SOURCE_DIR, "--shader", "S", "-o", output}, out, err), 0)
+      << err.str();
+  EXPECT_NE(out.str().find("spire-simplify: wrote "), std::string::npos) << out.str();
+  EXPECT_TRUE(fs::exists(output));
+  std::ostringstream err2;
+  EXPECT_EQ(
+      runSimplifyTool({source_.string(), "-I", SPIRE_SOURCE_DIR, "--shader", "S", "--component", "kept", "-o", output},
+                      out, err2),
+      1);
+  EXPECT_EQ(err2.str(), "spire-simplify: error: 'kept' cannot be simplified: it is marked [Immutable]\n");
+  std::ostringstream err3;
+  EXPECT_EQ(runSimplifyTool({source_.string(), "-I", SPIRE_SOURCE_DIR, "--shader", "Nope", "-o", output}, out, err3),
+            1);
+  EXPECT_EQ(err3.str(), "spire-simplify: error: no shader named 'Nope'\n");
+  const fs::path broken = dir_ / "broken.spire";
+  std::ofstream(broken) << "shader X using Missing {}\n";
+  std::ostringstream err4;
+  EXPECT_EQ(runSimplifyTool({broken.string(), "--shader", "X", "-o", output}, out, err4), 1);
+  EXPECT_NE(err4.str().find("broken.spire:1:"), std::string::npos) << err4.str();
+}
+
+}  // namespace
+}  // namespace spire::simplify
