@@ -22,6 +22,7 @@ struct CliOptions {
   std::string decisions;
   std::string script;
   std::string log;
+  std::string tuneDir;
   engine::EngineOptions engine;
 };
 
@@ -42,6 +43,10 @@ void defineOptions(CLI::App& app, CliOptions& options) {
   app.add_option("--script", options.script,
                  "Run the actions of FILE instead of waiting for the user (docs/explorer.md, \"Scripts\")")
       ->type_name("FILE");
+  app.add_option("--tune-dir", options.tuneDir,
+                 "Show a spire-tune output directory of the same shader as a Pareto view whose points apply their "
+                 "decisions")
+      ->type_name("DIR");
   app.add_option("--log", options.log, "Write each change's timing to FILE as JSON")->type_name("FILE");
   app.add_option("--frames", options.explore.maxFrames, "Close the window after N frames")
       ->check(CLI::Range(uint64_t{1}, uint64_t{100000000}))
@@ -54,6 +59,7 @@ void resolvePaths(CliOptions& options) {
   if (!options.decisions.empty()) options.explore.decisions = options.decisions;
   if (!options.script.empty()) options.explore.script = options.script;
   if (!options.log.empty()) options.explore.log = options.log;
+  if (!options.tuneDir.empty()) options.explore.tuneDir = options.tuneDir;
 }
 
 }  // namespace

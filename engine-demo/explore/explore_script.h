@@ -14,6 +14,8 @@
 //   wait-reload                       until a saved source was read again (or failed to compile)
 //   screenshot FILE                   what the view shows at the fixed camera, as PNG
 //   screenshot-window FILE            the next frame as the window shows it, panels included
+//   load-tune DIR                     a spire-tune output directory, for the Pareto view
+//   apply-front K                     the decisions of the front's K-th point (from 0, fastest first)
 //   quit
 //
 // Each action that changes the decisions finishes when the new variant is on
@@ -42,14 +44,16 @@ enum class ActionKind {
   WaitReload,
   Screenshot,
   WindowShot,
+  LoadTune,
+  ApplyFront,
   Quit
 };
 
 struct ScriptAction {
   ActionKind kind = ActionKind::Quit;
-  std::string target;  // the choice (set, unset), file (load, save, screenshot) or view mode
+  std::string target;  // the choice (set, unset), file (load, save, screenshot), folder (load-tune) or view mode
   std::string value;   // the placement (set)
-  uint32_t count = 0;  // wait-frames, walk
+  uint32_t count = 0;  // wait-frames, walk, apply-front
   uint64_t seed = 0;   // walk
   SourceRange range;   // the whole line, for errors while running it
 };

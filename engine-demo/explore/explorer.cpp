@@ -17,6 +17,7 @@
 #include "explore/imgui_overlay.h"
 #include "explore/live_compiler.h"
 #include "explore/source_watch.h"
+#include "explore/tune_results.h"
 #include "explore/view_images.h"
 #include "graph/decision_file.h"
 #include "scene/texture.h"
@@ -102,6 +103,9 @@ class Explorer {
   };
   engine::Expected<FileDecisions> readDecisions(const fs::path& path);
   std::optional<int> loadScript();
+  // Reads a spire-tune output directory for the Pareto view, replacing any
+  // loaded before.
+  Expected<void, Failure> loadTune(const fs::path& dir);
   // Script: runs actions until one has to wait (a change, wait-frames) or the
   // script ends. False when the explorer should close.
   bool stepScript();
@@ -167,6 +171,7 @@ class Explorer {
   ViewMode view_ = ViewMode::Variant;
   uint64_t requests_ = 0;
   std::optional<ChangeRecord> pending_;
+  std::optional<TuneResults> tune_;
   std::optional<ChangeRecord> lastChange_;
   std::vector<ChangeRecord> changes_;
   std::string diagnostics_;
@@ -267,7 +272,20 @@ std::optional<int> Explorer::start() {
     }
     state_->clearHistory();
   }
+  if (options_.tuneDir) {
+    if (auto ok = loadTune(*options_.tuneDir); !ok) return run_.fail({ok.error().message, {}, {}});
+  }
   return std::nullopt;
+}
+
+Expected<void, Failure> Explorer::loadTune(const fs::path& dir) {
+  auto results = loadTuneResults(dir, shader_, *state_);
+  if (!results) return results.error();
+  tune_ = std::move(results).value();
+  out_ << fmt::format("spire-explore: {}: {} tuned variants, {} on the front\n", dir.string(), tune_->variants.size(),
+                      tune_->front.size())
+       << std::flush;
+  return {};
 }
 
 // The reference's frame time and image, the compile worker, and the
@@ -351,6 +369,14 @@ bool Explorer::changeAction(const ScriptAction& action) {
     case ActionKind::Undo:
       if (!state_->undo()) ok = Failure{"there is no change to undo"};
       break;
+    case ActionKind::ApplyFront:
+      if (!tune_) return scriptError(action, "no spire-tune output is loaded (--tune-dir DIR or load-tune DIR)");
+      if (action.count >= tune_->front.size()) {
+        return scriptError(
+            action, fmt::format("the front of '{}' has {} point(s), from 0", tune_->dir.string(), tune_->front.size()));
+      }
+      ok = state_->replace(tune_->variants[tune_->front[action.count]].decisions);
+      break;
     default: {
       auto placement = readDecisions(scriptRelative(action.target));
       if (!placement) return scriptError(action, placement.error().message + "\n" + placement.error().details);
@@ -383,6 +409,10 @@ bool Explorer::runAction(const ScriptAction& action) {
     case ActionKind::WindowShot: windowShot_ = scriptRelative(action.target); return true;
     case ActionKind::Screenshot: {
       auto ok = screenshot(scriptRelative(action.target));
+      return ok ? true : scriptError(action, ok.error().message);
+    }
+    case ActionKind::LoadTune: {
+      auto ok = loadTune(scriptRelative(action.target));
       return ok ? true : scriptError(action, ok.error().message);
     }
     case ActionKind::Quit: return false;
@@ -433,6 +463,12 @@ void Explorer::handleRequests(const PanelRequests& requests) {
           fmt::format("set {} = {}", requests.set->first, requests.set->second));
   if (requests.unset) apply(state_->unset(*requests.unset), "unset " + *requests.unset);
   if (requests.undo && state_->undo()) startChange("undo");
+  if (requests.applyTunePoint) {
+    // One change, as `load`: undo goes back to the decisions before it.
+    const TunedVariant& tuned = tune_->variants.at(*requests.applyTunePoint);
+    apply(state_->replace(tuned.decisions),
+          fmt::format("apply tuned variant {} ({})", tuned.index, decisionsText(tuned)));
+  }
   if (requests.reset) apply(state_->replace({}), "reset");
   if (requests.save) {
     auto ok = writeFileAtomically(options_.saveTo, state_->decisionFileText("written by spire-explore"));
@@ -613,6 +649,10 @@ PanelState Explorer::panelState() const {
   state.compiling = pending_.has_value();
   state.diagnostics = diagnostics_;
   state.decisionsPath = options_.saveTo;
+  if (tune_) {
+    state.tune = &*tune_;
+    state.tunedCurrent = matchingVariant(*tune_, state_->decisions());
+  }
   return state;
 }
 

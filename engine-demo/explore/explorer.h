@@ -4,7 +4,9 @@
 // the compiler's one compile entry point while the previous variant keeps
 // rendering, and the new variant's frame time, error against a reference and
 // NaN/Inf count appear as soon as it is on screen, with where the time of the
-// change went. A script drives the same loop for tests and benchmarks.
+// change went. A spire-tune output directory shows as a Pareto view whose
+// points apply their decisions. A script drives the same loop for tests and
+// benchmarks.
 #pragma once
 
 #include <cstdint>
@@ -28,8 +30,9 @@ struct ExploreOptions {
   std::optional<std::filesystem::path> decisions;
   std::string saveTo;  // where the Save button and `save` without a path write
   std::optional<std::filesystem::path> script;
-  std::optional<std::filesystem::path> log;  // each change's timing, as JSON
-  std::optional<uint64_t> maxFrames;         // close after this many frames
+  std::optional<std::filesystem::path> log;      // each change's timing, as JSON
+  std::optional<uint64_t> maxFrames;             // close after this many frames
+  std::optional<std::filesystem::path> tuneDir;  // a spire-tune output directory for the Pareto view
 };
 
 // Runs the explorer on `run`'s scene and renderer, presenting to `window`

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "explore/decision_state.h"
+#include "explore/tune_results.h"
 #include "measure/image_metrics.h"
 
 namespace spire::explore {
@@ -57,6 +58,9 @@ struct PanelRequests {
   bool save = false;
   bool load = false;
   std::optional<ViewMode> view;
+  // A tuned variant clicked in the Pareto view (an index into
+  // TuneResults::variants): its decisions replace the session's at once.
+  std::optional<size_t> applyTunePoint;
 };
 
 struct PanelState {
@@ -66,8 +70,10 @@ struct PanelState {
   const Metrics* metrics = nullptr;
   std::optional<ChangeRecord> lastChange;
   bool compiling = false;
-  std::string diagnostics;    // the last failure, rendered with file:line:col
-  std::string decisionsPath;  // where Save writes and Load reads
+  std::string diagnostics;             // the last failure, rendered with file:line:col
+  std::string decisionsPath;           // where Save writes and Load reads
+  const TuneResults* tune = nullptr;   // --tune-dir or load-tune; the Pareto view shows it
+  std::optional<size_t> tunedCurrent;  // the tuned variant with the session's decisions
 };
 
 }  // namespace spire::explore

@@ -5,6 +5,8 @@
 
 #include <array>
 
+#include "explore/pareto_panel.h"
+
 namespace spire::explore {
 namespace {
 
@@ -117,6 +119,7 @@ PanelRequests drawPanels(const PanelState& state) {
   drawChoices(state, requests);
   drawMetrics(state, requests);
   drawDiagnostics(state);
+  drawParetoPanel(state, requests);
   return requests;
 }
 

@@ -1,5 +1,5 @@
 // The explorer's Dear ImGui panels: choices, metrics with the last change's
-// timing, view modes and diagnostics. Drawing only: what the user clicks
+// timing, view modes, diagnostics and the Pareto view. Drawing only: what the user clicks
 // comes back as requests for the loop to carry out.
 #pragma once
 

@@ -123,6 +123,20 @@ std::string csvRow(const VariantResult& r) {
   return row;
 }
 
+Expected<std::vector<std::string>, Failure> readComponents(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  if (!in || !std::getline(in, line)) return Failure{fmt::format("cannot read '{}'", path.string())};
+  const std::vector<std::string> fields = splitCsv(line);
+  const size_t trailing = std::size(kTrailing);
+  const bool tail = fields.size() > trailing && std::equal(std::begin(kTrailing), std::end(kTrailing),
+                                                           fields.end() - static_cast<std::ptrdiff_t>(trailing));
+  if (fields.empty() || fields.front() != "index" || !tail) {
+    return Failure{fmt::format("{}: not a spire-tune table (its header is not the tuner's)", path.string())};
+  }
+  return std::vector<std::string>(fields.begin() + 1, fields.end() - static_cast<std::ptrdiff_t>(trailing));
+}
+
 Expected<std::vector<VariantResult>, Failure> readResults(const std::filesystem::path& path,
                                                           const std::vector<std::string>& components) {
   std::ifstream in(path);

@@ -59,6 +59,11 @@ std::string quoteCsv(const std::string& field);
 std::string csvHeader(const std::vector<std::string>& components);
 std::string csvRow(const VariantResult& result);
 
+// The explored components a table at `path` was written with, from its
+// header, so a reader that did not run the tuner (spire-explore --tune-dir)
+// can read its rows; an error when the file is missing or not such a table.
+Expected<std::vector<std::string>, Failure> readComponents(const std::filesystem::path& path);
+
 // Reads rows written with the same components; rows of another run (a
 // different header) are an error, as is a malformed row.
 Expected<std::vector<VariantResult>, Failure> readResults(const std::filesystem::path& path,

@@ -35,7 +35,7 @@ ALLOWED = {
     "tool": {"support", "driver", "renderer", "vk", "scene", "measure", "lod"},
     "tune": {"support", "graph", "driver", "renderer", "tool", "vk", "scene", "measure", "lod"},
     "demo": {"support", "driver", "renderer", "tool", "vk", "scene", "measure", "lod"},
-    "explore": {"support", "graph", "driver", "renderer", "tool", "vk", "scene", "measure", "lod", "demo"},
+    "explore": {"support", "graph", "driver", "renderer", "tool", "vk", "scene", "measure", "lod", "demo", "tune"},
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/')

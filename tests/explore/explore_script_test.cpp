@@ -27,9 +27,10 @@ TEST(ExploreScript, ParsesEveryAction) {
         "# a comment\n"
         "set Terrain.albedo = PrebakeTex   // trailing comment\n"
         "unset albedo\nreset\nload a.decisions\nsave b.decisions\nundo\nview split\n"
-        "wait-frames 12\nwait-reload\nscreenshot x.png\nscreenshot-window y.png\nwalk 30 7\n\n   quit\n");
+        "wait-frames 12\nwait-reload\nscreenshot x.png\nscreenshot-window y.png\nwalk 30 7\n"
+        "load-tune tuned\napply-front 0\n\n   quit\n");
   ASSERT_FALSE(p.diags.hasErrors()) << renderDiagnostics(p.sources, p.diags, DiagnosticFormat::Text);
-  ASSERT_EQ(p.actions.size(), 13U);
+  ASSERT_EQ(p.actions.size(), 15U);
   EXPECT_EQ(p.actions[0].kind, ActionKind::Set);
   EXPECT_EQ(p.actions[0].target, "Terrain.albedo");
   EXPECT_EQ(p.actions[0].value, "PrebakeTex");
@@ -43,8 +44,12 @@ TEST(ExploreScript, ParsesEveryAction) {
   EXPECT_EQ(p.actions[11].kind, ActionKind::Walk);
   EXPECT_EQ(p.actions[11].count, 30U);
   EXPECT_EQ(p.actions[11].seed, 7U);
-  EXPECT_EQ(p.actions[12].kind, ActionKind::Quit);
-  EXPECT_EQ(p.sources.begin(p.actions[12].range).column, 4U);
+  EXPECT_EQ(p.actions[12].kind, ActionKind::LoadTune);
+  EXPECT_EQ(p.actions[12].target, "tuned");
+  EXPECT_EQ(p.actions[13].kind, ActionKind::ApplyFront);
+  EXPECT_EQ(p.actions[13].count, 0U);
+  EXPECT_EQ(p.actions[14].kind, ActionKind::Quit);
+  EXPECT_EQ(p.sources.begin(p.actions[14].range).column, 4U);
 }
 
 TEST(ExploreScript, EveryMalformedLineIsAnErrorAtItsPlace) {
@@ -55,6 +60,7 @@ TEST(ExploreScript, EveryMalformedLineIsAnErrorAtItsPlace) {
         "view sideways\n"
         "explode now\n"
         "undo twice\n"
+        "apply-front first\n"
         "set albedo = Fragment\n");
   EXPECT_TRUE(p.actions.empty()) << "a script with errors runs nothing";
   EXPECT_EQ(
@@ -69,13 +75,16 @@ TEST(ExploreScript, EveryMalformedLineIsAnErrorAtItsPlace) {
       " 3 | view sideways\n"
       "   |      ^~~~~~~~\n"
       "s.explore:4:1: error[E7201]: unknown action 'explode' (actions: set, unset, reset, load, save, undo, walk, "
-      "view, wait-frames, wait-reload, screenshot, screenshot-window, quit)\n"
+      "view, wait-frames, wait-reload, screenshot, screenshot-window, load-tune, apply-front, quit)\n"
       " 4 | explode now\n"
       "   | ^~~~~~~\n"
       "s.explore:5:6: error[E7201]: 'undo' takes nothing after it\n"
       " 5 | undo twice\n"
       "   |      ^~~~~\n"
-      "5 errors generated.\n");
+      "s.explore:6:13: error[E7201]: expected a front point from 0 (the fastest) to 100000\n"
+      " 6 | apply-front first\n"
+      "   |             ^~~~~\n"
+      "6 errors generated.\n");
 }
 
 }  // namespace

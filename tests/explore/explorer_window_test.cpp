@@ -18,6 +18,7 @@
 
 #include <unistd.h>
 
+#include "common/have_display.h"
 #include "demo/demo.h"
 #include "explore/explore_cli.h"
 #include "scene/texture.h"
@@ -28,13 +29,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool haveDisplay() {
-  for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY"}) {
-    const char* value = std::getenv(name);
-    if (value != nullptr && value[0] != '\0') return true;
-  }
-  return false;
-}
+using spire::testing::haveDisplay;
 
 class ExplorerWindowTest : public ::testing::Test {
  protected:
@@ -182,7 +177,8 @@ TEST(ExploreCli, NeedsASceneAndDocumentsItsFlags) {
   EXPECT_NE(err.str().find("a scene file is required"), std::string::npos) << err.str();
   std::ostringstream help;
   EXPECT_EQ(runExploreTool({"--help"}, help, err), 0);
-  for (const char* flag : {"--script", "--log", "--reference", "--decisions", "--instance", "--save-to"}) {
+  for (const char* flag :
+       {"--script", "--log", "--reference", "--decisions", "--instance", "--save-to", "--tune-dir"}) {
     EXPECT_NE(help.str().find(flag), std::string::npos) << flag;
   }
 }
