@@ -8,6 +8,7 @@
 
 #include "driver/compiler.h"
 #include "driver/shader_library.h"
+#include "driver/spirec_batch.h"
 #include "driver/tool_arguments.h"
 #include "graph/decision_file.h"
 #include "reflection/reflection_json.h"
@@ -264,13 +265,19 @@ int finish(ShaderLibrary& library, const Options& options, const SpirecOutput& r
   return kExitSuccess;
 }
 
-}  // namespace
-
-int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
-              const SpirecEnvironment& environment) {
+// One spirec run: a command line, or one line of a batch file.
+int runSpirecJob(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+                 const SpirecEnvironment& environment) {
   CLI::App app{"spirec: the Spire shader compiler", "spirec"};
   Options options;
   CLI::Option* choices = addOptions(app, options);
+  // Only here for --help: batch mode is recognised before parsing, since its
+  // FILE replaces the otherwise required sources.
+  std::string batchFile;
+  app.add_option("--batch", batchFile,
+                 "Run each line of FILE as a separate spirec run (its arguments; '#' comments, \"...\" and '...' "
+                 "quoting, \\ escapes: docs/integration.md) in this one process; takes no other arguments")
+      ->type_name("FILE");
   if (!environment.libraryDir.empty()) {
     app.footer("'using' files found neither next to their includer nor under -I are searched in the Spire library, " +
                environment.libraryDir + " (stdlib/, pipelines/).");
@@ -312,6 +319,15 @@ int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostr
   }
   if (!diags.hasErrors() && options.choices) result.choices = graph::writeChoiceFile(spaces);
   return finish(library, options, result, out, err);
+}
+
+}  // namespace
+
+int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
+              const SpirecEnvironment& environment) {
+  if (const auto batch = batchFileArgument(args)) return runSpirecBatch(*batch, runSpirecJob, out, err, environment);
+  if (batchMisuse(args)) return usageError("spirec", "--batch takes one FILE and no other arguments", err);
+  return runSpirecJob(args, out, err, environment);
 }
 
 }  // namespace spire
