@@ -1,5 +1,7 @@
 #include "driver/compiler.h"
 
+#include "driver/spirv_cache.h"
+
 #include <fmt/format.h>
 
 #include <cstring>
@@ -45,11 +47,19 @@ std::string saveRejected(const codegen::Kernel& kernel, const std::string& root,
 // generated code is a compiler bug: an internal error against the shader.
 bool compileKernel(const codegen::Kernel& generated, const sem::Shader& shader, const CompileOptions& options,
                    const std::string& directory, CompiledKernel& kernel, DiagnosticList& diags) {
-  const codegen::SpirvResult spirv =
-      codegen::compileGlslToSpirv(generated.stage, generated.glsl, generated.reflection.glslFile);
+  const std::string& name = generated.reflection.glslFile;
+  SpirvCache* cache = options.spirvCache;
+  if (cache != nullptr) {
+    if (auto words = cache->find(generated.stage, name, generated.glsl)) {
+      kernel.spirv = std::move(*words);
+      return true;
+    }
+  }
+  const codegen::SpirvResult spirv = codegen::compileGlslToSpirv(generated.stage, generated.glsl, name);
   const Expected<void, Failure> valid = spirv.ok() ? codegen::validateSpirv(spirv.words) : Failure{spirv.log};
   if (valid) {
     kernel.spirv = spirv.words;
+    if (cache != nullptr) cache->add(generated.stage, name, generated.glsl, spirv.words);
     return true;
   }
   diags

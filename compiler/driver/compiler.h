@@ -20,6 +20,8 @@
 
 namespace spire {
 
+class SpirvCache;
+
 struct CompileOptions {
   // Compile each kernel to SPIR-V and validate it. Off, only GLSL is made:
   // glslang's start-up costs more than the rest of a spirec run.
@@ -36,6 +38,9 @@ struct CompileOptions {
   // go NaN or Inf (reflection::HazardRecord): for diagnosis only, since the
   // checks change what the kernels cost.
   bool instrumentHazards = false;
+  // SPIR-V made earlier in this process (spirec --batch), consulted and
+  // filled when `spirv` is on; null: every kernel goes through glslang.
+  SpirvCache* spirvCache = nullptr;
 };
 
 struct CompiledKernel {

@@ -40,6 +40,7 @@ struct Options {
   bool quiet = false;
   std::string depfile;
   std::string depfileTarget;
+  SpirvCache* spirvCache = nullptr;  // SpirecEnvironment's
 };
 
 // An empty path or name is a slip (`-o "$OUT"` with OUT unset), never what
@@ -90,6 +91,7 @@ bool buildVariantOutputs(ShaderLibrary& library, const graph::ChoiceSpace& space
     compileOptions.spirv = options.emit != "glsl";
     compileOptions.saveRejectedTo = options.outputDir;
     compileOptions.instrumentHazards = options.instrumentHazards;
+    compileOptions.spirvCache = options.spirvCache;
     const CompiledVariantPtr compiled = compileVariant(library, *variant, compileOptions, stageDiags);
     if (compiled) files = variantFiles(*compiled, options);
     return compiled != nullptr;
@@ -284,6 +286,7 @@ int runSpirecJob(const std::vector<std::string>& args, std::ostream& out, std::o
   }
   if (const auto status = parseToolArguments(app, args, out, err)) return *status;
   options.choices = choices->count() > 0;
+  options.spirvCache = environment.spirvCache;
   options.warningsAsErrors |= !options.warningFlags.empty();
   if (!options.depfile.empty() && options.depfileTarget.empty()) {
     options.depfileTarget = defaultDepfileTarget(options);

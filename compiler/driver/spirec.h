@@ -10,12 +10,17 @@
 
 namespace spire {
 
+class SpirvCache;
+
 // What spirec takes from its process rather than its arguments.
 struct SpirecEnvironment {
   // The Spire library (driver/library_location.h), searched for `using`
   // files after every -I directory; empty: none. The executable passes its
   // own; in-process callers (tests) choose.
   std::string libraryDir;
+  // SPIR-V made by earlier runs in this process (spirec --batch); null:
+  // none. Never changes what a run writes, only whether glslang runs.
+  SpirvCache* spirvCache = nullptr;
 };
 
 // Runs spirec with `args` (without the program name). Results go to `out`,

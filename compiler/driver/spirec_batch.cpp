@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "driver/batch_file.h"
+#include "driver/spirv_cache.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
 
@@ -44,6 +45,10 @@ int runSpirecBatch(const std::string& path, SpirecJobRunner runJob, std::ostream
     err << renderDiagnostics(sources, diags, DiagnosticFormat::Text);
     return kExitInputError;
   }
+  // Variants of one shader in different jobs often share kernels.
+  SpirvCache cache;
+  SpirecEnvironment jobEnvironment = environment;
+  jobEnvironment.spirvCache = &cache;
   int worst = kExitSuccess;
   for (size_t i = 0; i < jobs.size(); ++i) {
     const BatchJob& job = jobs[i];
@@ -52,7 +57,7 @@ int runSpirecBatch(const std::string& path, SpirecJobRunner runJob, std::ostream
     if (std::ranges::any_of(job.args, namesBatch)) {
       jobErr << "spirec: error: --batch cannot be used inside a batch file\n";
     } else {
-      status = runJob(job.args, out, jobErr, environment);
+      status = runJob(job.args, out, jobErr, jobEnvironment);
     }
     const std::string diagnostics = std::move(jobErr).str();
     if (status != kExitSuccess || !diagnostics.empty()) {

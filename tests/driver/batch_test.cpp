@@ -84,6 +84,8 @@ TEST_F(Batch, JobsMatchSeparateRunsByteForByte) {
       {path("plain.spire"), "-o", path("out3"), "--emit", "spirv", "--depfile", path("plain.d"), "--depfile-target",
        "plain.stamp"},
       {path("lit.spire"), path("plain.spire"), "--choices", "--shader", "Plain"},
+      // The kernels of job 1 again: SPIR-V from the batch's cache.
+      {path("lit.spire"), "-o", path("out4")},
   };
   std::string expectedOut, expectedErr;
   for (size_t i = 0; i < jobs.size(); ++i) {
@@ -98,12 +100,12 @@ TEST_F(Batch, JobsMatchSeparateRunsByteForByte) {
   ASSERT_GE(separate.size(), 8u);
   removeOutputs();
 
-  const std::string batch =
-      writeBatch("# every kind of job\n\n" + quoted("lit.spire") + " -o " + quoted("out1") + " --depfile " +
-                 quoted("lit.d") + "\n" + quoted("lit.spire") + " --decisions " + quoted("lit.decisions") + " -o " +
-                 quoted("out2") + " --emit=glsl  # W5001\n" + quoted("plain.spire") + " -o " + quoted("out3") +
-                 " --emit spirv --depfile " + quoted("plain.d") + " --depfile-target plain.stamp\n" +
-                 quoted("lit.spire") + " " + quoted("plain.spire") + " --choices --shader 'Plain'\n");
+  const std::string batch = writeBatch(
+      "# every kind of job\n\n" + quoted("lit.spire") + " -o " + quoted("out1") + " --depfile " + quoted("lit.d") +
+      "\n" + quoted("lit.spire") + " --decisions " + quoted("lit.decisions") + " -o " + quoted("out2") +
+      " --emit=glsl  # W5001\n" + quoted("plain.spire") + " -o " + quoted("out3") + " --emit spirv --depfile " +
+      quoted("plain.d") + " --depfile-target plain.stamp\n" + quoted("lit.spire") + " " + quoted("plain.spire") +
+      " --choices --shader 'Plain'\n" + quoted("lit.spire") + " -o " + quoted("out4") + "\n");
   const SpirecRun batched = run({"--batch", batch});
   EXPECT_EQ(batched.exitCode, kExitSuccess) << batched.err;
   EXPECT_EQ(batched.out, expectedOut);
