@@ -20,6 +20,7 @@
 
 #include <unistd.h>
 
+#include "common/scoped_env.h"
 #include "demo/camera_path.h"
 #include "demo/demo.h"
 #include "demo/glfw_window.h"
@@ -35,28 +36,7 @@ namespace {
 namespace fs = std::filesystem;
 using vk::testing::DeviceTest;
 
-// Sets (or with std::nullopt unsets) an environment variable for the scope.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const std::optional<std::string>& value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    apply(value);
-  }
-  ~ScopedEnv() { apply(old_); }
-  ScopedEnv(const ScopedEnv&) = delete;
-  ScopedEnv& operator=(const ScopedEnv&) = delete;
-
- private:
-  void apply(const std::optional<std::string>& value) {
-    if (value) {
-      setenv(name_, value->c_str(), 1);
-    } else {
-      unsetenv(name_);
-    }
-  }
-  const char* name_;
-  std::optional<std::string> old_;
-};
+using spire::testing::ScopedEnv;
 
 // SAMPLED only because vk::Image always makes a view, which transfers alone
 // do not allow.

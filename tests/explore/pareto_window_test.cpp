@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "common/have_display.h"
+#include "engine/device_fixture.h"
 #include "explore/explore_cli.h"
 #include "graph/decision_file.h"
 #include "support/diagnostic.h"
@@ -31,10 +32,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class ParetoWindowTest : public ::testing::Test {
+// A device test (engine/device_fixture.h), as explorer_window_test.cpp says why.
+class ParetoWindowTest : public vk::testing::DeviceTest {
  protected:
   // One tuning run for the suite: it takes most of the time.
   static void SetUpTestSuite() {
+    DeviceTest::SetUpTestSuite();
     if (!spire::testing::haveDisplay()) return;
     tuneDir_ = new fs::path(fs::temp_directory_path() / ("spire-explore-tune-" + std::to_string(getpid())));
     fs::remove_all(*tuneDir_);
@@ -50,8 +53,11 @@ class ParetoWindowTest : public ::testing::Test {
     if (tuneDir_ != nullptr) fs::remove_all(*tuneDir_);
     delete tuneDir_;
     tuneDir_ = nullptr;
+    DeviceTest::TearDownTestSuite();
   }
   void SetUp() override {
+    DeviceTest::SetUp();
+    if (IsSkipped() || HasFatalFailure()) return;
     if (!spire::testing::haveDisplay()) GTEST_SKIP() << "no display (run under xvfb-run to cover this)";
     ASSERT_EQ(tuneStatus_, 0) << "spire-tune failed";
     dir_ = fs::temp_directory_path() / ("spire-explore-pareto-" + std::to_string(getpid()) + "-" +
