@@ -204,13 +204,6 @@ std::optional<int> prepareVariants(engine::ToolRun& run, const std::vector<Varia
   return std::nullopt;
 }
 
-// RGBA8 with alpha 255: the shader's alpha is rarely meant as transparency,
-// and viewers show a translucent image washed out.
-scene::Image opaque(scene::Image image) {
-  for (size_t i = 3; i < image.bytes.size(); i += 4) image.bytes[i] = 255;
-  return image;
-}
-
 // Every variant is compiled, baked and warmed up before any is timed, and
 // the measured frames then alternate between variants, so that no variant
 // is timed under different conditions (a cold renderer, load-time work)
@@ -244,7 +237,7 @@ std::optional<int> captureViews(const Options& options, engine::ToolRun& run,
       result.views.push_back(std::move(capture).value());
     }
     result.image = measure::toRgba8(result.views.front().color);
-    if (!options.keepAlpha) result.image = opaque(std::move(result.image));
+    if (!options.keepAlpha) result.image = measure::opaque(std::move(result.image));
     out << fmt::format("{}: {:.3f} ms/frame (median of {}), first frame {:.1f} ms, bakes: {}\n", result.name,
                        result.stats.medianGpuMs, plan.measured, result.stats.firstFrameMs, bakeSummary(result.bakes));
   }

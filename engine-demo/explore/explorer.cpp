@@ -5,8 +5,10 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <memory>
 #include <random>
+#include <span>
 
 #include "demo/camera_path.h"
 #include "driver/exit_codes.h"
@@ -20,10 +22,10 @@
 #include "explore/tune_results.h"
 #include "explore/view_images.h"
 #include "graph/decision_file.h"
+#include "renderer/gpu_resources.h"
 #include "scene/texture.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
-#include "vk/buffer.h"
 #include "vk/frame_blit.h"
 #include "vk/swapchain.h"
 #include "vk/timer.h"
@@ -579,24 +581,16 @@ engine::Expected<void> Explorer::updateStaticImage() {
   staticPixels_ = view_ == ViewMode::Error     ? errorHeatMap(ref, var, captures_.coverage, kHeatScale)
                   : view_ == ViewMode::Hazards ? hazardMask(var)
                                                : splitImage(ref, var);
-  const vk::Context& ctx = renderer_.context();
-  const VkDeviceSize bytes = staticPixels_.rgba.size() * sizeof(float);
-  if (bytes != staticImage_->byteSize()) return engine::Error{"the view's image does not match the frame's size"};
-  auto staging = vk::Buffer::create(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-  if (!staging) return engine::Error::fromVk(staging.error());
-  if (auto ok = staging->upload(staticPixels_.rgba.data(), bytes); !ok) return engine::Error::fromVk(ok.error());
-  vk::Expected<void> copied;
-  auto ok = ctx.submitAndWait([&](VkCommandBuffer cmd) { copied = staticImage_->copyFromBuffer(cmd, *staging); });
-  if (!ok) return engine::Error::fromVk(ok.error());
-  if (!copied) return engine::Error::fromVk(copied.error());
-  return {};
+  const auto bytes = std::as_bytes(std::span(staticPixels_.rgba));
+  if (bytes.size() != staticImage_->byteSize())
+    return engine::Error{"the view's image does not match the frame's size"};
+  // Left as a transfer source: each frame copies it for the panels.
+  return engine::writeImage(renderer_.context(), *staticImage_, bytes, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
 }
 
 engine::Expected<void> writeOpaquePng(const fs::path& path, const measure::FloatImage& image) {
-  scene::Image rgba = measure::toRgba8(image);
   // Opaque, as spire-demo writes its images.
-  for (size_t i = 3; i < rgba.bytes.size(); i += 4) rgba.bytes[i] = 255;
-  auto ok = scene::writePng(path, rgba);
+  auto ok = scene::writePng(path, measure::opaque(measure::toRgba8(image)));
   if (!ok) return engine::Error{ok.error()};
   return {};
 }
@@ -614,17 +608,11 @@ vk::Image& Explorer::shownImage() {
 
 engine::Expected<void> Explorer::windowScreenshot(const fs::path& path) {
   vk::Image& shown = shownImage();
-  const vk::Context& ctx = renderer_.context();
-  auto buffer = vk::Buffer::create(ctx, shown.byteSize(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-  if (!buffer) return engine::Error::fromVk(buffer.error());
-  vk::Expected<void> copied;
-  if (auto ok = ctx.submitAndWait([&](VkCommandBuffer cmd) { copied = shown.copyToBuffer(cmd, *buffer); }); !ok) {
-    return engine::Error::fromVk(ok.error());
-  }
-  if (!copied) return engine::Error::fromVk(copied.error());
+  auto bytes = engine::readImage(renderer_.context(), shown);
+  if (!bytes) return bytes.error();
   measure::FloatImage image{shown.extent().width, shown.extent().height,
-                            std::vector<float>(static_cast<size_t>(shown.byteSize() / sizeof(float)))};
-  if (auto ok = buffer->readback(image.rgba.data(), shown.byteSize()); !ok) return engine::Error::fromVk(ok.error());
+                            std::vector<float>(bytes->size() / sizeof(float))};
+  std::memcpy(image.rgba.data(), bytes->data(), bytes->size());
   return writeOpaquePng(path, image);
 }
 

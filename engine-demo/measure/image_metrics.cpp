@@ -104,6 +104,11 @@ uint64_t nonFinitePixels(const FloatImage& image) {
   return count;
 }
 
+scene::Image opaque(scene::Image image) {
+  for (size_t i = 3; i < image.bytes.size(); i += 4) image.bytes[i] = 255;
+  return image;
+}
+
 scene::Image toRgba8(const FloatImage& image) {
   scene::Image out;
   if (!consistent(image)) return out;

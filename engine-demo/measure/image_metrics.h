@@ -71,4 +71,8 @@ uint64_t nonFinitePixels(const FloatImage& image);
 // An image whose pixel array does not match its size converts to an empty one.
 scene::Image toRgba8(const FloatImage& image);
 
+// `image` with alpha 255: the shader's alpha is rarely meant as
+// transparency, and viewers show a translucent image washed out.
+scene::Image opaque(scene::Image image);
+
 }  // namespace spire::measure

@@ -67,20 +67,27 @@ Expected<vk::Image> uploadImage(const vk::Context& ctx, uint32_t width, uint32_t
   desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   auto image = vk::Image::create(ctx, desc);
   if (!image) return Error::fromVk(image.error());
+  if (auto written = writeImage(ctx, *image, bytes, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL); !written) {
+    return written.error();
+  }
+  return std::move(image).value();
+}
+
+Expected<void> writeImage(const vk::Context& ctx, vk::Image& image, std::span<const std::byte> bytes,
+                          VkImageLayout finalLayout) {
   auto staging = vk::Buffer::create(ctx, std::max<VkDeviceSize>(bytes.size(), 1), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   if (!staging) return Error::fromVk(staging.error());
   if (auto uploaded = staging->upload(bytes.data(), bytes.size()); !uploaded) return Error::fromVk(uploaded.error());
   Expected<void> copied;
   auto submitted = ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    if (auto result = image->copyFromBuffer(cmd, *staging); !result) {
+    if (auto result = image.copyFromBuffer(cmd, *staging); !result) {
       copied = Error::fromVk(result.error());
       return;
     }
-    image->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    image.transition(cmd, finalLayout);
   });
   if (!submitted) return Error::fromVk(submitted.error());
-  if (!copied) return copied.error();
-  return std::move(image).value();
+  return copied;
 }
 
 Expected<std::vector<std::byte>> readImage(const vk::Context& ctx, vk::Image& image) {

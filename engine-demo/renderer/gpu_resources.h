@@ -45,6 +45,11 @@ Expected<vk::Image> uploadImage(const vk::Context& ctx, uint32_t width, uint32_t
 
 // Reads a whole image (with TRANSFER_SRC usage) into host memory, tightly
 // packed, rows top to bottom.
+// Replaces the whole of `image` with `bytes` (byteSize() of them, tightly
+// packed) and leaves it in `finalLayout`.
+Expected<void> writeImage(const vk::Context& ctx, vk::Image& image, std::span<const std::byte> bytes,
+                          VkImageLayout finalLayout);
+
 Expected<std::vector<std::byte>> readImage(const vk::Context& ctx, vk::Image& image);
 
 // 1 for each D32 texel that a draw wrote (depth < 1 after clearing to 1), else 0.
