@@ -123,6 +123,33 @@ std::string csvRow(const VariantResult& r) {
   return row;
 }
 
+namespace {
+
+// The columns an older spire-tune's table lacks: its header ends with a
+// proper prefix of today's trailing columns (each version added columns at
+// the end). Empty when the header is not such a table.
+std::vector<std::string> missingTrailing(const std::vector<std::string>& fields) {
+  for (size_t kept = std::size(kTrailing) - 1; kept > 0; --kept) {
+    if (fields.size() <= kept || fields.front() != "index") continue;
+    if (std::equal(std::begin(kTrailing), std::begin(kTrailing) + static_cast<std::ptrdiff_t>(kept),
+                   fields.end() - static_cast<std::ptrdiff_t>(kept))) {
+      return std::vector<std::string>(std::begin(kTrailing) + static_cast<std::ptrdiff_t>(kept), std::end(kTrailing));
+    }
+  }
+  return {};
+}
+
+// An older table's measurements were taken and recorded differently (the
+// columns it lacks are what changed), so it is named, never mixed in.
+Failure olderTable(const std::filesystem::path& path, const std::vector<std::string>& missing) {
+  return Failure{fmt::format(
+      "{}: written by an older spire-tune (it has no column {}); its rows cannot be resumed: remove it or choose "
+      "another output directory",
+      path.string(), fmt::join(missing, ", "))};
+}
+
+}  // namespace
+
 Expected<std::vector<std::string>, Failure> readComponents(const std::filesystem::path& path) {
   std::ifstream in(path);
   std::string line;
@@ -131,6 +158,7 @@ Expected<std::vector<std::string>, Failure> readComponents(const std::filesystem
   const size_t trailing = std::size(kTrailing);
   const bool tail = fields.size() > trailing && std::equal(std::begin(kTrailing), std::end(kTrailing),
                                                            fields.end() - static_cast<std::ptrdiff_t>(trailing));
+  if (!tail && !missingTrailing(fields).empty()) return olderTable(path, missingTrailing(fields));
   if (fields.empty() || fields.front() != "index" || !tail) {
     return Failure{fmt::format("{}: not a spire-tune table (its header is not the tuner's)", path.string())};
   }
@@ -145,6 +173,8 @@ Expected<std::vector<VariantResult>, Failure> readResults(const std::filesystem:
   std::string line;
   if (!std::getline(in, line)) return results;
   if (line + "\n" != csvHeader(components)) {
+    const std::vector<std::string> missing = missingTrailing(splitCsv(line));
+    if (!missing.empty()) return olderTable(path, missing);
     return Failure{fmt::format(
         "{}: written by a run over other components; remove it or choose another output directory", path.string())};
   }

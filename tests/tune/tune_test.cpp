@@ -209,6 +209,27 @@ TEST(ResultsCsv, RoundTripsAndRejectsOtherRuns) {
   fs::remove(path);
 }
 
+// A table from an older spire-tune, which had fewer trailing columns, is
+// named as such rather than as a run over other components, and its rows are
+// never mixed with new ones.
+TEST(ResultsCsv, NamesATableFromAnOlderTuner) {
+  const fs::path path = fs::temp_directory_path() / ("spire_tune_old_csv_" + std::to_string(::getpid()) + ".csv");
+  {
+    std::string header = csvHeader({"albedo"});
+    header.erase(header.rfind(",hazard_causes"));  // the table before hazard causes and samples
+    std::ofstream(path) << header << "\n0,Fragment,ok\n";
+  }
+  const auto rows = readResults(path, {"albedo"});
+  ASSERT_FALSE(rows);
+  EXPECT_NE(rows.error().message.find("written by an older spire-tune"), std::string::npos) << rows.error().message;
+  EXPECT_NE(rows.error().message.find("hazard_causes, hazard_samples"), std::string::npos) << rows.error().message;
+  const auto components = readComponents(path);
+  ASSERT_FALSE(components);
+  EXPECT_NE(components.error().message.find("written by an older spire-tune"), std::string::npos)
+      << components.error().message;
+  fs::remove(path);
+}
+
 // Two workers' queues over one file take every chunk exactly once, in order.
 TEST(WorkQueue, HandsOutEveryChunkOnceThenStops) {
   const fs::path path = fs::temp_directory_path() / ("spire_work_queue_" + std::to_string(::getpid()));
