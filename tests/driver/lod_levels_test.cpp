@@ -2,10 +2,17 @@
 // the Spire paper's section 7.2) with the four materials of
 // examples/lod_materials.spire: the locked levels LodMQ and LodLQ give every
 // material the same Vertex and Fragment kernels (equal keys), so an engine
-// can batch them; LodHQ gives each material kernels of its own.
+// can batch them; LodHQ gives each material kernels of its own. The locks,
+// not world annotations, are what place the materials' components in the
+// bakes: the same sources without them give each material kernels of its own.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <filesystem>
+#include <fstream>
 #include <map>
+#include <regex>
+#include <sstream>
 
 #include "driver/compiler.h"
 #include "driver/shader_library.h"
@@ -20,11 +27,19 @@ const std::vector<std::string> kLevels = {"LodHQ", "LodMQ", "LodLQ"};
 // material -> level -> world -> key.
 using Keys = std::map<std::string, std::map<std::string, std::map<std::string, std::string>>>;
 
-Keys compileAll() {
-  ShaderLibrary library;
-  EXPECT_TRUE(library.addFile(std::string(SPIRE_SOURCE_DIR) + "/examples/lod_materials.spire"));
-  EXPECT_TRUE(library.compile()) << renderDiagnostics(library.sources(), library.diagnostics(), DiagnosticFormat::Text);
+// material -> level -> component -> world, for the group's components.
+using Placements = std::map<std::string, std::map<std::string, std::map<std::string, std::string>>>;
+
+struct Compiled {
   Keys keys;
+  Placements placements;
+};
+
+Compiled compileAll(const std::string& materialsFile) {
+  ShaderLibrary library;
+  EXPECT_TRUE(library.addFile(materialsFile));
+  EXPECT_TRUE(library.compile()) << renderDiagnostics(library.sources(), library.diagnostics(), DiagnosticFormat::Text);
+  Compiled all;
   for (const std::string& material : kMaterials) {
     for (const std::string& level : kLevels) {
       const std::string shader = material + "<" + level + ">";
@@ -33,16 +48,39 @@ Keys compileAll() {
       EXPECT_TRUE(compiled) << shader << ": " << (compiled ? "" : compiled.error().message);
       if (!compiled) continue;
       for (const reflection::Kernel& kernel : (*compiled)->reflection.kernels) {
-        keys[material][level][kernel.world] = kernel.key;
+        all.keys[material][level][kernel.world] = kernel.key;
+      }
+      for (const auto& [component, world] : (*compiled)->reflection.placement) {
+        all.placements[material][level][component] = world;
       }
     }
   }
-  return keys;
+  return all;
 }
 
 const Keys& keys() {
-  static const Keys all = compileAll();
+  static const Keys all = compileAll(std::string(SPIRE_SOURCE_DIR) + "/examples/lod_materials.spire").keys;
   return all;
+}
+
+// The library's sources copied with their layout (they reach each other by
+// relative paths), every `finalizes` clause of lod_levels.spire deleted.
+std::filesystem::path unlockedCopy() {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() / ("spire_lod_unlocked_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root);
+  for (const char* folder : {"examples", "pipelines", "stdlib"}) {
+    fs::copy(fs::path(SPIRE_SOURCE_DIR) / folder, root / folder, fs::copy_options::recursive);
+  }
+  const fs::path levels = root / "examples" / "lod_levels.spire";
+  std::stringstream text;
+  text << std::ifstream(levels).rdbuf();
+  const std::string locked = text.str();
+  const std::string unlocked = std::regex_replace(locked, std::regex(R"(\n\s*finalizes [A-Za-z, ]+\n)"), "\n");
+  EXPECT_NE(unlocked, locked) << "no lock found to delete";
+  std::ofstream(levels, std::ios::binary | std::ios::trunc) << unlocked;
+  return root;
 }
 
 TEST(LodLevels, EveryMaterialHasEveryLevel) {
@@ -84,6 +122,36 @@ TEST(LodLevels, HighDetailKernelsAreEachMaterialsOwn) {
     }
     // Nor is a material's high-detail kernel a locked one.
     EXPECT_NE(keys().at(kMaterials[a]).at("LodHQ").at("Fragment"), keys().at(kMaterials[a]).at("LodMQ").at("Fragment"));
+  }
+}
+
+// The group's components are not annotated with worlds in LodMQ and LodLQ:
+// the compiler places a material's definitions in the latest world that is
+// not locked (paper section 6.2), which is the bake each level reads.
+TEST(LodLevels, TheLocksPlaceTheMaterialsInTheBakes) {
+  const Compiled locked = compileAll(std::string(SPIRE_SOURCE_DIR) + "/examples/lod_materials.spire");
+  const std::filesystem::path copy = unlockedCopy();
+  const Compiled unlocked = compileAll((copy / "examples" / "lod_materials.spire").string());
+  std::filesystem::remove_all(copy);
+  for (const std::string& material : kMaterials) {
+    for (const std::string component : {"albedo", "specular", "gloss"}) {
+      EXPECT_EQ(locked.placements.at(material).at("LodMQ").at(component), "PrebakeTex");
+      EXPECT_EQ(locked.placements.at(material).at("LodLQ").at(component), "PrebakeUniform");
+      EXPECT_EQ(unlocked.placements.at(material).at("LodMQ").at(component), "Fragment");
+      EXPECT_EQ(unlocked.placements.at(material).at("LodLQ").at(component), "Vertex");
+    }
+  }
+  // Unlocked, every material's lower levels are kernels of its own: the
+  // GPU world that computes the material differs pairwise.
+  for (size_t a = 0; a < kMaterials.size(); ++a) {
+    for (size_t b = a + 1; b < kMaterials.size(); ++b) {
+      for (const auto& [level, world] : {std::pair{"LodMQ", "Fragment"}, std::pair{"LodLQ", "Vertex"}}) {
+        EXPECT_NE(unlocked.keys.at(kMaterials[a]).at(level).at(world),
+                  unlocked.keys.at(kMaterials[b]).at(level).at(world))
+            << kMaterials[a] << " and " << kMaterials[b] << " at " << level;
+        EXPECT_EQ(locked.keys.at(kMaterials[a]).at(level).at(world), locked.keys.at(kMaterials[b]).at(level).at(world));
+      }
+    }
   }
 }
 
