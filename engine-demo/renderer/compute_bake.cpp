@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "renderer/pipeline_descriptors.h"
+#include "renderer/surface_samples.h"
 #include "vk/timer.h"
 
 namespace spire::engine {
@@ -11,6 +12,10 @@ namespace {
 
 // bufferExport kernels use 64 invocations per workgroup (docs/reflection.md).
 constexpr uint32_t kWorkgroupSize = 64;
+
+// Samples over a mesh's surface for a uniform bake: enough that a material's
+// texture-scale detail averages out, few enough to cost little at load.
+constexpr uint32_t kSurfaceSamples = 4096;
 
 struct ComputeOutput {
   BoundKernel bound;
@@ -39,7 +44,8 @@ Expected<ComputeOutput> dispatch(const vk::Context& ctx, ModuleCache& modules, c
   auto pipeline = vk::createComputePipeline(ctx, *module, descriptors->layoutHandles());
   if (!pipeline) return Error::fromVk(pipeline.error());
 
-  const uint32_t groups = (sources.mesh->vertexCount() + kWorkgroupSize - 1) / kWorkgroupSize;
+  const auto invocations = static_cast<uint32_t>(sources.recordVertices()->size());
+  const uint32_t groups = (invocations + kWorkgroupSize - 1) / kWorkgroupSize;
   const vk::HostTimer timer;
   auto submitted = ctx.submitAndWait([&](VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline->pipeline.get());
@@ -61,9 +67,12 @@ Expected<ComputeOutput> dispatch(const vk::Context& ctx, ModuleCache& modules, c
 
 Expected<UniformBakeResult> runUniformBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
                                            const BindingSources& sources, BakeTiming& timing) {
-  auto output = dispatch(ctx, modules, kernel, sources, timing);
+  // The kernel runs once per surface sample, which it reads as a vertex.
+  const SurfaceSamples samples = sampleSurface(sources.mesh->mesh, kSurfaceSamples);
+  BindingSources overSamples = sources;
+  overSamples.computeVertices = &samples.points;
+  auto output = dispatch(ctx, modules, kernel, overSamples, timing);
   if (!output) return output.error();
-  const uint32_t count = sources.mesh->vertexCount();
   const Block& layout = *output->layout;
   const std::span<const std::byte> memory(static_cast<const std::byte*>(output->records->mapped()),
                                           static_cast<size_t>(output->records->size()));
@@ -71,14 +80,13 @@ Expected<UniformBakeResult> runUniformBake(const vk::Context& ctx, ModuleCache& 
   for (const BlockMember& member : layout.members) {
     if (!member.type.isNumeric()) {
       return Error{
-          fmt::format("cannot average '{}' of type {} over vertices", member.component, member.type.name), {}, {}};
+          fmt::format("cannot average '{}' of type {} over the surface", member.component, member.type.name), {}, {}};
     }
     std::vector<double> sum(member.type.componentCount(), 0.0);
-    for (uint32_t i = 0; i < count; ++i) {
-      const auto values = readValue(memory.subspan(size_t{i} * layout.recordStride, layout.recordStride), member);
-      for (size_t c = 0; c < values.size(); ++c) sum[c] += values[c];
+    for (size_t i = 0; i < samples.weights.size(); ++i) {
+      const auto values = readValue(memory.subspan(i * layout.recordStride, layout.recordStride), member);
+      for (size_t c = 0; c < values.size(); ++c) sum[c] += samples.weights[i] * values[c];
     }
-    for (double& s : sum) s /= count;
     result.values[member.component] = std::move(sum);
   }
   return result;

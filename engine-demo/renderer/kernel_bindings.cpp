@@ -145,9 +145,9 @@ class KernelBinder {
 
   Expected<void> bindStorage(const Block& block) {
     if (readPerInstance(block)) return bindInstanceBlock(block);
-    if (!sources_.mesh)
+    if (!sources_.recordVertices())
       return Error{fmt::format("the {} kernel reads vertex records but has no mesh", kernel_.world), {}, {}};
-    const uint32_t records = sources_.mesh->vertexCount();
+    const auto records = static_cast<uint32_t>(sources_.recordVertices()->size());
     const bool written = std::any_of(kernel_.outputs.begin(), kernel_.outputs.end(), [&](const KernelOutput& o) {
       return o.kind == OutputKind::BufferMember && o.slot == block.slot;
     });
@@ -185,7 +185,7 @@ class KernelBinder {
       if (!attribute) return missing(kernel_, input, "the engine supplies no such mesh attribute");
       for (uint32_t i = 0; i < records; ++i) {
         writeValue(memory.subspan(size_t{i} * block.recordStride, block.recordStride), *member,
-                   attributeValue(sources_.mesh->mesh.vertices[i], *attribute));
+                   attributeValue((*sources_.recordVertices())[i], *attribute));
       }
       return {};
     }
@@ -209,10 +209,11 @@ class KernelBinder {
     if (fragment && (extent.width == 0 || extent.height == 0)) {
       return Error{fmt::format("the instrumented {} kernel is bound without its target's size", kernel_.world), {}, {}};
     }
-    if (!fragment && !sources_.mesh) {
+    if (!fragment && !sources_.recordVertices()) {
       return Error{fmt::format("the instrumented {} kernel is bound without a mesh", kernel_.world), {}, {}};
     }
-    const uint32_t invocations = fragment ? extent.width * extent.height : sources_.mesh->vertexCount();
+    const uint32_t invocations =
+        fragment ? extent.width * extent.height : static_cast<uint32_t>(sources_.recordVertices()->size());
     VkBuffer handle = VK_NULL_HANDLE;
     if (sources_.hazards) {
       auto attached = sources_.hazards->attach(ctx_, kernel_, invocations, extent.width);

@@ -36,7 +36,7 @@ struct BakedTexture {
 };
 
 struct UniformBakeResult {
-  std::map<std::string, std::vector<double>, std::less<>> values;  // component -> average over the vertices
+  std::map<std::string, std::vector<double>, std::less<>> values;  // component -> average over the surface
 };
 
 struct VertexBakeResult {
@@ -76,6 +76,15 @@ struct BindingSources {
   // collector, an instrumented kernel records into a buffer nobody reads.
   HazardCollector* hazards = nullptr;
   VkExtent2D fragmentExtent{};
+  // The vertices a compute kernel reads as records, one invocation each,
+  // when they are not the mesh's own: a uniform bake runs over samples of
+  // the mesh's surface (surface_samples.h).
+  const std::vector<scene::Vertex>* computeVertices = nullptr;
+
+  // The vertices compute kernels run over; null without a mesh.
+  const std::vector<scene::Vertex>* recordVertices() const {
+    return computeVertices ? computeVertices : mesh ? &mesh->mesh.vertices : nullptr;
+  }
 };
 
 // One member of a per-instance record and where its value comes from.

@@ -19,7 +19,7 @@ constexpr std::array kTable = {
     WorldPass{"instance", "InstanceUniform", WorldRole::InstanceParameters, std::nullopt,
               "per-instance engine values, one record per instance"},
     WorldPass{"prebakeUniform", "PrebakeUniform", WorldRole::UniformBake, ShaderStage::Compute,
-              "compute over vertices at load, averaged into a per-mesh uniform"},
+              "compute over the surface at load, averaged into a per-mesh uniform"},
     WorldPass{"prebakeVertex", "PrebakeVertex", WorldRole::VertexBake, ShaderStage::Compute,
               "compute per vertex at load into a vertex-data buffer"},
     WorldPass{"prebakeTexture", "PrebakeTex", WorldRole::TextureBake, ShaderStage::Fragment,

@@ -278,6 +278,18 @@ TEST_F(RendererTest, PrebakeUniformEqualsFragmentForAConstantInput) {
   expectGolden(prebaked->capture, "uniform_bake");
 }
 
+// A per-object value stands for the fragments it replaces, which cover the
+// surface by area: the uniform bake averages over the surface, not over
+// wherever the vertices happen to be.
+TEST_F(RendererTest, PrebakeUniformAveragesOverTheSurface) {
+  const auto prebaked = render(planeScene("surface_mean.spire", "SurfaceMean", "{}"), "surface_mean_prebake.decisions");
+  ASSERT_TRUE(prebaked);
+  ASSERT_EQ(prebaked->prepared.bakes.size(), 1U);
+  EXPECT_EQ(prebaked->prepared.bakes[0].world, "PrebakeUniform");
+  const auto mean = coveredMean(prebaked->capture);
+  EXPECT_NEAR(mean[0], 1.0 / 3.0, 0.004);  // the vertex mean would be 0.375
+}
+
 // A per-vertex value computed in a compute bake and read back as vertex data
 // interpolates exactly like the same value computed in the vertex shader.
 TEST_F(RendererTest, PrebakeVertexEqualsVertex) {
