@@ -125,31 +125,36 @@ TEST(LodLevels, HighDetailKernelsAreEachMaterialsOwn) {
   }
 }
 
-// The group's components are not annotated with worlds in LodMQ and LodLQ:
-// the compiler places a material's definitions in the latest world that is
-// not locked (paper section 6.2), which is the bake each level reads.
+// What LodMQ reads per vertex (gloss) and everything LodLQ reads is not
+// annotated with a world: the compiler places a material's definitions in
+// the latest world that is not locked (paper section 6.2), the per-object
+// bake. LodMQ's surface texture is the level's own, annotated PrebakeTex.
 TEST(LodLevels, TheLocksPlaceTheMaterialsInTheBakes) {
   const Compiled locked = compileAll(std::string(SPIRE_SOURCE_DIR) + "/examples/lod_materials.spire");
   const std::filesystem::path copy = unlockedCopy();
   const Compiled unlocked = compileAll((copy / "examples" / "lod_materials.spire").string());
   std::filesystem::remove_all(copy);
   for (const std::string& material : kMaterials) {
+    const auto& mq = locked.placements.at(material).at("LodMQ");
+    EXPECT_EQ(mq.at("albedo"), "PrebakeTex");
+    EXPECT_EQ(mq.at("specular"), "PrebakeTex");
+    EXPECT_EQ(mq.at("gloss"), "PrebakeUniform");
+    EXPECT_EQ(unlocked.placements.at(material).at("LodMQ").at("gloss"), "Vertex");
     for (const std::string component : {"albedo", "specular", "gloss"}) {
-      EXPECT_EQ(locked.placements.at(material).at("LodMQ").at(component), "PrebakeTex");
       EXPECT_EQ(locked.placements.at(material).at("LodLQ").at(component), "PrebakeUniform");
-      EXPECT_EQ(unlocked.placements.at(material).at("LodMQ").at(component), "Fragment");
       EXPECT_EQ(unlocked.placements.at(material).at("LodLQ").at(component), "Vertex");
     }
   }
   // Unlocked, every material's lower levels are kernels of its own: the
-  // GPU world that computes the material differs pairwise.
+  // Vertex kernel computes part of the material.
   for (size_t a = 0; a < kMaterials.size(); ++a) {
     for (size_t b = a + 1; b < kMaterials.size(); ++b) {
-      for (const auto& [level, world] : {std::pair{"LodMQ", "Fragment"}, std::pair{"LodLQ", "Vertex"}}) {
-        EXPECT_NE(unlocked.keys.at(kMaterials[a]).at(level).at(world),
-                  unlocked.keys.at(kMaterials[b]).at(level).at(world))
+      for (const std::string level : {"LodMQ", "LodLQ"}) {
+        EXPECT_NE(unlocked.keys.at(kMaterials[a]).at(level).at("Vertex"),
+                  unlocked.keys.at(kMaterials[b]).at(level).at("Vertex"))
             << kMaterials[a] << " and " << kMaterials[b] << " at " << level;
-        EXPECT_EQ(locked.keys.at(kMaterials[a]).at(level).at(world), locked.keys.at(kMaterials[b]).at(level).at(world));
+        EXPECT_EQ(locked.keys.at(kMaterials[a]).at(level).at("Vertex"),
+                  locked.keys.at(kMaterials[b]).at(level).at("Vertex"));
       }
     }
   }
