@@ -44,7 +44,7 @@ struct Verb {
   size_t arguments;  // words after the verb; `set` is special (NAME = VALUE)
 };
 
-constexpr std::array<Verb, 15> kVerbs{{{"set", ActionKind::Set, 3},
+constexpr std::array<Verb, 16> kVerbs{{{"set", ActionKind::Set, 3},
                                        {"unset", ActionKind::Unset, 1},
                                        {"reset", ActionKind::Reset, 0},
                                        {"load", ActionKind::Load, 1},
@@ -58,6 +58,7 @@ constexpr std::array<Verb, 15> kVerbs{{{"set", ActionKind::Set, 3},
                                        {"screenshot-window", ActionKind::WindowShot, 1},
                                        {"load-tune", ActionKind::LoadTune, 1},
                                        {"apply-front", ActionKind::ApplyFront, 1},
+                                       {"instance", ActionKind::Instance, 1},
                                        {"quit", ActionKind::Quit, 0}}};
 
 const char* usageOf(ActionKind kind) {
@@ -73,6 +74,7 @@ const char* usageOf(ActionKind kind) {
     case ActionKind::WindowShot: return "screenshot-window FILE";
     case ActionKind::LoadTune: return "load-tune DIR";
     case ActionKind::ApplyFront: return "apply-front K";
+    case ActionKind::Instance: return "instance N";
     default: return "";
   }
 }
@@ -119,6 +121,10 @@ std::optional<ScriptAction> parseLine(FileId file, const std::vector<Word>& word
   }
   if (verb->kind == ActionKind::ApplyFront && !parseNumber<uint32_t>(words[1].text, 0, 100000, action.count)) {
     diags.report(DiagCode::E7201, rangeOf(file, words[1]), "expected a front point from 0 (the fastest) to 100000");
+    return std::nullopt;
+  }
+  if (verb->kind == ActionKind::Instance && !parseNumber<uint32_t>(words[1].text, 0, 100000, action.count)) {
+    diags.report(DiagCode::E7201, rangeOf(file, words[1]), "expected an instance index from 0 to 100000");
     return std::nullopt;
   }
   if (verb->kind == ActionKind::Walk && !parseNumber<uint64_t>(words[2].text, 0, UINT64_MAX, action.seed)) {

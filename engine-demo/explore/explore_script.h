@@ -16,6 +16,7 @@
 //   screenshot-window FILE            the next frame as the window shows it, panels included
 //   load-tune DIR                     a spire-tune output directory, for the Pareto view
 //   apply-front K                     the decisions of the front's K-th point (from 0, fastest first)
+//   instance N                        explore the scene's instance N (from 0); each keeps its decisions
 //   quit
 //
 // Each action that changes the decisions finishes when the new variant is on
@@ -46,6 +47,7 @@ enum class ActionKind {
   WindowShot,
   LoadTune,
   ApplyFront,
+  Instance,
   Quit
 };
 
@@ -53,7 +55,7 @@ struct ScriptAction {
   ActionKind kind = ActionKind::Quit;
   std::string target;  // the choice (set, unset), file (load, save, screenshot), folder (load-tune) or view mode
   std::string value;   // the placement (set)
-  uint32_t count = 0;  // wait-frames, walk, apply-front
+  uint32_t count = 0;  // wait-frames, walk, apply-front, instance
   uint64_t seed = 0;   // walk
   SourceRange range;   // the whole line, for errors while running it
 };

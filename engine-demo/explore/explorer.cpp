@@ -17,6 +17,7 @@
 #include "explore/explorer_model.h"
 #include "explore/explorer_panels.h"
 #include "explore/imgui_overlay.h"
+#include "explore/instance_session.h"
 #include "explore/live_compiler.h"
 #include "explore/source_watch.h"
 #include "explore/tune_results.h"
@@ -98,6 +99,10 @@ class Explorer {
 
  private:
   std::optional<int> start();
+  // Makes instance `index` the explored one: the session kept for it, or a
+  // new one starting from the decisions its program was compiled with.
+  engine::Expected<void> selectInstance(size_t index);
+  engine::Expected<void> openSession(size_t index);
   std::optional<int> startPresentation();
   struct FileDecisions {
     Placement placement;
@@ -147,15 +152,18 @@ class Explorer {
   engine::SceneRenderer& renderer_;
   demo::GlfwWindow& window_;
   std::ostream& out_;
-  std::string shader_;
-  std::optional<DecisionState> state_;
   // Every library the session's choices and programs came from: a program
   // or the choice space may still point into an older one.
   std::vector<std::shared_ptr<ShaderLibrary>> libraries_;
-  SourceWatch watch_;
+  // Every instance explored so far, and the one the panels show: switching
+  // keeps each one's decisions, undo history and compile worker.
+  std::map<size_t, InstanceSession> sessions_;
+  InstanceSession* session_ = nullptr;
+  // The decisions the scene's programs start from: --reference, else the
+  // scene's first variant, else each instance's own.
+  std::optional<fs::path> referencePath_;
   bool waitReload_ = false;
   std::optional<fs::path> windowShot_;  // written after the next presented frame
-  std::unique_ptr<LiveCompiler> compiler_;
   std::unique_ptr<ImGuiOverlay> overlay_;
   std::optional<vk::Swapchain> swapchain_;
   std::optional<vk::FrameBlit> blit_;
@@ -173,7 +181,6 @@ class Explorer {
   ViewMode view_ = ViewMode::Variant;
   uint64_t requests_ = 0;
   std::optional<ChangeRecord> pending_;
-  std::optional<TuneResults> tune_;
   std::optional<ChangeRecord> lastChange_;
   std::vector<ChangeRecord> changes_;
   std::string diagnostics_;
@@ -217,11 +224,64 @@ engine::Expected<Explorer::FileDecisions> Explorer::readDecisions(const fs::path
   for (const graph::DecisionLine& line : decisions.lines) {
     const std::string key = line.prefix + "." + line.component;
     // A scene variant's file may decide for other shaders too.
-    if (!state_->isChoice(key)) continue;
+    if (!session_->state->isChoice(key)) continue;
     result.placement[key] = line.variation.empty() ? line.world : line.world + ":" + line.variation;
     if (!line.attributes.empty()) result.attributes[key] = line.attributes;
   }
   return result;
+}
+
+engine::Expected<void> Explorer::openSession(size_t index) {
+  const scene::SceneFile& scene = renderer_.scene();
+  if (index >= scene.instances.size()) {
+    return engine::Error{
+        fmt::format("instance {}: the scene has {} instance(s), from 0", index, scene.instances.size())};
+  }
+  const scene::InstanceDesc& instance = scene.instances[index];
+  if (instance.kernels) {
+    return engine::Error{
+        "the instance is loaded from a spirec output directory ('kernels'); the explorer compiles its source",
+        instance.kernelsRange};
+  }
+  auto library = renderer_.library(index);
+  if (!library) return library.error();
+  const graph::ChoiceSpace* space = (*library)->choiceSpace(instance.shader);
+  if (!space) {
+    return engine::Error{fmt::format("'{}' is not a concrete shader of its source", instance.shader),
+                         instance.shaderRange};
+  }
+  InstanceSession& session = sessions_[index];
+  session.instance = index;
+  session.shader = instance.shader;
+  session.state.emplace(*space);
+  session.watch.reset(sourcePaths(**library));
+  session.compiler = std::make_unique<LiveCompiler>(VariantCompiler(renderer_, index, instance.shader, **library));
+  session_ = &session;
+  // The choices show the decisions the instance's program was compiled with.
+  if (const std::optional<fs::path> from = referencePath_ ? referencePath_ : instance.decisions) {
+    auto placement = readDecisions(*from);
+    if (!placement) return placement.error();
+    if (auto ok = session.state->replace(placement->placement, placement->attributes); !ok) {
+      return engine::Error(ok.error());
+    }
+    session.state->clearHistory();
+  }
+  return {};
+}
+
+engine::Expected<void> Explorer::selectInstance(size_t index) {
+  if (pending_) return engine::Error{"a change is still compiling; switch instances once it is on screen"};
+  InstanceSession* previous = session_;
+  if (const auto it = sessions_.find(index); it != sessions_.end()) {
+    session_ = &it->second;
+    return {};
+  }
+  auto opened = openSession(index);
+  if (!opened) {
+    sessions_.erase(index);
+    session_ = previous;
+  }
+  return opened;
 }
 
 // The instance, its shader's choices, the reference and the starting
@@ -234,30 +294,10 @@ std::optional<int> Explorer::start() {
          "frame, which it does not support yet",
          {},
          {}});
-  if (options_.instance >= scene.instances.size()) {
-    return run_.fail(
-        {fmt::format("--instance {}: the scene has {} instance(s)", options_.instance, scene.instances.size()),
-         {},
-         {}});
-  }
-  const scene::InstanceDesc& instance = scene.instances[options_.instance];
-  if (instance.kernels) {
-    return run_.fail(
-        {"the instance is loaded from a spirec output directory ('kernels'); the explorer compiles its source",
-         instance.kernelsRange,
-         {}});
-  }
-  auto library = renderer_.library(options_.instance);
-  if (!library) return run_.fail(library.error());
-  shader_ = instance.shader;
-  watch_.reset(sourcePaths(**library));
-  const graph::ChoiceSpace* space = (*library)->choiceSpace(shader_);
-  if (!space)
-    return run_.fail({fmt::format("'{}' is not a concrete shader of its source", shader_), instance.shaderRange, {}});
-  state_.emplace(*space);
-  std::optional<fs::path> referencePath = options_.reference;
-  if (!referencePath && !scene.variants.empty()) referencePath = scene.variants.front().decisions;
-  auto programs = renderer_.compile(referencePath);
+  referencePath_ = options_.reference;
+  if (!referencePath_ && !scene.variants.empty()) referencePath_ = scene.variants.front().decisions;
+  if (auto ok = selectInstance(options_.instance); !ok) return run_.fail(ok.error());
+  auto programs = renderer_.compile(referencePath_);
   if (!programs) return run_.fail(programs.error());
   programs_ = std::move(programs).value();
   auto reference = renderer_.prepare(programs_);
@@ -266,14 +306,6 @@ std::optional<int> Explorer::start() {
   auto current = renderer_.prepare(programs_);
   if (!current) return run_.fail(current.error());
   current_ = std::move(current).value();
-  if (const std::optional<fs::path> from = referencePath ? referencePath : instance.decisions) {
-    auto placement = readDecisions(*from);
-    if (!placement) return run_.fail(placement.error());
-    if (auto ok = state_->replace(placement->placement, placement->attributes); !ok) {
-      return run_.fail({ok.error().message, {}, {}});
-    }
-    state_->clearHistory();
-  }
   if (options_.tuneDir) {
     if (auto ok = loadTune(*options_.tuneDir); !ok) return run_.fail({ok.error().message, {}, {}});
   }
@@ -281,17 +313,17 @@ std::optional<int> Explorer::start() {
 }
 
 Expected<void, Failure> Explorer::loadTune(const fs::path& dir) {
-  auto results = loadTuneResults(dir, shader_, *state_);
+  auto results = loadTuneResults(dir, session_->shader, *session_->state);
   if (!results) return results.error();
-  tune_ = std::move(results).value();
-  out_ << fmt::format("spire-explore: {}: {} tuned variants, {} on the front\n", dir.string(), tune_->variants.size(),
-                      tune_->front.size())
+  session_->tune = std::move(results).value();
+  out_ << fmt::format("spire-explore: {}: {} tuned variants, {} on the front\n", dir.string(),
+                      session_->tune->variants.size(), session_->tune->front.size())
        << std::flush;
   return {};
 }
 
-// The reference's frame time and image, the compile worker, and the
-// starting decisions when they are not the reference's.
+// The reference's frame time and image, and the starting decisions when
+// they are not the reference's.
 std::optional<int> Explorer::startSession() {
   auto stats = renderer_.measure(*reference_, 1, kReferenceFrames);
   if (!stats) return run_.fail(stats.error());
@@ -300,13 +332,10 @@ std::optional<int> Explorer::startSession() {
   if (!reference) return run_.fail(reference.error());
   captures_.reference = std::move(reference).value();
   if (auto ok = updateMetrics(); !ok) return run_.fail(ok.error());
-  auto library = renderer_.library(options_.instance);
-  if (!library) return run_.fail(library.error());
-  compiler_ = std::make_unique<LiveCompiler>(VariantCompiler(renderer_, options_.instance, shader_, **library));
   if (options_.decisions) {
     auto placement = readDecisions(*options_.decisions);
     if (!placement) return run_.fail(placement.error());
-    if (auto ok = state_->replace(placement->placement, placement->attributes); !ok) {
+    if (auto ok = session_->state->replace(placement->placement, placement->attributes); !ok) {
       return run_.fail({ok.error().message, {}, {}});
     }
     startChange("load " + options_.decisions->string());
@@ -365,24 +394,25 @@ bool Explorer::scriptError(const ScriptAction& action, const std::string& messag
 bool Explorer::changeAction(const ScriptAction& action) {
   Expected<void, Failure> ok;
   switch (action.kind) {
-    case ActionKind::Set: ok = state_->set(action.target, action.value); break;
-    case ActionKind::Unset: ok = state_->unset(action.target); break;
-    case ActionKind::Reset: ok = state_->replace({}); break;
+    case ActionKind::Set: ok = session_->state->set(action.target, action.value); break;
+    case ActionKind::Unset: ok = session_->state->unset(action.target); break;
+    case ActionKind::Reset: ok = session_->state->replace({}); break;
     case ActionKind::Undo:
-      if (!state_->undo()) ok = Failure{"there is no change to undo"};
+      if (!session_->state->undo()) ok = Failure{"there is no change to undo"};
       break;
     case ActionKind::ApplyFront:
-      if (!tune_) return scriptError(action, "no spire-tune output is loaded (--tune-dir DIR or load-tune DIR)");
-      if (action.count >= tune_->front.size()) {
-        return scriptError(
-            action, fmt::format("the front of '{}' has {} point(s), from 0", tune_->dir.string(), tune_->front.size()));
+      if (!session_->tune)
+        return scriptError(action, "no spire-tune output is loaded (--tune-dir DIR or load-tune DIR)");
+      if (action.count >= session_->tune->front.size()) {
+        return scriptError(action, fmt::format("the front of '{}' has {} point(s), from 0",
+                                               session_->tune->dir.string(), session_->tune->front.size()));
       }
-      ok = state_->replace(tune_->variants[tune_->front[action.count]].decisions);
+      ok = session_->state->replace(session_->tune->variants[session_->tune->front[action.count]].decisions);
       break;
     default: {
       auto placement = readDecisions(scriptRelative(action.target));
       if (!placement) return scriptError(action, placement.error().message + "\n" + placement.error().details);
-      ok = state_->replace(placement->placement, placement->attributes);
+      ok = session_->state->replace(placement->placement, placement->attributes);
     }
   }
   if (!ok) return scriptError(action, ok.error().message);
@@ -394,7 +424,7 @@ bool Explorer::runAction(const ScriptAction& action) {
   switch (action.kind) {
     case ActionKind::Save: {
       auto ok = writeFileAtomically(scriptRelative(action.target).string(),
-                                    state_->decisionFileText("written by spire-explore"));
+                                    session_->state->decisionFileText("written by spire-explore"));
       return ok ? true : scriptError(action, ok.error().message);
     }
     case ActionKind::View: {
@@ -417,6 +447,10 @@ bool Explorer::runAction(const ScriptAction& action) {
       auto ok = loadTune(scriptRelative(action.target));
       return ok ? true : scriptError(action, ok.error().message);
     }
+    case ActionKind::Instance: {
+      auto ok = selectInstance(action.count);
+      return ok ? true : scriptError(action, ok.error().message);
+    }
     case ActionKind::Quit: return false;
     default: return changeAction(action);
   }
@@ -437,19 +471,22 @@ bool Explorer::stepScript() {
 
 bool Explorer::walkStep() {
   std::vector<std::pair<std::string, std::string>> candidates;
-  for (const ChoiceRow& row : state_->rows()) {
+  for (const ChoiceRow& row : session_->state->rows()) {
     for (const Alternative& alt : row.alternatives) {
       if (alt.possible && row.decided != alt.placement) candidates.emplace_back(row.key, alt.placement);
     }
   }
   if (candidates.empty()) return false;
   const auto& [key, placement] = candidates[walkRandom_() % candidates.size()];
-  if (!state_->set(key, placement)) return false;
+  if (!session_->state->set(key, placement)) return false;
   startChange(fmt::format("set {} = {}", key, placement));
   return true;
 }
 
 void Explorer::handleRequests(const PanelRequests& requests) {
+  if (requests.instance) {
+    if (auto ok = selectInstance(*requests.instance); !ok) diagnostics_ = ok.error().message;
+  }
   if (requests.view) {
     view_ = *requests.view;
     if (auto ok = updateStaticImage(); !ok) diagnostics_ = ok.error().message;
@@ -461,19 +498,19 @@ void Explorer::handleRequests(const PanelRequests& requests) {
       diagnostics_ = ok.error().message;
   };
   if (requests.set)
-    apply(state_->set(requests.set->first, requests.set->second),
+    apply(session_->state->set(requests.set->first, requests.set->second),
           fmt::format("set {} = {}", requests.set->first, requests.set->second));
-  if (requests.unset) apply(state_->unset(*requests.unset), "unset " + *requests.unset);
-  if (requests.undo && state_->undo()) startChange("undo");
+  if (requests.unset) apply(session_->state->unset(*requests.unset), "unset " + *requests.unset);
+  if (requests.undo && session_->state->undo()) startChange("undo");
   if (requests.applyTunePoint) {
     // One change, as `load`: undo goes back to the decisions before it.
-    const TunedVariant& tuned = tune_->variants.at(*requests.applyTunePoint);
-    apply(state_->replace(tuned.decisions),
+    const TunedVariant& tuned = session_->tune->variants.at(*requests.applyTunePoint);
+    apply(session_->state->replace(tuned.decisions),
           fmt::format("apply tuned variant {} ({})", tuned.index, decisionsText(tuned)));
   }
-  if (requests.reset) apply(state_->replace({}), "reset");
+  if (requests.reset) apply(session_->state->replace({}), "reset");
   if (requests.save) {
-    auto ok = writeFileAtomically(options_.saveTo, state_->decisionFileText("written by spire-explore"));
+    auto ok = writeFileAtomically(options_.saveTo, session_->state->decisionFileText("written by spire-explore"));
     diagnostics_ = ok ? "" : ok.error().message;
   }
   if (requests.load) {
@@ -481,7 +518,7 @@ void Explorer::handleRequests(const PanelRequests& requests) {
     if (!placement)
       diagnostics_ = placement.error().message;
     else
-      apply(state_->replace(placement->placement, placement->attributes), "load " + options_.saveTo);
+      apply(session_->state->replace(placement->placement, placement->attributes), "load " + options_.saveTo);
   }
 }
 
@@ -489,44 +526,47 @@ void Explorer::startChange(std::string action, bool reload) {
   ChangeRecord change;
   change.action = std::move(action);
   change.reload = reload;
+  change.instance = session_->instance;
   change.request = ++requests_;
   change.startMs = clock_.elapsedMs();
   pending_ = std::move(change);
   incoming_.reset();  // a variant of older decisions is not worth showing now
-  compiler_->submit({pending_->request, state_->decisions(), state_->attributes(), reload});
+  session_->compiler->submit({pending_->request, session_->state->decisions(), session_->state->attributes(), reload});
 }
 
 // The sources were read again: the choices are the new library's, keeping
 // the decisions that still name a choice and an alternative of it.
 void Explorer::adoptLibrary(const std::shared_ptr<ShaderLibrary>& library) {
   libraries_.push_back(library);
-  const Placement previous = state_->decisions();
-  const ShaderLibrary::Attributes attributes = state_->attributes();
-  state_.emplace(*library->choiceSpace(shader_));
+  const Placement previous = session_->state->decisions();
+  const ShaderLibrary::Attributes attributes = session_->state->attributes();
+  session_->state.emplace(*library->choiceSpace(session_->shader));
   Placement kept;
   for (const auto& [component, placement] : previous) {
-    if (state_->isChoice(component)) kept.emplace(component, placement);
+    if (session_->state->isChoice(component)) kept.emplace(component, placement);
   }
-  if (!state_->replace(kept, attributes)) (void)state_->replace({});
-  state_->clearHistory();
-  watch_.reset(sourcePaths(*library));
+  if (!session_->state->replace(kept, attributes)) (void)session_->state->replace({});
+  session_->state->clearHistory();
+  session_->watch.reset(sourcePaths(*library));
 }
 
 void Explorer::pollCompile() {
-  std::optional<CompileOutcome> outcome = compiler_->poll();
+  std::optional<CompileOutcome> outcome = session_->compiler->poll();
   if (!outcome || !pending_ || outcome->request != pending_->request) return;
   pending_->compileMs = outcome->milliseconds;
   pending_->skipped = outcome->skipped;
   if (outcome->library) adoptLibrary(outcome->library);
   if (!outcome->program) return failChange(outcome->program.error().message, outcome->program.error().details);
   std::vector<engine::VariantProgram> programs = programs_;
-  programs[options_.instance] = std::move(outcome->program).value();
+  programs[session_->instance] = std::move(outcome->program).value();
   const size_t mark = run_.diagnostics().size();
   const vk::HostTimer timer;
   auto prepared = renderer_.prepare(programs);
   pending_->prepareMs = timer.elapsedMs();
   if (!prepared) return failChange(prepared.error().message, prepared.error().details + renderSince(mark));
   for (const engine::BakeRecord& bake : prepared->bakes) pending_->bakeMs += bake.reused ? 0.0 : bake.milliseconds;
+  pending_->pipelinesCreated = prepared->pipelines.created;
+  pending_->pipelinesReused = prepared->pipelines.reused;
   programs_ = std::move(programs);
   incoming_ = std::move(prepared).value();
 }
@@ -544,9 +584,10 @@ void Explorer::finishChange() {
   if (change.reload) waitReload_ = false;
   if (change.ok) {
     out_ << fmt::format(
-        "spire-explore: {}: decision to image {:.0f} ms (compile {:.0f}, prepare {:.0f} with bakes {:.0f}, first frame "
-        "{:.0f})\n",
-        change.action, change.totalMs, change.compileMs, change.prepareMs, change.bakeMs, change.firstFrameMs);
+        "spire-explore: {}: decision to image {:.0f} ms (compile {:.0f}, prepare {:.0f} with bakes {:.0f} and {} "
+        "pipelines built, {} reused, first frame {:.0f})\n",
+        change.action, change.totalMs, change.compileMs, change.prepareMs, change.bakeMs, change.pipelinesCreated,
+        change.pipelinesReused, change.firstFrameMs);
   } else {
     out_ << fmt::format("spire-explore: {}: failed: {}\n", change.action, change.error);
   }
@@ -629,17 +670,21 @@ scene::CameraView Explorer::cameraView(const demo::WindowInput& input, double no
 
 PanelState Explorer::panelState() const {
   PanelState state;
-  state.shader = shader_;
-  state.rows = state_->rows();
+  state.shader = session_->shader;
+  state.instance = session_->instance;
+  const std::vector<scene::InstanceDesc>& instances = renderer_.scene().instances;
+  for (size_t i = 0; i < instances.size(); ++i)
+    state.instances.push_back(fmt::format("{}: {} ({})", i, instances[i].shader, instances[i].mesh));
+  state.rows = session_->state->rows();
   state.view = view_;
   state.metrics = &metrics_;
   state.lastChange = lastChange_;
   state.compiling = pending_.has_value();
   state.diagnostics = diagnostics_;
   state.decisionsPath = options_.saveTo;
-  if (tune_) {
-    state.tune = &*tune_;
-    state.tunedCurrent = matchingVariant(*tune_, state_->decisions());
+  if (session_->tune) {
+    state.tune = &*session_->tune;
+    state.tunedCurrent = matchingVariant(*session_->tune, session_->state->decisions());
   }
   return state;
 }
@@ -669,7 +714,7 @@ engine::Expected<void> Explorer::present() {
 // False when the explorer should close.
 engine::Expected<bool> Explorer::frame(const demo::WindowInput& input) {
   if (options_.script && !stepScript()) return false;
-  if (const std::optional<fs::path> saved = watch_.poll()) startChange("reload " + saved->string(), true);
+  if (const std::optional<fs::path> saved = session_->watch.poll()) startChange("reload " + saved->string(), true);
   pollCompile();
   const double now = clock_.elapsedMs();
   const scene::CameraView view = cameraView(input, now);
@@ -713,10 +758,13 @@ int Explorer::finish(int status) {
     if (change.ok) totals.push_back(change.totalMs);
     failed += change.ok ? 0 : 1;
     log.push_back({{"action", change.action},
+                   {"instance", change.instance},
                    {"ok", change.ok},
                    {"compile_ms", change.compileMs},
                    {"prepare_ms", change.prepareMs},
                    {"bake_ms", change.bakeMs},
+                   {"pipelines_created", change.pipelinesCreated},
+                   {"pipelines_reused", change.pipelinesReused},
                    {"first_frame_ms", change.firstFrameMs},
                    {"total_ms", change.totalMs},
                    {"error", change.error},
@@ -731,7 +779,8 @@ int Explorer::finish(int status) {
         totals.size(), failed);
   }
   if (options_.log) {
-    const nlohmann::ordered_json document{{"scene", options_.scenePath}, {"shader", shader_}, {"changes", log}};
+    const nlohmann::ordered_json document{
+        {"scene", options_.scenePath}, {"shader", session_->shader}, {"changes", log}};
     if (auto ok = writeFileAtomically(options_.log->string(), document.dump(2) + "\n"); !ok) {
       return run_.fail({ok.error().message, {}, {}});
     }
@@ -744,7 +793,7 @@ int Explorer::run() {
   if (auto status = startPresentation()) return *status;
   if (auto status = loadScript()) return *status;
   if (auto status = startSession()) return *status;
-  out_ << fmt::format("spire-explore: {} ({} choices); {}\n", shader_, state_->rows().size(),
+  out_ << fmt::format("spire-explore: {} ({} choices); {}\n", session_->shader, session_->state->rows().size(),
                       options_.script ? "running the script" : "close the window or press Escape to quit")
        << std::flush;
   uint64_t shown = 0;

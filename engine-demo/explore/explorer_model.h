@@ -25,11 +25,17 @@ std::optional<ViewMode> viewModeNamed(std::string_view name);
 struct ChangeRecord {
   std::string action;  // "set Terrain.albedo = PrebakeTex", "undo", "reload FILE", ...
   uint64_t request = 0;
-  bool reload = false;        // the sources were read again (a file was saved)
-  double startMs = 0.0;       // when the change was made (explorer clock)
-  double compileMs = 0.0;     // compiler library: code generation, glslang, validation (worker thread)
-  double prepareMs = 0.0;     // pipelines, descriptor sets and bakes
-  double bakeMs = 0.0;        // of prepareMs, bakes run (not reused)
+  size_t instance = 0;     // the scene's instance whose decisions changed
+  bool reload = false;     // the sources were read again (a file was saved)
+  double startMs = 0.0;    // when the change was made (explorer clock)
+  double compileMs = 0.0;  // compiler library: code generation, glslang, validation (worker thread)
+  double prepareMs = 0.0;  // pipelines, descriptor sets and bakes
+  double bakeMs = 0.0;     // of prepareMs, bakes run (not reused)
+  // Of prepareMs: graphics pipelines built, and those shared with the
+  // variant on screen because their kernels did not change (lavapipe
+  // compiles only the built ones at the first frame).
+  size_t pipelinesCreated = 0;
+  size_t pipelinesReused = 0;
   double firstFrameMs = 0.0;  // the first frame's host time: lavapipe compiles shaders at first draw
   double totalMs = 0.0;       // decision to the first presented frame of the new variant
   bool ok = false;
@@ -51,6 +57,7 @@ struct Metrics {
 
 // What the user asked for through the panels during one frame.
 struct PanelRequests {
+  std::optional<size_t> instance;                          // explore another of the scene's instances
   std::optional<std::pair<std::string, std::string>> set;  // choice key, placement
   std::optional<std::string> unset;
   bool undo = false;
@@ -65,6 +72,8 @@ struct PanelRequests {
 
 struct PanelState {
   std::string shader;
+  size_t instance = 0;                 // the explored one, an index into `instances`
+  std::vector<std::string> instances;  // the scene's: "1: Couch (cushion)"
   std::vector<ChoiceRow> rows;
   ViewMode view = ViewMode::Variant;
   const Metrics* metrics = nullptr;

@@ -32,6 +32,23 @@ void drawChoice(const ChoiceRow& row, PanelRequests& requests) {
   ImGui::EndCombo();
 }
 
+// The scene's instances; picking one explores its shader instead, with the
+// decisions it had. Disabled while a change compiles, which belongs to the
+// instance explored now.
+void drawInstances(const PanelState& state, PanelRequests& requests) {
+  ImGui::BeginDisabled(state.compiling);
+  ImGui::PushItemWidth(ImGui::GetFontSize() * 16.0F);
+  if (ImGui::BeginCombo("instance", state.instances.at(state.instance).c_str())) {
+    for (size_t i = 0; i < state.instances.size(); ++i) {
+      const bool selected = i == state.instance;
+      if (ImGui::Selectable(state.instances[i].c_str(), selected) && !selected) requests.instance = i;
+    }
+    ImGui::EndCombo();
+  }
+  ImGui::PopItemWidth();
+  ImGui::EndDisabled();
+}
+
 constexpr ImGuiWindowFlags kPanelFlags = ImGuiWindowFlags_AlwaysAutoResize;
 constexpr float kPanelAlpha = 0.85F;
 constexpr float kMargin = 8.0F;
@@ -43,6 +60,7 @@ void drawChoices(const PanelState& state, PanelRequests& requests) {
   ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(kPanelAlpha);
   ImGui::Begin("Choices", nullptr, kPanelFlags);
+  drawInstances(state, requests);
   ImGui::Text("%s: %zu choices", state.shader.c_str(), state.rows.size());
   requests.undo = ImGui::Button("Undo");
   ImGui::SameLine();
@@ -68,6 +86,7 @@ void drawChange(const ChangeRecord& change) {
   ImGui::Text("decision to image %.0f ms", change.totalMs);
   ImGui::Text("  compile %.0f, prepare %.0f (bakes %.0f), first frame %.0f ms", change.compileMs, change.prepareMs,
               change.bakeMs, change.firstFrameMs);
+  ImGui::Text("  pipelines: %zu built, %zu reused", change.pipelinesCreated, change.pipelinesReused);
   if (!change.skipped.empty()) ImGui::TextColored(kErrorColor, "%zu decisions not applied", change.skipped.size());
 }
 

@@ -38,12 +38,12 @@ Expected<void> addBakeArrays(const vk::Context& ctx, const KernelProgram& vertex
   return {};
 }
 
-Expected<vk::Pipeline> buildPipeline(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& vertex,
-                                     const KernelProgram& fragment, const DrawItem& item,
-                                     const DrawPlacement& placement, const TargetFormats& formats, bool overlay) {
-  auto vertexModule = modules.get(ctx, vertex.hash, vertex.spirv);
+Expected<SharedPipeline> buildPipeline(const vk::Context& ctx, PipelineCaches caches, const KernelProgram& vertex,
+                                       const KernelProgram& fragment, const DrawItem& item,
+                                       const DrawPlacement& placement, const TargetFormats& formats, bool overlay) {
+  auto vertexModule = caches.modules.get(ctx, vertex.hash, vertex.spirv);
   if (!vertexModule) return vertexModule.error();
-  auto fragmentModule = modules.get(ctx, fragment.hash, fragment.spirv);
+  auto fragmentModule = caches.modules.get(ctx, fragment.hash, fragment.spirv);
   if (!fragmentModule) return fragmentModule.error();
   vk::GraphicsPipelineBuilder builder;
   builder.vertexShader(*vertexModule).fragmentShader(*fragmentModule);
@@ -58,14 +58,12 @@ Expected<vk::Pipeline> buildPipeline(const vk::Context& ctx, ModuleCache& module
   // Meshes are wound counter-clockwise seen from the front, and the
   // projection's y flip keeps that winding on screen.
   builder.cullMode(placement.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT, VK_FRONT_FACE_COUNTER_CLOCKWISE);
-  auto pipeline = builder.build(ctx);
-  if (!pipeline) return Error::fromVk(pipeline.error());
-  return std::move(pipeline).value();
+  return caches.pipelines.get(ctx, builder, vertex.hash + " " + fragment.hash, item.descriptors);
 }
 
 }  // namespace
 
-Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
+Expected<DrawItem> createDrawItem(const vk::Context& ctx, PipelineCaches caches, const VariantProgram& program,
                                   const BindingSources& sources, const DrawPlacement& placement,
                                   const TargetFormats& formats) {
   const KernelProgram* vertex = program.kernelWithRole(WorldRole::VertexStage);
@@ -86,7 +84,7 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
   DrawItem item;
   item.mesh = sources.mesh;
   item.model = placement.model;
-  auto passes = createFramePasses(ctx, modules, program, sources,
+  auto passes = createFramePasses(ctx, caches, program, sources,
                                   {.screen = placement.screen, .doubleSided = placement.doubleSided});
   if (!passes) return passes.error();
   item.passes = std::move(passes).value();
@@ -111,19 +109,19 @@ Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, 
   auto vertexInput = vertexInputs(*vertex, sources);
   if (!vertexInput) return vertexInput.error();
   item.vertexInputs = std::move(vertexInput).value();
-  auto pipeline = buildPipeline(ctx, modules, *vertex, *fragment, item, placement, formats, false);
+  auto pipeline = buildPipeline(ctx, caches, *vertex, *fragment, item, placement, formats, false);
   if (!pipeline) return pipeline.error();
   item.pipeline = std::move(pipeline).value();
   return item;
 }
 
-Expected<vk::Pipeline> createOverlayPipeline(const vk::Context& ctx, ModuleCache& modules,
-                                             const VariantProgram& program, const DrawItem& item,
-                                             const DrawPlacement& placement, const TargetFormats& formats) {
+Expected<SharedPipeline> createOverlayPipeline(const vk::Context& ctx, PipelineCaches caches,
+                                               const VariantProgram& program, const DrawItem& item,
+                                               const DrawPlacement& placement, const TargetFormats& formats) {
   const KernelProgram* vertex = program.kernelWithRole(WorldRole::VertexStage);
   const KernelProgram* fragment = program.kernelWithRole(WorldRole::FragmentStage);
   if (!vertex || !fragment) return Error{fmt::format("'{}' has no kernels to draw with", program.shader), {}, {}};
-  return buildPipeline(ctx, modules, *vertex, *fragment, item, placement, formats, true);
+  return buildPipeline(ctx, caches, *vertex, *fragment, item, placement, formats, true);
 }
 
 void updateFrameValues(const DrawItem& item, const FrameState& frame) {
@@ -138,8 +136,8 @@ void recordPasses(const vk::Context& ctx, VkCommandBuffer cmd, const DrawItem& i
 }
 
 void recordDraw(VkCommandBuffer cmd, const DrawItem& item) {
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, item.pipeline.pipeline.get());
-  bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, item.pipeline.layout.get(), item.descriptors);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, item.pipeline->pipeline.get());
+  bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, item.pipeline->layout.get(), item.descriptors);
   item.vertexInputs.bind(cmd);
   vkCmdBindIndexBuffer(cmd, item.mesh->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
   vkCmdDrawIndexed(cmd, item.mesh->indexCount(), 1, 0, 0, 0);

@@ -11,6 +11,7 @@
 #include "renderer/frame_pass.h"
 #include "renderer/kernel_bindings.h"
 #include "renderer/module_cache.h"
+#include "renderer/pipeline_cache.h"
 #include "renderer/pipeline_descriptors.h"
 #include "renderer/vertex_inputs.h"
 #include "vk/pipeline.h"
@@ -42,7 +43,7 @@ struct DrawItem {
   std::vector<BoundKernel> kernels;
   DescriptorBundle descriptors;
   VertexInputs vertexInputs;  // the mesh, and the vertex bake's records when Vertex reads them as inputs
-  vk::Pipeline pipeline;
+  SharedPipeline pipeline;    // shared with other draws of the same kernels and state (pipeline_cache.h)
   std::vector<std::unique_ptr<FramePass>> passes;  // rendered before the draw, every frame
   std::unique_ptr<BakeArrays> bakeArrays;          // the object's texture bakes as one-layer arrays, when sampled so
 };
@@ -51,16 +52,16 @@ struct DrawItem {
 // the demo measures), or an error when they are not 0..n-1.
 Expected<std::vector<std::string>> fragmentOutputs(const KernelProgram& fragment);
 
-Expected<DrawItem> createDrawItem(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
+Expected<DrawItem> createDrawItem(const vk::Context& ctx, PipelineCaches caches, const VariantProgram& program,
                                   const BindingSources& sources, const DrawPlacement& placement,
                                   const TargetFormats& formats);
 
 // The item's pipeline again, over the same descriptor set layouts, blended
 // by alpha and depth-tested LESS_OR_EQUAL without writing depth: a second
 // draw of the same surfaces over the first (level-of-detail cross-fades).
-Expected<vk::Pipeline> createOverlayPipeline(const vk::Context& ctx, ModuleCache& modules,
-                                             const VariantProgram& program, const DrawItem& item,
-                                             const DrawPlacement& placement, const TargetFormats& formats);
+Expected<SharedPipeline> createOverlayPipeline(const vk::Context& ctx, PipelineCaches caches,
+                                               const VariantProgram& program, const DrawItem& item,
+                                               const DrawPlacement& placement, const TargetFormats& formats);
 
 void updateFrameValues(const DrawItem& item, const FrameState& frame);
 // Which of a frame's work one submission records: a stereo frame renders

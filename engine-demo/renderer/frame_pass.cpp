@@ -27,9 +27,9 @@ constexpr std::array kPassKinds = {
 // Builds one pass; a class so that each step is a function of its own.
 class FramePassBuilder {
  public:
-  FramePassBuilder(const vk::Context& ctx, ModuleCache& modules, const PassKind& kind,
+  FramePassBuilder(const vk::Context& ctx, PipelineCaches caches, const PassKind& kind,
                    const FramePassSettings& settings)
-      : ctx_(ctx), modules_(modules), kind_(kind), settings_(settings) {}
+      : ctx_(ctx), caches_(caches), kind_(kind), settings_(settings) {}
 
   Expected<std::unique_ptr<FramePass>> build(const KernelProgram& vertex, const KernelProgram& fragment,
                                              const BindingSources& sources) {
@@ -69,9 +69,9 @@ class FramePassBuilder {
 
   Expected<void> buildPipeline(FramePass& pass, const KernelProgram& vertex, const KernelProgram& fragment,
                                const std::vector<BakeTarget>& targets) {
-    auto vertexModule = modules_.get(ctx_, vertex.hash, vertex.spirv);
+    auto vertexModule = caches_.modules.get(ctx_, vertex.hash, vertex.spirv);
     if (!vertexModule) return vertexModule.error();
-    auto fragmentModule = modules_.get(ctx_, fragment.hash, fragment.spirv);
+    auto fragmentModule = caches_.modules.get(ctx_, fragment.hash, fragment.spirv);
     if (!fragmentModule) return fragmentModule.error();
     vk::GraphicsPipelineBuilder builder;
     builder.vertexShader(*vertexModule).fragmentShader(*fragmentModule);
@@ -80,8 +80,8 @@ class FramePassBuilder {
     builder.depthFormat(VK_FORMAT_D32_SFLOAT).descriptorSetLayouts(pass.descriptors_.layoutHandles());
     const bool cull = kind_.screen && !settings_.doubleSided;
     builder.cullMode(cull ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE, VK_FRONT_FACE_COUNTER_CLOCKWISE);
-    auto pipeline = builder.build(ctx_);
-    if (!pipeline) return Error::fromVk(pipeline.error());
+    auto pipeline = caches_.pipelines.get(ctx_, builder, vertex.hash + " " + fragment.hash, pass.descriptors_);
+    if (!pipeline) return pipeline.error();
     pass.pipeline_ = std::move(pipeline).value();
     return {};
   }
@@ -108,7 +108,7 @@ class FramePassBuilder {
   }
 
   const vk::Context& ctx_;
-  ModuleCache& modules_;
+  PipelineCaches caches_;
   const PassKind& kind_;
   const FramePassSettings& settings_;
 };
@@ -125,8 +125,8 @@ void FramePass::record(const vk::Context& ctx, VkCommandBuffer cmd) {
   }
   depth_->transition(cmd, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
   vk::beginRendering(ctx, cmd, extent_, colors, vk::DepthTarget{depth_->view(), 1.0F});
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline.get());
-  bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout.get(), descriptors_);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_->pipeline.get());
+  bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_->layout.get(), descriptors_);
   vertexInputs_.bind(cmd);
   vkCmdBindIndexBuffer(cmd, mesh_->indices.handle(), 0, VK_INDEX_TYPE_UINT32);
   vkCmdDrawIndexed(cmd, mesh_->indexCount(), 1, 0, 0, 0);
@@ -134,7 +134,7 @@ void FramePass::record(const vk::Context& ctx, VkCommandBuffer cmd) {
   for (vk::Image& image : targets_) image.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
-Expected<std::vector<std::unique_ptr<FramePass>>> createFramePasses(const vk::Context& ctx, ModuleCache& modules,
+Expected<std::vector<std::unique_ptr<FramePass>>> createFramePasses(const vk::Context& ctx, PipelineCaches caches,
                                                                     const VariantProgram& program,
                                                                     const BindingSources& sources,
                                                                     const FramePassSettings& settings) {
@@ -150,7 +150,7 @@ Expected<std::vector<std::unique_ptr<FramePass>>> createFramePasses(const vk::Co
           {},
           {}};
     }
-    auto pass = FramePassBuilder(ctx, modules, kind, settings).build(*vertex, *fragment, sources);
+    auto pass = FramePassBuilder(ctx, caches, kind, settings).build(*vertex, *fragment, sources);
     if (!pass) return pass.error();
     passes.push_back(std::move(pass).value());
   }

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "renderer/kernel_bindings.h"
-#include "renderer/module_cache.h"
+#include "renderer/pipeline_cache.h"
 #include "renderer/pipeline_descriptors.h"
 #include "renderer/vertex_inputs.h"
 
@@ -55,7 +55,7 @@ class FramePass {
   std::vector<BoundKernel> kernels_;  // vertex, fragment
   DescriptorBundle descriptors_;
   VertexInputs vertexInputs_;
-  vk::Pipeline pipeline_;
+  SharedPipeline pipeline_;
   std::vector<vk::Image> targets_;
   std::unique_ptr<vk::Image> depth_;
   vk::Sampler sampler_;
@@ -64,7 +64,7 @@ class FramePass {
 
 // The passes `program` has, in the order they run: one per pass role whose
 // fragment kernel the variant has, with the vertex kernel of the same pass.
-Expected<std::vector<std::unique_ptr<FramePass>>> createFramePasses(const vk::Context& ctx, ModuleCache& modules,
+Expected<std::vector<std::unique_ptr<FramePass>>> createFramePasses(const vk::Context& ctx, PipelineCaches caches,
                                                                     const VariantProgram& program,
                                                                     const BindingSources& sources,
                                                                     const FramePassSettings& settings);

@@ -29,7 +29,7 @@ struct DrawGroup {
   std::map<uint32_t, uint32_t> layerOf;     // prototype -> its layer
   std::unique_ptr<BakeArrays> arrays;       // the prototypes' texture bakes, one layer each
   DrawItem item;                            // pipeline, descriptors, per-instance record buffers
-  vk::Pipeline overlay;                     // the same, blended over: cross-fades
+  SharedPipeline overlay;                   // the same, blended over: cross-fades
   std::map<uint32_t, VertexInputs> inputs;  // by mesh index
 };
 
@@ -226,10 +226,10 @@ Expected<void> LodScene::Impl::buildGroup(DrawGroup& group, uint32_t representat
   DrawPlacement placement{glm::mat4(1.0F), doubleSided[representative], VkExtent2D{scene.width, scene.height},
                           std::max(capacity, 1U), &group.arrays->textures};
   const TargetFormats& formats = renderer.target()->formats();
-  auto item = createDrawItem(renderer.context(), renderer.modules(), program, sources, placement, formats);
+  auto item = createDrawItem(renderer.context(), renderer.caches(), program, sources, placement, formats);
   if (!item) return Error{fmt::format("'{}': {}", program.shader, item.error().message), {}, item.error().details};
   group.item = std::move(item).value();
-  auto overlay = createOverlayPipeline(renderer.context(), renderer.modules(), program, group.item, placement, formats);
+  auto overlay = createOverlayPipeline(renderer.context(), renderer.caches(), program, group.item, placement, formats);
   if (!overlay) return overlay.error();
   group.overlay = std::move(overlay).value();
   for (uint32_t p : group.prototypes) {
@@ -268,7 +268,7 @@ void LodScene::Impl::writeRecords(const FrameState& frame) {
 void LodScene::Impl::recordBatches(VkCommandBuffer cmd) const {
   for (const lod::Batch& batch : batches.batches) {
     const DrawGroup& group = *groups[batch.group];
-    const vk::Pipeline& pipeline = batch.overlay ? group.overlay : group.item.pipeline;
+    const vk::Pipeline& pipeline = batch.overlay ? *group.overlay : *group.item.pipeline;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline.get());
     bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout.get(), group.item.descriptors);
     for (uint32_t d = batch.firstDraw; d < batch.firstDraw + batch.drawCount; ++d) {

@@ -93,10 +93,14 @@ Expected<DescriptorBundle> createDescriptors(const vk::Context& ctx, std::span<c
   std::map<VkDescriptorType, uint32_t> counts;
   for (const std::vector<MergedBinding>& set : *plan) {
     vk::DescriptorSetLayoutBuilder builder;
+    bundle.layoutKey += "set";
     for (const MergedBinding& b : set) {
       builder.binding(b.descriptor.slot.binding, b.descriptor.type, b.stages);
+      bundle.layoutKey +=
+          fmt::format(" {}:{}:{}", b.descriptor.slot.binding, static_cast<int>(b.descriptor.type), b.stages);
       ++counts[b.descriptor.type];
     }
+    bundle.layoutKey += ";";
     auto layout = builder.build(ctx);
     if (!layout) return Error::fromVk(layout.error());
     bundle.layouts.push_back(std::move(layout).value());

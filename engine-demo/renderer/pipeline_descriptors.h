@@ -36,6 +36,10 @@ struct DescriptorBundle {
   std::vector<vk::DescriptorSetLayout> layouts;  // by set number
   vk::DescriptorPool pool;                       // none when there are no sets
   std::vector<VkDescriptorSet> sets;             // by set number; freed with the pool
+  // The layouts' definitions as text: a pipeline built over other layouts
+  // with the same key is compatible with these sets (Vulkan's "identically
+  // defined" layouts), so pipeline caches key on it.
+  std::string layoutKey;
 
   // The layouts' handles, in set order, for a pipeline layout.
   std::vector<VkDescriptorSetLayout> layoutHandles() const;

@@ -306,6 +306,7 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
   auto target = targetFor(colorTargets);
   if (!target) return target.error();
 
+  const PipelineCounts before = pipelines_.counts();
   for (size_t i = 0; i < programs.size(); ++i) {
     const scene::InstanceDesc& instance = scene_.instances[i];
     if (hazards_) hazards_->setInstance(fmt::format("instance {} ({})", i, programs[i].shader));
@@ -323,11 +324,12 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
     sources.hazards = hazards_;
     const DrawPlacement placement{instance.transform, instance.doubleSided.value_or(meshes[i]->mesh.doubleSided),
                                   VkExtent2D{scene_.width, scene_.height}};
-    auto item = createDrawItem(ctx_, modules_, programs[i], sources, placement, (*target)->formats());
+    auto item = createDrawItem(ctx_, caches(), programs[i], sources, placement, (*target)->formats());
     if (!item) return Error{item.error().message, instance.range, item.error().details};
     prepared.items.push_back(std::move(item).value());
     prepared.fingerprints.push_back(programs[i].fingerprint());
   }
+  prepared.pipelines = {pipelines_.counts().created - before.created, pipelines_.counts().reused - before.reused};
   return prepared;
 }
 

@@ -16,6 +16,7 @@
 #include "driver/shader_library.h"
 #include "renderer/bake_cache.h"
 #include "renderer/hazard_records.h"
+#include "renderer/pipeline_cache.h"
 #include "renderer/render_target.h"
 #include "scene/scene_file.h"
 
@@ -28,6 +29,9 @@ struct PreparedScene {
   std::vector<std::string> fingerprints;               // per instance: its kernels' hashes
   std::vector<const TextureBakeResult*> textureBakes;  // per instance: its PrebakeTex result, or null
   std::vector<const UniformBakeResult*> uniformBakes;  // per instance: its PrebakeUniform result, or null
+  // The graphics pipelines this prepare built, and those it shared with
+  // scenes prepared before that were still alive (pipeline_cache.h).
+  PipelineCounts pipelines;
 };
 
 struct FrameStats {
@@ -133,7 +137,11 @@ class SceneRenderer {
   const std::string& compilerWarnings() const { return compilerWarnings_; }
   const TextureBakeOptions& textureBakeOptions() const { return bakes_.textureOptions(); }
   const vk::Context& context() const { return ctx_; }
-  ModuleCache& modules() { return modules_; }
+  // The shader modules and pipelines draws are built from (lod_scene.h
+  // builds draws of its own).
+  PipelineCaches caches() { return {modules_, pipelines_}; }
+  // Pipelines built and reused since the renderer was made.
+  const PipelineCounts& pipelineCounts() const { return pipelines_.counts(); }
   // The frame's target; nullptr before prepare().
   RenderTarget* target() { return target_ ? &*target_ : nullptr; }
   const scene::SceneFile& scene() const { return scene_; }
@@ -166,6 +174,7 @@ class SceneRenderer {
   const scene::SceneFile& scene_;
   DiagnosticList& diags_;
   ModuleCache modules_;
+  PipelineCache pipelines_;
   BakeCache bakes_;
   struct SceneAssets {
     std::map<std::string, std::unique_ptr<ShaderLibrary>> libraries;

@@ -1,5 +1,7 @@
 #include "vk/pipeline.h"
 
+#include <fmt/format.h>
+
 #include <array>
 
 namespace spire::vk {
@@ -166,6 +168,24 @@ GraphicsPipelineBuilder& GraphicsPipelineBuilder::descriptorSetLayout(VkDescript
 GraphicsPipelineBuilder& GraphicsPipelineBuilder::descriptorSetLayouts(std::span<const VkDescriptorSetLayout> layouts) {
   setLayouts_.insert(setLayouts_.end(), layouts.begin(), layouts.end());
   return *this;
+}
+
+std::string GraphicsPipelineBuilder::stateKey() const {
+  std::string key =
+      fmt::format("vs {} fs {}; topology {} cull {} front {}; depth {} write {} compare {}; blend {}", vertex_.entry,
+                  fragment_.entry, static_cast<int>(topology_), cullMode_, static_cast<int>(frontFace_),
+                  static_cast<int>(depthFormat_), depthWrite_, static_cast<int>(depthCompare_), alphaBlend_);
+  for (VkFormat format : colorFormats_) key += fmt::format("; color {}", static_cast<int>(format));
+  for (const VkVertexInputBindingDescription& b : bindings_)
+    key += fmt::format("; binding {} stride {} rate {}", b.binding, b.stride, static_cast<int>(b.inputRate));
+  for (const VkVertexInputAttributeDescription& a : attributes_) {
+    key += fmt::format("; attribute {} binding {} format {} offset {}", a.location, a.binding,
+                       static_cast<int>(a.format), a.offset);
+  }
+  for (const VkPushConstantRange& p : pushConstants_)
+    key += fmt::format("; push {} {} {}", p.stageFlags, p.offset, p.size);
+  key += fmt::format("; {} sets", setLayouts_.size());
+  return key;
 }
 
 Expected<Pipeline> GraphicsPipelineBuilder::build(const Context& ctx) const {

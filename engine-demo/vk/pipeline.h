@@ -50,6 +50,12 @@ class GraphicsPipelineBuilder {
   // Viewport and scissor are dynamic state: set them per draw (beginRendering
   // does it for the full render area).
   Expected<Pipeline> build(const Context& ctx) const;
+  // Everything build() uses except the shader modules and set layouts, as
+  // text: builders with the same key, equal modules and identically defined
+  // set layouts build interchangeable pipelines, so a cache of pipelines
+  // keys on it (with the modules' and layouts' own keys) and picks up any
+  // state added here later.
+  std::string stateKey() const;
 
  private:
   struct Stage {

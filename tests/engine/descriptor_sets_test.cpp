@@ -184,7 +184,8 @@ class RendererDescriptorSetsTest : public vk::testing::DeviceTest {
   BindingSources sources() const { return {mesh_.get(), &material_, nullptr, nullptr, nullptr}; }
 
   Expected<DrawItem> drawItem(const VariantProgram& program, const TargetFormats& formats) {
-    return createDrawItem(ctx(), modules_, program, sources(), DrawPlacement{glm::mat4(1.0F), true}, formats);
+    return createDrawItem(ctx(), {modules_, pipelines_}, program, sources(), DrawPlacement{glm::mat4(1.0F), true},
+                          formats);
   }
 
   // Draws `program` into a 4x4 target; the color of its middle pixel.
@@ -208,6 +209,7 @@ class RendererDescriptorSetsTest : public vk::testing::DeviceTest {
   }
 
   ModuleCache modules_;
+  PipelineCache pipelines_;
   std::unique_ptr<GpuMesh> mesh_;
   std::unique_ptr<GpuTexture> texture_;
   MaterialValues material_;

@@ -28,9 +28,9 @@ TEST(ExploreScript, ParsesEveryAction) {
         "set Terrain.albedo = PrebakeTex   // trailing comment\n"
         "unset albedo\nreset\nload a.decisions\nsave b.decisions\nundo\nview split\n"
         "wait-frames 12\nwait-reload\nscreenshot x.png\nscreenshot-window y.png\nwalk 30 7\n"
-        "load-tune tuned\napply-front 0\n\n   quit\n");
+        "load-tune tuned\napply-front 0\ninstance 1\n\n   quit\n");
   ASSERT_FALSE(p.diags.hasErrors()) << renderDiagnostics(p.sources, p.diags, DiagnosticFormat::Text);
-  ASSERT_EQ(p.actions.size(), 15U);
+  ASSERT_EQ(p.actions.size(), 16U);
   EXPECT_EQ(p.actions[0].kind, ActionKind::Set);
   EXPECT_EQ(p.actions[0].target, "Terrain.albedo");
   EXPECT_EQ(p.actions[0].value, "PrebakeTex");
@@ -48,8 +48,10 @@ TEST(ExploreScript, ParsesEveryAction) {
   EXPECT_EQ(p.actions[12].target, "tuned");
   EXPECT_EQ(p.actions[13].kind, ActionKind::ApplyFront);
   EXPECT_EQ(p.actions[13].count, 0U);
-  EXPECT_EQ(p.actions[14].kind, ActionKind::Quit);
-  EXPECT_EQ(p.sources.begin(p.actions[14].range).column, 4U);
+  EXPECT_EQ(p.actions[14].kind, ActionKind::Instance);
+  EXPECT_EQ(p.actions[14].count, 1U);
+  EXPECT_EQ(p.actions[15].kind, ActionKind::Quit);
+  EXPECT_EQ(p.sources.begin(p.actions[15].range).column, 4U);
 }
 
 TEST(ExploreScript, EveryMalformedLineIsAnErrorAtItsPlace) {
@@ -61,6 +63,7 @@ TEST(ExploreScript, EveryMalformedLineIsAnErrorAtItsPlace) {
         "explode now\n"
         "undo twice\n"
         "apply-front first\n"
+        "instance -1\n"
         "set albedo = Fragment\n");
   EXPECT_TRUE(p.actions.empty()) << "a script with errors runs nothing";
   EXPECT_EQ(
@@ -75,7 +78,7 @@ TEST(ExploreScript, EveryMalformedLineIsAnErrorAtItsPlace) {
       " 3 | view sideways\n"
       "   |      ^~~~~~~~\n"
       "s.explore:4:1: error[E7201]: unknown action 'explode' (actions: set, unset, reset, load, save, undo, walk, "
-      "view, wait-frames, wait-reload, screenshot, screenshot-window, load-tune, apply-front, quit)\n"
+      "view, wait-frames, wait-reload, screenshot, screenshot-window, load-tune, apply-front, instance, quit)\n"
       " 4 | explode now\n"
       "   | ^~~~~~~\n"
       "s.explore:5:6: error[E7201]: 'undo' takes nothing after it\n"
@@ -84,7 +87,10 @@ TEST(ExploreScript, EveryMalformedLineIsAnErrorAtItsPlace) {
       "s.explore:6:13: error[E7201]: expected a front point from 0 (the fastest) to 100000\n"
       " 6 | apply-front first\n"
       "   |             ^~~~~\n"
-      "6 errors generated.\n");
+      "s.explore:7:10: error[E7201]: expected an instance index from 0 to 100000\n"
+      " 7 | instance -1\n"
+      "   |          ^~\n"
+      "7 errors generated.\n");
 }
 
 }  // namespace

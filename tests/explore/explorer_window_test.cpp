@@ -174,6 +174,57 @@ TEST_F(ExplorerWindowTest, ABadScriptFailsWithItsLineAndColumn) {
       << err_.str();
 }
 
+// `instance N` switches the explored instance of a two-instance scene; each
+// keeps its decisions and undo history, a change to one keeps the other's
+// pipeline, and an instance the scene does not have is E7202.
+TEST_F(ExplorerWindowTest, SwitchingInstancesKeepsEachOnesDecisionsAndHistory) {
+  const fs::path path = script(
+      "set Terrain.lighting = Vertex:ggx\n"
+      "instance 1\n"
+      "set Couch.specular = Fragment:standardGGX\n"
+      "save couch.decisions\n"
+      "instance 0\n"
+      "save terrain.decisions\n"
+      "undo\n"
+      "save terrain-undone.decisions\n"
+      "instance 1\n"
+      "save couch-again.decisions\n"
+      "quit\n");
+  ASSERT_EQ(explore({"examples/scenes/terrain_and_couch.json", "--validation", "--bake-size", "64", "--script",
+                     path.string(), "--log", (dir_ / "log.json").string()}),
+            0)
+      << err_.str() << out_.str();
+  const nlohmann::json changes = log()["changes"];
+  ASSERT_EQ(changes.size(), 3U) << out_.str();
+  EXPECT_EQ(changes[0]["instance"], 0);
+  EXPECT_EQ(changes[1]["action"], "set Couch.specular = Fragment:standardGGX");
+  EXPECT_EQ(changes[1]["instance"], 1);
+  EXPECT_EQ(changes[2]["action"], "undo");
+  EXPECT_EQ(changes[2]["instance"], 0);
+  for (const nlohmann::json& change : changes) EXPECT_TRUE(change["ok"]) << change["error"];
+  // Each change builds the changed instance's pipeline and reuses the other's,
+  // whose kernels did not change. The undo goes back to the terrain's
+  // starting kernels, whose pipeline the reference still draws with.
+  EXPECT_EQ(changes[0]["pipelines_created"], 1);
+  EXPECT_EQ(changes[0]["pipelines_reused"], 1);
+  EXPECT_EQ(changes[1]["pipelines_created"], 1);
+  EXPECT_EQ(changes[1]["pipelines_reused"], 1);
+  EXPECT_EQ(changes[2]["pipelines_created"], 0);
+  EXPECT_EQ(changes[2]["pipelines_reused"], 2);
+  const auto text = [&](const char* name) { return readWholeFile((dir_ / name).string()).value_or(""); };
+  EXPECT_NE(text("couch.decisions").find("Couch.specular = Fragment:standardGGX"), std::string::npos);
+  EXPECT_NE(text("terrain.decisions").find("Terrain.lighting = Vertex:ggx"), std::string::npos);
+  EXPECT_EQ(text("terrain-undone.decisions").find("Terrain.lighting"), std::string::npos)
+      << "undo takes back the instance's own last change, not the other instance's";
+  EXPECT_EQ(text("couch-again.decisions"), text("couch.decisions"));
+
+  const fs::path bad = script("instance 2\n");
+  EXPECT_EQ(explore({"examples/scenes/terrain_and_couch.json", "--script", bad.string()}), 1);
+  EXPECT_NE(err_.str().find("script.explore:1:1: error[E7202]: instance 2: the scene has 2 instance(s), from 0"),
+            std::string::npos)
+      << err_.str();
+}
+
 TEST(ExploreCli, NeedsASceneAndDocumentsItsFlags) {
   std::ostringstream out;
   std::ostringstream err;
