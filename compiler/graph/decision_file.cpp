@@ -311,12 +311,14 @@ std::string writeDecisionFile(const DecisionFile& decisions, std::string_view co
   return text;
 }
 
-void checkDecisionPrefixes(const DecisionFile& decisions, const sem::Model& model, DiagnosticList& diags) {
+void checkDecisionPrefixes(const DecisionFile& decisions, const sem::Model& model, DiagnosticList& diags,
+                           const std::function<bool(std::string_view)>& knownElsewhere) {
   std::vector<std::string_view> names;
   for (const auto& s : model.shaders) names.push_back(s->name);
   for (const auto& g : model.groups) names.push_back(g->name);
   for (const DecisionLine& line : decisions.lines) {
     if (model.findShader(line.prefix) || model.findGroup(line.prefix)) continue;
+    if (knownElsewhere && knownElsewhere(line.prefix)) continue;
     const auto suggestion = closestSpelling(line.prefix, names);
     diags.report(DiagCode::W5001, line.prefixRange,
                  fmt::format("unknown shader '{}'; {}", line.prefix, skipped(suggestion)));

@@ -3,6 +3,8 @@
 // such as `[Format: "RGB10_A2"] Terrain.albedo = PrebakeTex`.
 #pragma once
 
+#include <functional>
+
 #include <optional>
 #include <string>
 #include <string_view>
@@ -55,7 +57,11 @@ std::string writeDecisionLine(const DecisionLine& line);
 std::string writeDecisionFile(const DecisionFile& decisions, std::string_view comment = {});
 
 // Warns (W5001) about lines whose prefix names no shader or group at all.
-void checkDecisionPrefixes(const DecisionFile& decisions, const sem::Model& model, DiagnosticList& diags);
+// `knownElsewhere` accepts the prefixes that another library reading the
+// same file knows (a scene's variant file is read once per instance's
+// source, and each source reads only its own lines).
+void checkDecisionPrefixes(const DecisionFile& decisions, const sem::Model& model, DiagnosticList& diags,
+                           const std::function<bool(std::string_view)>& knownElsewhere = {});
 
 // Builds the variant of the space's shader from the lines that apply to it,
 // warning about unknown components, worlds and variations (W5001),

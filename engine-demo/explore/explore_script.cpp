@@ -42,13 +42,16 @@ struct Verb {
   std::string_view name;
   ActionKind kind;
   size_t arguments;  // words after the verb; `set` is special (NAME = VALUE)
+  // The last argument may be left out: `save` and `load` then use the file
+  // of the window's Save and Load buttons (--save-to).
+  bool lastOptional = false;
 };
 
 constexpr std::array<Verb, 16> kVerbs{{{"set", ActionKind::Set, 3},
                                        {"unset", ActionKind::Unset, 1},
                                        {"reset", ActionKind::Reset, 0},
-                                       {"load", ActionKind::Load, 1},
-                                       {"save", ActionKind::Save, 1},
+                                       {"load", ActionKind::Load, 1, true},
+                                       {"save", ActionKind::Save, 1, true},
                                        {"undo", ActionKind::Undo, 0},
                                        {"walk", ActionKind::Walk, 2},
                                        {"view", ActionKind::View, 1},
@@ -65,8 +68,8 @@ const char* usageOf(ActionKind kind) {
   switch (kind) {
     case ActionKind::Set: return "set CHOICE = PLACEMENT";
     case ActionKind::Unset: return "unset CHOICE";
-    case ActionKind::Load: return "load FILE";
-    case ActionKind::Save: return "save FILE";
+    case ActionKind::Load: return "load [FILE]";
+    case ActionKind::Save: return "save [FILE]";
     case ActionKind::View: return "view variant|reference|error|hazards|split";
     case ActionKind::WaitFrames: return "wait-frames N";
     case ActionKind::Walk: return "walk N SEED";
@@ -102,7 +105,8 @@ std::optional<ScriptAction> parseLine(FileId file, const std::vector<Word>& word
     return std::nullopt;
   }
   const bool badSet = verb->kind == ActionKind::Set && words.size() == 4 && words[2].text != "=";
-  if (words.size() != verb->arguments + 1 || badSet) {
+  const bool shortened = verb->lastOptional && words.size() == verb->arguments;
+  if ((words.size() != verb->arguments + 1 && !shortened) || badSet) {
     const Word& at = words.size() > verb->arguments + 1 ? words[verb->arguments + 1] : words.back();
     const std::string usage = verb->arguments == 0 ? fmt::format("'{}' takes nothing after it", verb->name)
                                                    : fmt::format("expected '{}'", usageOf(verb->kind));

@@ -139,6 +139,8 @@ class Explorer {
   engine::Expected<void> present();
   scene::CameraView cameraView(const demo::WindowInput& input, double now);
   fs::path scriptRelative(const std::string& path) const;
+  // A script's `save`/`load` file; without one, the Save and Load buttons' (--save-to).
+  fs::path buttonsOrScriptRelative(const std::string& path) const;
   // The diagnostics reported since the list's size was `mark`, rendered.
   std::string renderSince(size_t mark) const;
   std::optional<int> startSession();
@@ -206,6 +208,10 @@ fs::path Explorer::scriptRelative(const std::string& path) const {
   const fs::path p(path);
   if (p.is_absolute() || !options_.script) return p;
   return options_.script->parent_path() / p;
+}
+
+fs::path Explorer::buttonsOrScriptRelative(const std::string& path) const {
+  return path.empty() ? fs::path(options_.saveTo) : scriptRelative(path);
 }
 
 engine::Expected<Explorer::FileDecisions> Explorer::readDecisions(const fs::path& path) {
@@ -410,7 +416,7 @@ bool Explorer::changeAction(const ScriptAction& action) {
       ok = session_->state->replace(session_->tune->variants[session_->tune->front[action.count]].decisions);
       break;
     default: {
-      auto placement = readDecisions(scriptRelative(action.target));
+      auto placement = readDecisions(buttonsOrScriptRelative(action.target));
       if (!placement) return scriptError(action, placement.error().message + "\n" + placement.error().details);
       ok = session_->state->replace(placement->placement, placement->attributes);
     }
@@ -423,7 +429,7 @@ bool Explorer::changeAction(const ScriptAction& action) {
 bool Explorer::runAction(const ScriptAction& action) {
   switch (action.kind) {
     case ActionKind::Save: {
-      auto ok = writeFileAtomically(scriptRelative(action.target).string(),
+      auto ok = writeFileAtomically(buttonsOrScriptRelative(action.target).string(),
                                     session_->state->decisionFileText("written by spire-explore"));
       return ok ? true : scriptError(action, ok.error().message);
     }

@@ -91,6 +91,15 @@ Expected<ShaderLibrary*> SceneRenderer::libraryFor(const scene::InstanceDesc& in
   return assets_->libraries.emplace(key, std::move(library).value()).first->second.get();
 }
 
+bool SceneRenderer::knownToAnotherSource(const scene::InstanceDesc& instance, std::string_view prefix) {
+  for (const scene::InstanceDesc& other : scene_.instances) {
+    if (other.kernels || libraryKey(other) == libraryKey(instance)) continue;
+    auto library = libraryFor(other);
+    if (library && ((*library)->model().findShader(prefix) || (*library)->model().findGroup(prefix))) return true;
+  }
+  return false;
+}
+
 Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDesc& instance,
                                                         const std::optional<std::filesystem::path>& decisions) {
   if (instance.kernels) {
@@ -119,7 +128,10 @@ Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDes
   if (decisionPath) {
     if (const auto id = lib.frontEnd().loadAuxiliaryFile(decisionPath->string())) {
       decisionFile = graph::parseDecisionFile(lib.sources(), *id, diags);
-      graph::checkDecisionPrefixes(decisionFile, lib.model(), diags);
+      graph::checkDecisionPrefixes(decisionFile, lib.model(), diags, [&](std::string_view prefix) {
+        // A scene-wide variant names the shaders of every instance's source.
+        return decisions && knownToAnotherSource(instance, prefix);
+      });
     }
   }
   const SourceRange where = decisions || !instance.decisions ? instance.shaderRange : instance.decisionsRange;

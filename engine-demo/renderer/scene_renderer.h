@@ -161,6 +161,9 @@ class SceneRenderer {
   Expected<VariantProgram> compileInstance(const scene::InstanceDesc& instance,
                                            const std::optional<std::filesystem::path>& decisions);
   Expected<ShaderLibrary*> libraryFor(const scene::InstanceDesc& instance);
+  // Whether the source of another instance than `instance` declares a shader
+  // or group named `prefix`.
+  bool knownToAnotherSource(const scene::InstanceDesc& instance, std::string_view prefix);
   Expected<std::unique_ptr<ShaderLibrary>> loadLibrary(const scene::InstanceDesc& instance) const;
   const GpuMesh* meshFor(const std::string& name, SourceRange range);
   const GpuTexture* textureFor(const std::string& name, SourceRange range);

@@ -176,6 +176,36 @@ std::optional<LodSummary> parseLodSummary(const std::string& out) {
 
 // The three configurations over a moving camera: the four files, a report
 // row for each configuration, and a summary line with sane numbers.
+// A scene variant is one decision file for every instance; each instance's
+// source reads only the lines of its own shaders. A line for a shader that
+// another instance's source declares applies there, not here; a shader no
+// source declares is still an error.
+TEST_F(DemoTest, ASceneVariantNamesTheShadersOfEverySource) {
+  const fs::path dir = outputDir();
+  fs::remove_all(dir);
+  std::ostringstream out;
+  std::ostringstream err;
+  EXPECT_EQ(
+      runDemo({"examples/scenes/terrain_and_couch.json", "--validation", "--frames", "1", "--warmup", "1",
+               "--bake-size", "64", "--variant", "examples/decisions/couch/baked_phong.decisions", "-o", dir.string()},
+              out, err),
+      kExitSuccess)
+      << err.str();
+  EXPECT_TRUE(fs::exists(dir / "baked_phong.png"));
+  const fs::path typo = fs::path(dir.string() + "_typo.decisions");
+  std::ofstream(typo) << "Cuoch.specular = Fragment:standardPhong\n";
+  std::ostringstream typoOut;
+  std::ostringstream typoErr;
+  EXPECT_NE(runDemo({"examples/scenes/terrain_and_couch.json", "--validation", "--frames", "1", "--warmup", "1",
+                     "--bake-size", "64", "--variant", typo.string(), "-o", dir.string() + "_out"},
+                    typoOut, typoErr),
+            kExitSuccess);
+  EXPECT_NE(typoErr.str().find("unknown shader 'Cuoch'"), std::string::npos) << typoErr.str();
+  fs::remove_all(dir);
+  fs::remove_all(dir.string() + "_out");
+  fs::remove(typo);
+}
+
 TEST_F(DemoTest, LodSceneWritesImagesReportAndSummary) {
   const fs::path dir = outputDir();
   const fs::path sceneDir = fs::path(dir.string() + "_scene");

@@ -18,10 +18,8 @@
 
 #include <unistd.h>
 
-#include "common/have_display.h"
 #include "demo/demo.h"
-#include "engine/device_fixture.h"
-#include "explore/explore_cli.h"
+#include "explore/explorer_window_fixture.h"
 #include "scene/texture.h"
 #include "support/file_io.h"
 
@@ -30,39 +28,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using spire::testing::haveDisplay;
-
-// A device test (engine/device_fixture.h): under the asan preset it keeps
-// lavapipe loaded, so LeakSanitizer can name (and tests/lsan.supp suppress)
-// the blocks the driver keeps; and under CI a missing device fails.
-class ExplorerWindowTest : public vk::testing::DeviceTest {
- protected:
-  void SetUp() override {
-    DeviceTest::SetUp();
-    if (IsSkipped() || HasFatalFailure()) return;
-    if (!haveDisplay()) GTEST_SKIP() << "no display (run under xvfb-run to cover this)";
-    dir_ = fs::temp_directory_path() / ("spire-explore-" + std::to_string(getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure() && !dir_.empty()) fs::remove_all(dir_);
-  }
-  fs::path script(const std::string& text) const {
-    const fs::path path = dir_ / "script.explore";
-    std::ofstream(path) << text;
-    return path;
-  }
-  int explore(std::vector<std::string> args) { return runExploreTool(args, out_, err_); }
-  nlohmann::json log() const {
-    return nlohmann::json::parse(readWholeFile((dir_ / "log.json").string()).value_or("null"));
-  }
-
-  fs::path dir_;
-  std::ostringstream out_;
-  std::ostringstream err_;
-};
+using ExplorerWindowTest = testing::ExplorerWindowFixture;
 
 // Largest channel difference and the share of differing bytes.
 struct PngDifference {
@@ -236,6 +202,44 @@ TEST(ExploreCli, NeedsASceneAndDocumentsItsFlags) {
        {"--script", "--log", "--reference", "--decisions", "--instance", "--save-to", "--tune-dir"}) {
     EXPECT_NE(help.str().find(flag), std::string::npos) << flag;
   }
+}
+
+// The start-up options: --instance picks the explored instance, --decisions
+// its first variant, --reference what the error is measured against, and
+// --save-to the file of the Save and Load buttons, which a script's `save`
+// and `load` without a file use too.
+TEST_F(ExplorerWindowTest, StartOptionsPickTheInstanceDecisionsReferenceAndButtonsFile) {
+  const fs::path decisions = fs::absolute("examples/decisions/couch/baked_phong.decisions");
+  const fs::path buttons = dir_ / "buttons.decisions";
+  const fs::path path = script(
+      "save\n"
+      "view reference\n"
+      "screenshot reference.png\n"
+      "view variant\n"
+      "screenshot variant.png\n"
+      "set Couch.specular = Fragment:standardGGX\n"
+      "load\n"
+      "save reloaded.decisions\n"
+      "quit\n");
+  ASSERT_EQ(explore({"examples/scenes/terrain_and_couch.json", "--validation", "--bake-size", "64", "--instance", "1",
+                     "--decisions", decisions.string(), "--reference", decisions.string(), "--save-to",
+                     buttons.string(), "--script", path.string(), "--log", (dir_ / "log.json").string()}),
+            0)
+      << err_.str() << out_.str();
+  EXPECT_EQ(log()["shader"], "Couch");
+  const std::string saved = readWholeFile(buttons.string()).value_or("");
+  for (const char* line : {"Couch.albedo = PrebakeTex", "Couch.specular = Fragment:standardPhong"}) {
+    EXPECT_NE(saved.find(line), std::string::npos) << line << " in\n" << saved;
+  }
+  EXPECT_EQ(comparePngs(dir_ / "reference.png", dir_ / "variant.png").largest, 0)
+      << "the reference is the starting decisions";
+  const nlohmann::json changes = log()["changes"];
+  ASSERT_EQ(changes.size(), 3U) << out_.str();  // --decisions, set, load
+  EXPECT_EQ(changes[0]["action"], "load " + decisions.string());
+  EXPECT_EQ(changes[2]["action"], "load");
+  EXPECT_TRUE(changes[2]["ok"]);
+  EXPECT_EQ(readWholeFile((dir_ / "reloaded.decisions").string()).value_or("x"), saved)
+      << "`load` without a file reads what `save` without a file wrote";
 }
 
 }  // namespace

@@ -18,8 +18,7 @@
 #include <unistd.h>
 
 #include "common/have_display.h"
-#include "engine/device_fixture.h"
-#include "explore/explore_cli.h"
+#include "explore/explorer_window_fixture.h"
 #include "graph/decision_file.h"
 #include "support/diagnostic.h"
 #include "support/file_io.h"
@@ -32,8 +31,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A device test (engine/device_fixture.h), as explorer_window_test.cpp says why.
-class ParetoWindowTest : public vk::testing::DeviceTest {
+class ParetoWindowTest : public testing::ExplorerWindowFixture {
  protected:
   // One tuning run for the suite: it takes most of the time.
   static void SetUpTestSuite() {
@@ -56,29 +54,13 @@ class ParetoWindowTest : public vk::testing::DeviceTest {
     DeviceTest::TearDownTestSuite();
   }
   void SetUp() override {
-    DeviceTest::SetUp();
+    ExplorerWindowFixture::SetUp();
     if (IsSkipped() || HasFatalFailure()) return;
-    if (!spire::testing::haveDisplay()) GTEST_SKIP() << "no display (run under xvfb-run to cover this)";
     ASSERT_EQ(tuneStatus_, 0) << "spire-tune failed";
-    dir_ = fs::temp_directory_path() / ("spire-explore-pareto-" + std::to_string(getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure() && !dir_.empty()) fs::remove_all(dir_);
-  }
-  fs::path script(const std::string& text) const {
-    const fs::path path = dir_ / "script.explore";
-    std::ofstream(path) << text;
-    return path;
   }
 
   static fs::path* tuneDir_;
   static int tuneStatus_;
-  fs::path dir_;
-  std::ostringstream out_;
-  std::ostringstream err_;
 };
 
 fs::path* ParetoWindowTest::tuneDir_ = nullptr;
