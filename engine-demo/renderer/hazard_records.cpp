@@ -12,6 +12,8 @@ namespace spire::engine {
 namespace {
 
 std::string unitOf(const KernelProgram& kernel) {
+  // A uniform bake runs over samples of the surface, not the mesh's vertices.
+  if (kernel.pass && kernel.pass->kind == WorldRole::UniformBake) return "surface samples";
   if (kernel.stage != codegen::ShaderStage::Fragment) return "vertices";
   const bool texels = kernel.pass && (kernel.pass->kind == WorldRole::TextureBake ||
                                       kernel.pass->kind == WorldRole::ObjectPassFragment);
@@ -20,6 +22,7 @@ std::string unitOf(const KernelProgram& kernel) {
 
 std::string invocationName(const std::string& unit, uint32_t index, uint32_t width) {
   if (unit == "vertices") return fmt::format("vertex {}", index);
+  if (unit == "surface samples") return fmt::format("surface sample {}", index);
   const uint32_t w = std::max(width, 1U);
   return fmt::format("{} ({}, {})", unit == "px" ? "pixel" : "texel", index % w, index / w);
 }

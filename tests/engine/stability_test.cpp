@@ -912,6 +912,26 @@ TEST_F(StabilityTest, HazardsAreTracedToTheComponentAndInputInEveryWorld) {
   EXPECT_NE(report.find("- scaled (Vertex) went Inf in 25 vertices"), std::string::npos) << report;
 }
 
+// The uniform bake runs over samples of the mesh's surface, and its hazards
+// are counted and located in those samples, not in vertices.
+TEST_F(StabilityTest, AUniformBakeHazardIsCountedInSurfaceSamples) {
+  const fs::path outputDir = fs::temp_directory_path() / ("spire_stability_per_object_" + std::to_string(::getpid()));
+  std::ostringstream out;
+  std::ostringstream err;
+  ASSERT_EQ(
+      demo::runDemo({(kDataDir / "user_divide_per_object.json").string(), "--validation", "-o", outputDir.string()},
+                    out, err),
+      0)
+      << err.str();
+  fs::remove_all(outputDir);
+  const std::string text = err.str();
+  EXPECT_NE(text.find("scaled (PrebakeUniform) went Inf in "), std::string::npos) << text;
+  EXPECT_NE(text.find(" surface samples; color = (0.5, 0.5, 0.5, 1), divisor = 0 there [instance 0 "
+                      "(UserDividePerObject), first at surface sample 0"),
+            std::string::npos)
+      << text;
+}
+
 // A variant that averages the position per object (collapse.json) draws
 // every vertex on one point and covers nothing: spire-demo flags its image
 // as degenerate (no speedup in the table, the report or the caption) and
