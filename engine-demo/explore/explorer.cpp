@@ -109,6 +109,11 @@ class Explorer {
     ShaderLibrary::Attributes attributes;
   };
   engine::Expected<FileDecisions> readDecisions(const fs::path& path);
+  // Save and Load, for the window's buttons and the script's actions alike:
+  // the explored instance's decisions written to `path`, or replaced by the
+  // ones read from it (the caller starts the change).
+  Expected<void, Failure> saveDecisions(const fs::path& path) const;
+  Expected<void, Failure> loadDecisions(const fs::path& path);
   std::optional<int> loadScript();
   // Reads a spire-tune output directory for the Pareto view, replacing any
   // loaded before.
@@ -212,6 +217,19 @@ fs::path Explorer::scriptRelative(const std::string& path) const {
 
 fs::path Explorer::buttonsOrScriptRelative(const std::string& path) const {
   return path.empty() ? fs::path(options_.saveTo) : scriptRelative(path);
+}
+
+Expected<void, Failure> Explorer::saveDecisions(const fs::path& path) const {
+  return writeFileAtomically(path.string(), session_->state->decisionFileText("written by spire-explore"));
+}
+
+Expected<void, Failure> Explorer::loadDecisions(const fs::path& path) {
+  auto placement = readDecisions(path);
+  if (!placement) {
+    const engine::Error& error = placement.error();
+    return Failure{error.details.empty() ? error.message : error.message + "\n" + error.details};
+  }
+  return session_->state->replace(placement->placement, placement->attributes);
 }
 
 engine::Expected<Explorer::FileDecisions> Explorer::readDecisions(const fs::path& path) {
@@ -415,11 +433,7 @@ bool Explorer::changeAction(const ScriptAction& action) {
       }
       ok = session_->state->replace(session_->tune->variants[session_->tune->front[action.count]].decisions);
       break;
-    default: {
-      auto placement = readDecisions(buttonsOrScriptRelative(action.target));
-      if (!placement) return scriptError(action, placement.error().message + "\n" + placement.error().details);
-      ok = session_->state->replace(placement->placement, placement->attributes);
-    }
+    default: ok = loadDecisions(buttonsOrScriptRelative(action.target));
   }
   if (!ok) return scriptError(action, ok.error().message);
   startChange(describeAction(run_.sources(), action));
@@ -429,8 +443,7 @@ bool Explorer::changeAction(const ScriptAction& action) {
 bool Explorer::runAction(const ScriptAction& action) {
   switch (action.kind) {
     case ActionKind::Save: {
-      auto ok = writeFileAtomically(buttonsOrScriptRelative(action.target).string(),
-                                    session_->state->decisionFileText("written by spire-explore"));
+      auto ok = saveDecisions(buttonsOrScriptRelative(action.target));
       return ok ? true : scriptError(action, ok.error().message);
     }
     case ActionKind::View: {
@@ -516,16 +529,10 @@ void Explorer::handleRequests(const PanelRequests& requests) {
   }
   if (requests.reset) apply(session_->state->replace({}), "reset");
   if (requests.save) {
-    auto ok = writeFileAtomically(options_.saveTo, session_->state->decisionFileText("written by spire-explore"));
+    auto ok = saveDecisions(options_.saveTo);
     diagnostics_ = ok ? "" : ok.error().message;
   }
-  if (requests.load) {
-    auto placement = readDecisions(options_.saveTo);
-    if (!placement)
-      diagnostics_ = placement.error().message;
-    else
-      apply(session_->state->replace(placement->placement, placement->attributes), "load " + options_.saveTo);
-  }
+  if (requests.load) apply(loadDecisions(options_.saveTo), "load " + options_.saveTo);
 }
 
 void Explorer::startChange(std::string action, bool reload) {
