@@ -158,7 +158,9 @@ Expected<std::vector<std::string>, Failure> readComponents(const std::filesystem
   const size_t trailing = std::size(kTrailing);
   const bool tail = fields.size() > trailing && std::equal(std::begin(kTrailing), std::end(kTrailing),
                                                            fields.end() - static_cast<std::ptrdiff_t>(trailing));
-  if (!tail && !missingTrailing(fields).empty()) return olderTable(path, missingTrailing(fields));
+  if (const std::vector<std::string> missing = missingTrailing(fields); !missing.empty()) {
+    return olderTable(path, missing);
+  }
   if (fields.empty() || fields.front() != "index" || !tail) {
     return Failure{fmt::format("{}: not a spire-tune table (its header is not the tuner's)", path.string())};
   }
