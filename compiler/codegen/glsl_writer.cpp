@@ -105,6 +105,7 @@ std::string GlslWriter::hoistingInto(std::vector<std::string>* target, const std
 // `^^` are evaluated only under a condition.
 std::string GlslWriter::chainText(const std::vector<const ast::BinaryExpr*>& spine, size_t begin, size_t end,
                                   const std::string& head, Precedence context) {
+  if (probe_) return probedChainText(spine, begin, end, head);
   std::string opens;
   std::string text;
   for (size_t i = begin; i < end; ++i) {
@@ -117,6 +118,38 @@ std::string GlslWriter::chainText(const std::vector<const ast::BinaryExpr*>& spi
     if (parenthesized) text += ')';
   }
   return opens + head + text;
+}
+
+std::string GlslWriter::probedChainText(const std::vector<const ast::BinaryExpr*>& spine, size_t begin, size_t end,
+                                        const std::string& head) {
+  std::string text = head;
+  for (size_t i = begin; i < end; ++i) {
+    const Precedence own = ast::precedenceOf(spine[i]->op);
+    const ast::Expr& rhs = *spine[i]->rhs;
+    const std::string right =
+        isShortCircuit(spine[i]->op) ? conditionalExpr(rhs, ast::tighter(own)) : expr(rhs, ast::tighter(own));
+    text = probed(*spine[i], fmt::format("({} {} {})", text, ast::spelling(spine[i]->op), right));
+  }
+  return text;
+}
+
+std::string GlslWriter::probed(const ast::Expr& e, std::string text) {
+  if (!probe_ || !isCheckedOperation(e, model_.info(e))) return text;
+  // One line of source, its whitespace collapsed: enough to recognize the
+  // operation in a report without quoting a whole block.
+  std::string written;
+  for (char c : sources_.text(e.range)) {
+    const bool space = c == ' ' || c == '\t' || c == '\n' || c == '\r';
+    if (space && (written.empty() || written.back() == ' ')) continue;
+    written += space ? ' ' : c;
+  }
+  while (!written.empty() && written.back() == ' ') written.pop_back();
+  constexpr size_t kMaxShown = 60;
+  if (written.size() > kMaxShown) written = written.substr(0, kMaxShown - 3) + "...";
+  const LineCol at = sources_.begin(e.range);
+  return probe_->wrap(
+      e, text,
+      {std::move(written), fmt::format("{}:{}:{}", sources_.file(e.range.file).logicalName, at.line, at.column)});
 }
 
 // In a loop, never recursing along the chain: generated code writes chains
@@ -174,8 +207,9 @@ std::string GlslWriter::expr(const ast::Expr& e, Precedence minPrecedence) {
     case ast::ExprKind::Binary: return binary(ast::cast<ast::BinaryExpr>(e), minPrecedence);
     case ast::ExprKind::Assign: {
       const auto& a = ast::cast<ast::AssignExpr>(e);
-      return wrap(Precedence::Assignment, fmt::format("{} {} {}", expr(*a.target, Precedence::Unary),
-                                                      ast::spelling(a.op), expr(*a.value, Precedence::Assignment)));
+      const std::string text = fmt::format("{} {} {}", expr(*a.target, Precedence::Unary), ast::spelling(a.op),
+                                           expr(*a.value, Precedence::Assignment));
+      return probe_ && isCheckedOperation(e, info) ? probed(e, text) : wrap(Precedence::Assignment, text);
     }
     case ast::ExprKind::Ternary: {
       const auto& t = ast::cast<ast::TernaryExpr>(e);
@@ -192,7 +226,7 @@ std::string GlslWriter::expr(const ast::Expr& e, Precedence minPrecedence) {
         callee = typeName(info.type);
       std::string args;
       for (const ast::ExprPtr& arg : c.args) args += (args.empty() ? "" : ", ") + expr(*arg, Precedence::Assignment);
-      return fmt::format("{}({})", callee, args);
+      return probed(e, fmt::format("{}({})", callee, args));
     }
     case ast::ExprKind::Member: {
       const auto& m = ast::cast<ast::MemberExpr>(e);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "codegen/glsl_names.h"
+#include "codegen/operation_probe.h"
 #include "sema/semantic_model.h"
 #include "support/source_manager.h"
 #include "syntax/ast.h"
@@ -84,6 +85,9 @@ class GlslWriter {
   void function(GlslOutput& out, const sem::Function& f, const std::string& name);
   std::string typeName(const sem::Type* type) const;
   std::string declare(const sem::Type* type, const std::string& name) const;
+  // From now on, every operation isCheckedOperation accepts is written
+  // wrapped in `probe`'s check (instrumented kernels only).
+  void probeOperations(OperationProbe* probe) { probe_ = probe; }
 
  private:
   // A loop or branch body: a block's statements, or one statement.
@@ -96,6 +100,13 @@ class GlslWriter {
   std::string chainText(const std::vector<const ast::BinaryExpr*>& spine, size_t begin, size_t end,
                         const std::string& head, ast::Precedence context);
   std::string temporaryName();
+  // A chain written with every operator parenthesized, so that each checked
+  // operation's value is an expression of its own.
+  std::string probedChainText(const std::vector<const ast::BinaryExpr*>& spine, size_t begin, size_t end,
+                              const std::string& head);
+  // `text`, which computes `e`, wrapped in the probe's check when it has one
+  // and `e` is an operation it checks.
+  std::string probed(const ast::Expr& e, std::string text);
   // `e` where it is evaluated only under a condition (a branch of `?:`, the
   // right of `&&`, `||` or `^^`): never hoisted, since that would evaluate it
   // unconditionally.
@@ -113,6 +124,7 @@ class GlslWriter {
   std::vector<std::string>* hoisted_ = nullptr;  // set while a statement may hoist
   std::optional<Problem> problem_;
   size_t nextTemporary_ = 0;
+  OperationProbe* probe_ = nullptr;
 };
 
 }  // namespace spire::codegen

@@ -84,7 +84,8 @@ std::string indexExpression(ShaderStage stage, const std::string& buffer) {
 }  // namespace
 
 HazardInstrumentation::HazardInstrumentation(KernelBuilder& kernel, const std::vector<InstrumentedValue>& values)
-    : stage_(kernel.stage()) {
+    : stage_(kernel.stage()),
+      probe_(kernel.names().generate("checkOperation"), kernel.names().generate("failedOperation")) {
   // A fragment records only what passed the depth test, so a pixel's record
   // is the surface that shows there, not one hidden behind it; unless the
   // kernel writes depth itself, which early tests would bypass.
@@ -94,6 +95,7 @@ HazardInstrumentation::HazardInstrumentation(KernelBuilder& kernel, const std::v
   }
   buffer_ = kernel.names().generate("hazards");
   hazard_ = kernel.names().generate("hazard");
+  operation_ = kernel.names().generate("hazardOperation");
   index_ = kernel.names().generate("hazardIndex");
   slot_ = kernel.names().generate("hazardSlot");
   kindFunction_ = kernel.names().generate("nonFinite");
@@ -132,11 +134,12 @@ void HazardInstrumentation::declare(KernelBuilder& kernel) {
                   "    uint reserved[3];\n"
                   "    uint claims[{}];\n"
                   "    uint first[{}];\n"
+                  "    uint operations[{}];\n"
                   "    float dumps[{}];\n"
                   "    uint codes[];\n"
                   "}} {};",
                   record_.slot.set, record_.slot.binding, kernel.names().generate("HazardRecord"), record_.slots,
-                  record_.slots, record_.slots * record_.dumpFloats, buffer_));
+                  record_.slots, record_.slots, record_.slots * record_.dumpFloats, buffer_));
   // Overloads for each float shape; a matrix, array or struct is checked
   // part by part.
   std::string functions;
@@ -147,15 +150,33 @@ void HazardInstrumentation::declare(KernelBuilder& kernel) {
                              scalar ? "isinf(v)" : "any(isinf(v))", reflection::kHazardInf);
   }
   kernel.declare(std::move(functions));
+  // A checked operation passes its value through and notes itself when the
+  // value is the first non-finite one since the component began.
+  kernel.declare(fmt::format("uint {} = 0u;", probe_.noted()));
+  std::string probes;
+  for (const char* type : {"float", "vec2", "vec3", "vec4"}) {
+    probes += fmt::format("{}{} {}({} v, uint operation) {{ if ({} == 0u && {}(v) != 0u) {} = operation; return v; }}",
+                          probes.empty() ? "" : "\n", type, probe_.function(), type, probe_.noted(), kindFunction_,
+                          probe_.noted());
+  }
+  kernel.declare(std::move(probes));
 }
 
-std::string HazardInstrumentation::entry() const { return fmt::format("uint {} = 0u;", hazard_); }
+std::string HazardInstrumentation::entry() const {
+  return fmt::format("uint {} = 0u; uint {} = 0u;", hazard_, operation_);
+}
+
+reflection::HazardRecord HazardInstrumentation::reflection() const {
+  reflection::HazardRecord record = record_;
+  record.operations = probe_.operations();
+  return record;
+}
 
 std::string HazardInstrumentation::checkAfter(std::string_view component) const {
   for (const Checked& c : checked_) {
     if (c.component != component) continue;
-    return fmt::format("if ({0} == 0u) {{ {0} = {1}; {0} = {0} == 0u ? 0u : ({2}u << 2) | {0}; }}", hazard_,
-                       c.kindExpression, c.code);
+    return fmt::format("if ({0} == 0u) {{ {0} = {1}; {0} = {0} == 0u ? 0u : ({2}u << 2) | {0}; {3} = {4}; }}", hazard_,
+                       c.kindExpression, c.code, operation_, probe_.noted());
   }
   return {};
 }
@@ -172,6 +193,7 @@ std::vector<std::string> HazardInstrumentation::record() const {
   lines.push_back(fmt::format("    uint {} = ({} >> 2) - 1u;", slot_, hazard_));
   lines.push_back(fmt::format("    if (atomicCompSwap({}.claims[{}], 0u, 1u) == 0u) {{", buffer_, slot_));
   lines.push_back(fmt::format("        {}.first[{}] = {};", buffer_, slot_, index_));
+  lines.push_back(fmt::format("        {}.operations[{}] = {};", buffer_, slot_, operation_));
   for (const auto& [value, offset] : dumps_) {
     lines.push_back(
         fmt::format("        {}.dumps[{} * {}u + {}u] = {};", buffer_, slot_, record_.dumpFloats, offset, value));

@@ -3,7 +3,9 @@
 // the kernel checks it; at the end of main() each invocation records the
 // first value whose check failed, and the first invocation to fail on a
 // value also dumps every numeric value the kernel holds, so the engine can
-// name the component and show what its inputs were there. The layout is
+// name the component and show what its inputs were there. Inside component
+// and function bodies the operations that can make NaN or Inf are checked
+// too (OperationProbe), so a hazard also names the first of them to fail. The layout is
 // reflection::HazardRecord's. The checks and the stores change what a
 // kernel costs, so instrumented kernels are for diagnosis, never timing.
 #pragma once
@@ -14,6 +16,7 @@
 #include <vector>
 
 #include "codegen/kernel_builder.h"
+#include "codegen/operation_probe.h"
 #include "reflection/reflection.h"
 #include "sema/type.h"
 
@@ -37,13 +40,17 @@ class HazardInstrumentation {
   // in evaluation order.
   HazardInstrumentation(KernelBuilder& kernel, const std::vector<InstrumentedValue>& values);
 
-  // The statement that declares the invocation's hazard, first in main().
+  // The statements that declare the invocation's hazard, first in main().
   std::string entry() const;
+  // Writes the checks of operations in the bodies written from now on.
+  OperationProbe& probe() { return probe_; }
+  const OperationProbe& probe() const { return probe_; }
   // The check after `component` is assigned; empty for a value with no float.
   std::string checkAfter(std::string_view component) const;
   // The statements that record the invocation, last in main().
   std::vector<std::string> record() const;
-  const reflection::HazardRecord& reflection() const { return record_; }
+  // Complete once every body has been written through the probe.
+  reflection::HazardRecord reflection() const;
 
  private:
   struct Checked {
@@ -56,13 +63,15 @@ class HazardInstrumentation {
   ShaderStage stage_;
   bool earlyTests_ = false;
   std::string buffer_;
-  std::string hazard_;  // the invocation's code << 2 | kind
+  std::string hazard_;     // the invocation's code << 2 | kind
+  std::string operation_;  // the probe's operation when `hazard_` was set
   std::string index_;
   std::string slot_;
   std::string kindFunction_;
   std::vector<Checked> checked_;
   std::vector<std::pair<std::string, uint32_t>> dumps_;  // GLSL float expression, index in a slot's dump
   reflection::HazardRecord record_;
+  OperationProbe probe_;
 };
 
 }  // namespace spire::codegen

@@ -311,7 +311,10 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
   // After every strategy's bindings, so the instrumented kernel binds its
   // resources where the plain one does.
   std::optional<HazardInstrumentation> hazards;
-  if (options_.instrumentHazards) hazards.emplace(kernel, instrumentedValues(plan, text));
+  if (options_.instrumentHazards) {
+    hazards.emplace(kernel, instrumentedValues(plan, text));
+    writer.probeOperations(&hazards->probe());
+  }
 
   GlslOutput out(world.name + ".glsl");
   writeHeader(out, world, *stage,
@@ -446,6 +449,7 @@ void KernelGenerator::writeMain(GlslOutput& out, const KernelBuilder& kernel, co
   for (sem::ComponentId id : text.computed) {
     const ast::ComponentDecl& decl = chosenDecl(id);
     const SourceRange where = decl.init ? decl.init->range : decl.range;
+    if (hazards) out.line("    " + hazards->probe().reset());
     out.mapTo(sources_.file(where.file).logicalName, sources_.begin(where).line);
     std::vector<std::string> before;
     const std::string value = decl.init ? writer.statementExpr(*decl.init, before) : text.helpers.at(id) + "()";

@@ -157,11 +157,22 @@ struct HazardValue {
   bool operator==(const HazardValue&) const = default;
 };
 
+// An operation an instrumented kernel checks inside component and function
+// bodies (a division, a call of a function that can return NaN or Inf): the
+// first of them to go non-finite names where in its component a hazard arose.
+struct HazardOperation {
+  std::string text;    // as written, abbreviated: "color / divisor"
+  std::string source;  // "file:line:col"
+  bool operator==(const HazardOperation&) const = default;
+};
+
 // Where an instrumented kernel records, for each of its invocations, the
 // first value it computes that is not finite. A storage buffer, std430:
 //   uint width; uint reserved[3];   // written by the engine: a fragment kernel's target width
 //   uint claims[slots];             // per code: set by the first invocation with that code
 //   uint first[slots];              // per code: that invocation's index
+//   uint operations[slots];         // per code: 1 + the index in `operations` of the first checked
+//                                   // operation to go non-finite in that value; 0: none did
 //   float dumps[slots * dumpFloats];// per code: the dumped values at that invocation
 //   uint codes[];                   // per invocation: code << 2 | kind, 0 while finite
 // where kind is kHazardInf or kHazardNaN (NaN wins when a value has both). A
@@ -172,10 +183,12 @@ struct HazardRecord {
   uint32_t slots = 1;
   uint32_t dumpFloats = 1;
   std::vector<HazardValue> values;  // inputs, then computed values in evaluation order
+  std::vector<HazardOperation> operations;
 
   uint32_t claimsOffset() const { return 16; }
   uint32_t firstOffset() const { return claimsOffset() + 4 * slots; }
-  uint32_t dumpsOffset() const { return firstOffset() + 4 * slots; }
+  uint32_t operationsOffset() const { return firstOffset() + 4 * slots; }
+  uint32_t dumpsOffset() const { return operationsOffset() + 4 * slots; }
   uint32_t codesOffset() const { return dumpsOffset() + 4 * slots * dumpFloats; }
   const HazardValue* byCode(uint32_t code) const;
   const HazardValue* value(std::string_view component) const;

@@ -12,7 +12,7 @@
 
 namespace spire::reflection {
 
-inline constexpr int kFormatVersion = 3;
+inline constexpr int kFormatVersion = 4;
 
 nlohmann::ordered_json toJson(const Kernel& kernel);
 nlohmann::ordered_json toJson(const Variant& variant);

@@ -197,6 +197,9 @@ Expected<HazardRecord, std::string> readHazards(const Json& json, const std::str
     }
     record.values.push_back(std::move(value).value());
   }
+  for (const Json& o : json.at("operations")) {
+    record.operations.push_back({o.at("text").get<std::string>(), o.at("source").get<std::string>()});
+  }
   return record;
 }
 

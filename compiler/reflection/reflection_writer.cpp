@@ -130,6 +130,9 @@ Json hazardJson(const HazardRecord& record) {
   Json values = Json::array();
   for (const HazardValue& v : record.values) values.push_back(hazardValueJson(v));
   entry["values"] = std::move(values);
+  Json operations = Json::array();
+  for (const HazardOperation& o : record.operations) operations.push_back({{"text", o.text}, {"source", o.source}});
+  entry["operations"] = std::move(operations);
   return entry;
 }
 

@@ -63,6 +63,7 @@ std::string describeHazard(const Hazard& hazard) {
           : fmt::format("{}:{}", hazard.component, hazard.definition.substr(hazard.definition.find(':') + 1));
   std::string text = fmt::format("{} ({}) went {} in {} {}", name, hazard.world, hazard.nan ? "NaN" : "Inf",
                                  grouped(hazard.count), hazard.unit);
+  if (!hazard.operation.empty()) text += fmt::format(" at `{}` ({})", hazard.operation, hazard.operationSource);
   if (hazard.reads.empty()) return text;
   std::string values;
   for (const auto& [component, value] : hazard.reads) {
@@ -116,6 +117,11 @@ void HazardCollector::readRecord(const Record& record, std::vector<Hazard>& out)
     hazard.unit = record.unit;
     hazard.where =
         invocationName(record.unit, readAt<uint32_t>(memory, layout.firstOffset() + uint64_t{slot} * 4), record.width);
+    const auto operation = readAt<uint32_t>(memory, layout.operationsOffset() + uint64_t{slot} * 4);
+    if (operation != 0 && operation <= layout.operations.size()) {
+      hazard.operation = layout.operations[operation - 1].text;
+      hazard.operationSource = layout.operations[operation - 1].source;
+    }
     const uint64_t dumps = layout.dumpsOffset() + uint64_t{slot} * layout.dumpFloats * 4;
     for (const std::string& read : value->reads) {
       const reflection::HazardValue* input = layout.value(read);

@@ -28,6 +28,11 @@ struct Hazard {
   uint64_t count = 0;      // invocations whose first non-finite value it is
   std::string unit;        // "px", "texels" or "vertices"
   std::string where;       // the first invocation: "pixel (3, 7)", "vertex 12", "texel (40, 2)"
+  // The first checked operation in its definition (or a function it calls)
+  // to go non-finite there, and where that is ("file:line:col"); empty
+  // when none did, as when an unchecked one (a product) overflowed.
+  std::string operation;
+  std::string operationSource;
   // The values its definition reads, at that invocation, as the kernel held
   // them; those the kernel could not dump are left out.
   std::vector<std::pair<std::string, std::vector<double>>> reads;
@@ -35,7 +40,8 @@ struct Hazard {
   bool inherited = false;
 };
 
-// "scaled (Vertex) went Inf in 25 vertices; divisor = 0 there"
+// "scaled (Vertex) went Inf in 25 vertices at `color / divisor`
+// (divide.spire:18:20); divisor = 0 there"
 std::string describeHazard(const Hazard& hazard);
 
 class HazardCollector {

@@ -67,7 +67,8 @@ void addRows(const Subject& subject, const std::vector<engine::Hazard>& hazards,
     // with the origin.
     if (h.inherited) continue;
     table.rows.push_back({subject.variant, subject.decisions, h.component, h.definition, h.world, inputName(label),
-                          label.kind, valueText(sample, label), h.nan, h.count, h.unit});
+                          label.kind, valueText(sample, label), h.nan, h.count, h.unit, h.operation,
+                          h.operationSource});
   }
 }
 
@@ -117,11 +118,14 @@ StabilityTable buildStabilityTable(Tuner& tuner, const std::vector<Axis>& axes,
 }
 
 std::string stabilityCsv(const StabilityTable& table) {
-  std::string csv = "variant,decisions,component,definition,world,input,value_kind,value,non_finite,count,unit\n";
+  std::string csv =
+      "variant,decisions,component,definition,world,input,value_kind,value,non_finite,count,unit,operation,"
+      "operation_source\n";
   for (const StabilityRow& row : table.rows) {
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", quoteCsv(row.variant), quoteCsv(row.decisions),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", quoteCsv(row.variant), quoteCsv(row.decisions),
                        quoteCsv(row.component), quoteCsv(row.definition), quoteCsv(row.world), quoteCsv(row.input),
-                       quoteCsv(row.kind), quoteCsv(row.value), row.nan ? "NaN" : "Inf", row.count, quoteCsv(row.unit));
+                       quoteCsv(row.kind), quoteCsv(row.value), row.nan ? "NaN" : "Inf", row.count, quoteCsv(row.unit),
+                       quoteCsv(row.operation), quoteCsv(row.operationSource));
   }
   return csv;
 }
@@ -132,8 +136,10 @@ std::vector<std::string> stabilityLines(const StabilityTable& table) {
     const std::string who =
         row.variant == "reference" ? "reference" : fmt::format("variant {} ({})", row.variant, row.decisions);
     const SampleLabel label{row.input == "all" || row.input == "scene" ? "" : row.input, row.kind};
-    lines.push_back(fmt::format("{}: {} ({}) goes {} {} ({} {})", who, row.component, row.definition,
-                                row.nan ? "NaN" : "Inf", labelText(label, row.value), row.count, row.unit));
+    const std::string at =
+        row.operation.empty() ? "" : fmt::format(" at `{}` ({})", row.operation, row.operationSource);
+    lines.push_back(fmt::format("{}: {} ({}) goes {}{} {} ({} {})", who, row.component, row.definition,
+                                row.nan ? "NaN" : "Inf", at, labelText(label, row.value), row.count, row.unit));
   }
   return lines;
 }

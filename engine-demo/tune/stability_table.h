@@ -31,6 +31,9 @@ struct StabilityRow {
   bool nan = false;   // NaN; otherwise Inf
   uint64_t count = 0;
   std::string unit;  // "px", "vertices" or "texels"
+  // engine::Hazard's: the first checked operation to fail; empty if none did.
+  std::string operation;
+  std::string operationSource;
 };
 
 struct StabilityTable {

@@ -8,7 +8,8 @@ without decisions and with every examples/decisions/*.decisions file, over
 examples/terrain_five_world.spire without decisions and with every
 examples/decisions/five_world/*.decisions file, over examples/couch.spire
 without decisions and with every examples/decisions/couch/*.decisions file,
-over examples/lod_library.spire and examples/lod_materials.spire
+over examples/couch.spire instrumented (--instrument-hazards: hazard records
+with checked operations), over examples/lod_library.spire and examples/lod_materials.spire
 (instanceImport, textureArrayImport's "layer"), over the engine's test shaders
 tests/data/engine/NAME.spire without decisions and with every
 tests/data/engine/NAME_*.decisions file, and over a small pipeline written into SCRATCH_DIR
@@ -279,6 +280,9 @@ def main(argv):
         source = max(owners, key=len)
         runs.append((f"engine-{name}", [f"{engine_dir}/{source}.spire", "--decisions", f"{engine_dir}/{name}.decisions"]))
     runs.append(("synthetic", [synthetic_spire, "--decisions", synthetic_decisions]))
+    # Instrumented kernels carry hazard records: the couch's functions and
+    # divisions give them checked operations.
+    runs.append(("couch-instrumented", ["examples/couch.spire", "--instrument-hazards"]))
 
     failures = 0
     files = 0
@@ -314,6 +318,8 @@ def main(argv):
                             seen.update(n for n in names if variant_validators[n].is_valid(entry))
                             if "hints" in entry:
                                 seen.add("hints")
+                        if kernel.get("hazards", {}).get("operations"):
+                            seen.add("hazards")
             if problems:
                 failures += 1
                 print(f"FAIL {label}")
@@ -325,6 +331,8 @@ def main(argv):
     missing = [name for names in VARIANTS.values() for name in names if name not in seen]
     if "hints" not in seen:
         missing.append("hints (an output with hints)")
+    if "hazards" not in seen:
+        missing.append("hazards (an instrumented kernel with checked operations)")
     if missing and failures == 0:
         print(f"FAIL coverage: no generated entry matched schema variant(s) {', '.join(missing)}")
         failures += 1

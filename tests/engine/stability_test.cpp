@@ -889,7 +889,9 @@ TEST_F(StabilityTest, HazardsAreTracedToTheComponentAndInputInEveryWorld) {
   const std::string report{std::istreambuf_iterator<char>(reportFile), std::istreambuf_iterator<char>()};
   fs::remove_all(outputDir);
   const std::string text = err.str();
-  const std::string tail = "; color = (0.5, 0.5, 0.5, 1), divisor = 0 there [instance 0 (UserDivide), first at ";
+  const std::string tail =
+      " at `color / divisor` (user_divide.spire:18:19); color = (0.5, 0.5, 0.5, 1), divisor = 0 there [instance 0 "
+      "(UserDivide), first at ";
   EXPECT_NE(text.find("hazard: variant 'user_divide_fragment', camera view 0: scaled (Fragment) went Inf in 289 px" +
                       tail + "pixel"),
             std::string::npos)
@@ -912,6 +914,33 @@ TEST_F(StabilityTest, HazardsAreTracedToTheComponentAndInputInEveryWorld) {
   EXPECT_NE(report.find("- scaled (Vertex) went Inf in 25 vertices"), std::string::npos) << report;
 }
 
+// Inside a component's body, the report names the first operation to go
+// non-finite: a division inside the function a component calls (not the
+// call), a built-in's domain (log of a negative number) in Vertex; and a
+// division whose Inf an earlier component clamped away is not blamed.
+TEST_F(StabilityTest, HazardsNameTheOperationInTheComponentOrFunction) {
+  const fs::path outputDir = fs::temp_directory_path() / ("spire_stability_operation_" + std::to_string(::getpid()));
+  std::ostringstream out;
+  std::ostringstream err;
+  ASSERT_EQ(demo::runDemo({(kDataDir / "operation_hazard.json").string(), "--validation", "-o", outputDir.string()},
+                          out, err),
+            0)
+      << err.str();
+  fs::remove_all(outputDir);
+  const std::string text = err.str();
+  const std::string exponent =
+      "camera view 0: exponent (Fragment) went Inf in 289 px at `2.0 / k` (operation_hazard.spire:20:12); roughness = "
+      "0, clampedInverse = 100 there [instance 0 (OperationHazard), first at pixel (0, 0), defined at "
+      "operation_hazard.spire:30]";
+  EXPECT_NE(text.find("variant 'operation_per_fragment', " + exponent), std::string::npos) << text;
+  EXPECT_NE(text.find("variant 'operation_per_vertex', " + exponent), std::string::npos) << text;
+  EXPECT_NE(text.find("variant 'operation_per_vertex', camera view 0: logged (Vertex) went NaN in 25 vertices at "
+                      "`log(color.r - 1.0)` (operation_hazard.spire:31:20); color = (0.5, 0.5, 0.5, 1) there"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("1.0 / roughness"), std::string::npos) << text;
+}
+
 // The uniform bake runs over samples of the mesh's surface, and its hazards
 // are counted and located in those samples, not in vertices.
 TEST_F(StabilityTest, AUniformBakeHazardIsCountedInSurfaceSamples) {
@@ -926,8 +955,8 @@ TEST_F(StabilityTest, AUniformBakeHazardIsCountedInSurfaceSamples) {
   fs::remove_all(outputDir);
   const std::string text = err.str();
   EXPECT_NE(text.find("scaled (PrebakeUniform) went Inf in "), std::string::npos) << text;
-  EXPECT_NE(text.find(" surface samples; color = (0.5, 0.5, 0.5, 1), divisor = 0 there [instance 0 "
-                      "(UserDividePerObject), first at surface sample 0"),
+  EXPECT_NE(text.find(" surface samples at `color / divisor` (user_divide_per_object.spire:13:19); color = (0.5, "
+                      "0.5, 0.5, 1), divisor = 0 there [instance 0 (UserDividePerObject), first at surface sample 0"),
             std::string::npos)
       << text;
 }

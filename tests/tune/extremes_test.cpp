@@ -170,8 +170,19 @@ TEST(Extremes, TheReportSaysWhatTheLimitCut) {
   table.limit = 16;
   table.cut = 3;
   table.referenceExcluded = {"when maskMap = 0,0,0,0 (min)"};
-  table.rows.push_back({"4", "scaled=Vertex:raw", "scaled", "Vertex:raw", "Vertex", "all", "all-min",
-                        "color=0,0 maskMap=0,0", true, 25, "vertices"});
+  table.rows.push_back({"4",
+                        "scaled=Vertex:raw",
+                        "scaled",
+                        "Vertex:raw",
+                        "Vertex",
+                        "all",
+                        "all-min",
+                        "color=0,0 maskMap=0,0",
+                        true,
+                        25,
+                        "vertices",
+                        {},
+                        {}});
   const std::string text = stabilityMarkdown(table);
   EXPECT_NE(text.find("- variant 4 (scaled=Vertex:raw): scaled (Vertex:raw) goes NaN under all-min (color=0,0 "
                       "maskMap=0,0) (25 vertices)"),
@@ -180,7 +191,7 @@ TEST(Extremes, TheReportSaysWhatTheLimitCut) {
   EXPECT_NE(text.find("The reference is NaN or Inf under 1 of the 10 samples"), std::string::npos) << text;
   EXPECT_NE(text.find("The limit of 16 diagnosed (variant, sample) pairs cut 3 more short"), std::string::npos) << text;
   EXPECT_EQ(lines(stabilityCsv(table)).back(),
-            "4,scaled=Vertex:raw,scaled,Vertex:raw,Vertex,all,all-min,\"color=0,0 maskMap=0,0\",NaN,25,vertices");
+            "4,scaled=Vertex:raw,scaled,Vertex:raw,Vertex,all,all-min,\"color=0,0 maskMap=0,0\",NaN,25,vertices,,");
 }
 
 class ExtremesRun : public vk::testing::DeviceTest {};
@@ -231,9 +242,12 @@ TEST_F(ExtremesRun, FindATextureDrivenHazardWithoutAnyParam) {
   }
   const std::vector<std::string> table = lines(readText(dir / "stability.csv"));
   ASSERT_FALSE(table.empty());
-  EXPECT_EQ(table[0], "variant,decisions,component,definition,world,input,value_kind,value,non_finite,count,unit");
+  EXPECT_EQ(table[0],
+            "variant,decisions,component,definition,world,input,value_kind,value,non_finite,count,unit,operation,"
+            "operation_source");
   EXPECT_NE(std::find(table.begin(), table.end(),
-                      "2,scaled=Fragment:raw,scaled,Fragment:raw,Fragment,maskMap,min,\"0,0,0,0\",Inf,289,px"),
+                      "2,scaled=Fragment:raw,scaled,Fragment:raw,Fragment,maskMap,min,\"0,0,0,0\",Inf,289,px,color / "
+                      "mask,texture_divide.spire:20:23"),
             table.end())
       << readText(dir / "stability.csv");
   for (size_t k = 1; k < table.size(); ++k) {
@@ -242,7 +256,8 @@ TEST_F(ExtremesRun, FindATextureDrivenHazardWithoutAnyParam) {
   }
   const std::string report = readText(dir / "report.md");
   EXPECT_NE(report.find("## Stability"), std::string::npos);
-  EXPECT_NE(report.find("- variant 2 (scaled=Fragment:raw): scaled (Fragment:raw) goes Inf when maskMap = 0,0,0,0 "
+  EXPECT_NE(report.find("- variant 2 (scaled=Fragment:raw): scaled (Fragment:raw) goes Inf at `color / mask` "
+                        "(texture_divide.spire:20:23) when maskMap = 0,0,0,0 "
                         "(min) (289 px)"),
             std::string::npos)
       << report;
@@ -267,9 +282,12 @@ TEST_F(ExtremesRun, AReferenceHazardousOnlyAtAnExtremeLeavesThoseSamplesOut) {
     }
     const std::vector<std::string> table = lines(readText(dir / "stability.csv"));
     ASSERT_EQ(table.size(), 2U) << readText(dir / "stability.csv");
-    EXPECT_EQ(table[1], "reference,,scaled,Fragment:raw,Fragment,maskMap,min,\"0,0,0,0\",Inf,289,px");
+    EXPECT_EQ(table[1],
+              "reference,,scaled,Fragment:raw,Fragment,maskMap,min,\"0,0,0,0\",Inf,289,px,color / "
+              "mask,texture_divide.spire:20:23");
     const std::string report = readText(dir / "report.md");
-    EXPECT_NE(report.find("- reference: scaled (Fragment:raw) goes Inf when maskMap = 0,0,0,0 (min) (289 px)"),
+    EXPECT_NE(report.find("- reference: scaled (Fragment:raw) goes Inf at `color / mask` (texture_divide.spire:20:23) "
+                          "when maskMap = 0,0,0,0 (min) (289 px)"),
               std::string::npos)
         << report;
     EXPECT_NE(report.find("The reference is NaN or Inf under 2 of the 10 samples, which every variant's error "

@@ -507,8 +507,10 @@ TEST_F(TuneRun, AHazardousReferenceStopsTheRun) {
         << err.str();
     EXPECT_NE(err.str().find("--reference DECISIONS"), std::string::npos);
     // The instrumented reference names the component and its input.
-    EXPECT_NE(err.str().find("There, scaled (Fragment) went Inf in 289 px; color = (0.5, 0.5, 0.5, 1), divisor = 0 "
-                             "there [instance 0 (UserDivide), first at pixel"),
+    EXPECT_NE(err.str().find(
+                  "There, scaled (Fragment) went Inf in 289 px at `color / divisor` (user_divide.spire:18:19); color = "
+                  "(0.5, 0.5, 0.5, 1), divisor = 0 "
+                  "there [instance 0 (UserDivide), first at pixel"),
               std::string::npos)
         << err.str();
     EXPECT_FALSE(fs::exists(dir / "variants.csv"));
