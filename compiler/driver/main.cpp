@@ -1,4 +1,5 @@
 #include <iostream>
+#include <string_view>
 
 #include "driver/library_location.h"
 #include "driver/process_memory.h"
@@ -6,6 +7,12 @@
 
 int main(int argc, char** argv) {
   spire::useHugePageHeap();
+  // A hidden diagnostic, not an option of runSpirec: only this executable
+  // sets up its heap, so only it can report on it.
+  if (argc == 2 && std::string_view(argv[1]) == "--heap-report") {
+    std::cout << spire::describeHeap() << '\n';
+    return 0;
+  }
   std::ios::sync_with_stdio(false);
   spire::SpirecEnvironment environment;
   if (const auto self = spire::runningExecutable()) {

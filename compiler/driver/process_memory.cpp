@@ -3,6 +3,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -10,10 +13,42 @@
 #include <unistd.h>
 #endif
 
+#if !defined(SPIRE_HUGE_PAGE_HEAP)
+#define SPIRE_HUGE_PAGE_HEAP 0
+#endif
+
 namespace spire {
 
+namespace {
+
+// Whether a mapping of the heap carries the kernel's "hg" flag (MADV_HUGEPAGE).
+// After useHugePageHeap the heap is split into several mappings, each named
+// [heap]; one advised mapping is enough.
+bool heapAdvisedForHugePages() {
+  std::ifstream smaps("/proc/self/smaps");
+  bool inHeap = false;
+  std::string line;
+  while (std::getline(smaps, line)) {
+    std::istringstream words(line);
+    std::string first;
+    words >> first;
+    // "Key: value" lines describe the mapping whose header
+    // ("start-end perms offset dev inode [name]") came last.
+    if (!first.ends_with(':')) {
+      inHeap = line.ends_with("[heap]");
+    } else if (inHeap && first == "VmFlags:") {
+      for (std::string flag; words >> flag;) {
+        if (flag == "hg") return true;
+      }
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 void useHugePageHeap() {
-#if defined(__GLIBC__) && defined(MADV_HUGEPAGE)
+#if SPIRE_HUGE_PAGE_HEAP && defined(__GLIBC__) && defined(MADV_HUGEPAGE)
   // The reservation is address space only: pages are faulted in as malloc
   // hands them out, 2 MiB at a time once advised. 32 MiB is glibc's largest
   // mmap threshold.
@@ -33,6 +68,16 @@ void useHugePageHeap() {
   if (block != nullptr && end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
   std::free(block);
 #endif
+}
+
+std::string describeHeap() {
+  if (!SPIRE_HUGE_PAGE_HEAP) return "huge-page heap: off (built with SPIRE_HUGE_PAGE_HEAP=OFF)";
+  std::error_code ignored;
+  if (!std::filesystem::exists("/sys/kernel/mm/transparent_hugepage", ignored)) {
+    return "huge-page heap: unavailable (the kernel has no transparent huge pages)";
+  }
+  if (heapAdvisedForHugePages()) return "huge-page heap: on";
+  return "huge-page heap: off (no [heap] mapping in /proc/self/smaps is advised MADV_HUGEPAGE)";
 }
 
 }  // namespace spire
