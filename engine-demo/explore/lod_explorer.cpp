@@ -237,7 +237,12 @@ bool LodExplorer::runAction(const ScriptAction& action) {
       if (action.count >= frames) {
         return scriptError(action, fmt::format("the fly-through has {} frames (the scene's 'frames'), from 0", frames));
       }
+      // A jump, as the first frame of a camera path: levels placed without
+      // cross-fades, so what the script shows next does not depend on
+      // where the camera was.
       flyFrame_ = action.count;
+      view_ = demo::flyThroughView(renderer_.scene().camera.views, flyFrame_, frames);
+      scene_->resetLevels(view_);
       return true;
     }
     case ActionKind::PolicySave: {
