@@ -51,4 +51,8 @@ scene::CameraView orbit(const scene::CameraView& view, glm::vec3 up, float yaw, 
   return result;
 }
 
+scene::CameraView flyThroughView(std::span<const scene::CameraView> views, double frame, uint32_t frames) {
+  return cameraOnLoop(views, frame * static_cast<double>(views.size()) / std::max<uint32_t>(frames, 1));
+}
+
 }  // namespace spire::demo

@@ -4,6 +4,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <cstdint>
 #include <span>
 
 #include "scene/scene_file.h"
@@ -15,6 +16,11 @@ namespace spire::demo {
 // (smoothstep) from one view to the next, so the camera rests a moment at
 // each view the demo measures. The last view leads back to the first.
 scene::CameraView cameraOnLoop(std::span<const scene::CameraView> views, double t);
+
+// Frame `frame` of a fly-through of `frames` frames (at least one) once
+// round that loop: the frames spire-demo measures a level-of-detail scene
+// at, and spire-explore's LOD mode shows.
+scene::CameraView flyThroughView(std::span<const scene::CameraView> views, double frame, uint32_t frames);
 
 // `view` with its position turned about its target: `yaw` radians about
 // `up`, then `pitch` radians towards `up` (negative: away from it), stopping

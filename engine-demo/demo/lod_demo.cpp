@@ -225,8 +225,7 @@ int measureLod(const LodRunOptions& options, engine::ToolRun& run, std::array<Co
   }
   scene::CameraView previous = views.front();
   for (uint32_t f = 0; f < options.measured; ++f) {
-    const double t = static_cast<double>(f) * static_cast<double>(views.size()) / options.measured;
-    const scene::CameraView view = cameraOnLoop(views, t);
+    const scene::CameraView view = flyThroughView(views, f, options.measured);
     if (auto ok = renderFrame(configs, view, previous, static_cast<float>(f) / 60.0F, true); !ok) {
       return run.fail(ok.error());
     }

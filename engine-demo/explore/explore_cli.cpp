@@ -37,8 +37,9 @@ void defineOptions(CLI::App& app, CliOptions& options) {
       ->type_name("PATH");
   app.add_option("--decisions", options.decisions, "Start from this decision file (default: the reference's)")
       ->type_name("PATH");
-  options.explore.saveTo = "explore.decisions";
-  app.add_option("--save-to", options.explore.saveTo, "Where Save writes and Load reads (default explore.decisions)")
+  app.add_option("--save-to", options.explore.saveTo,
+                 "Where Save writes and Load reads (default explore.decisions; on a level-of-detail scene, where "
+                 "Save writes the policy: default the scene's policy file)")
       ->type_name("PATH");
   app.add_option("--script", options.script,
                  "Run the actions of FILE instead of waiting for the user (docs/explorer.md, \"Scripts\")")
@@ -80,6 +81,12 @@ int runExploreTool(const std::vector<std::string>& args, std::ostream& out, std:
   std::optional<demo::GlfwWindow> window;
   engine::ToolRun run(kTool, err);
   if (const auto status = run.loadScene(options.explore.scenePath)) return *status;
+  if (run.scene().lod) {
+    if (const auto status = run.loadLodPolicy()) return *status;
+  }
+  if (options.explore.saveTo.empty()) {
+    options.explore.saveTo = run.scene().lod ? run.scene().lod->policy.string() : "explore.decisions";
+  }
   auto opened = demo::GlfwWindow::open(run.scene().width, run.scene().height,
                                        fmt::format("spire-explore | {}", options.explore.scenePath));
   if (!opened) {

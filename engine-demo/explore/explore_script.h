@@ -19,16 +19,31 @@
 //   instance N                        explore the scene's instance N (from 0); each keeps its decisions
 //   quit
 //
+// On a level-of-detail scene (docs/explorer.md, "Level-of-detail policy"),
+// the policy's edits instead of decisions, with screenshot,
+// screenshot-window, wait-frames and quit:
+//
+//   policy until LEVEL DIST           level LEVEL's band ends at DIST
+//   policy member LEVEL NAME          level LEVEL draws with the group member NAME
+//   policy hysteresis X / policy transition N
+//   policy add NAME DIST              a band of NAME ending at DIST
+//   policy remove LEVEL
+//   policy save [FILE]                the policy file (default: the scene's, or --save-to)
+//   fly-frame N                       the camera at frame N of the scene's fly-through
+//
 // Each action that changes the decisions finishes when the new variant is on
 // screen (or its compile failed), so the next action sees it.
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "support/diagnostic.h"
 #include "support/source_manager.h"
+#include "tool/tool_run.h"
 
 namespace spire::explore {
 
@@ -48,21 +63,45 @@ enum class ActionKind {
   LoadTune,
   ApplyFront,
   Instance,
-  Quit
+  Quit,
+  PolicyUntil,
+  PolicyMember,
+  PolicyHysteresis,
+  PolicyTransition,
+  PolicyAdd,
+  PolicyRemove,
+  PolicySave,
+  FlyFrame
 };
+
+// Whether the action is one of a level-of-detail scene's (policy, fly-frame).
+bool isLodAction(ActionKind kind);
 
 struct ScriptAction {
   ActionKind kind = ActionKind::Quit;
-  std::string target;  // the choice (set, unset), file (load, save, screenshot), folder (load-tune) or view mode
-  std::string value;   // the placement (set)
-  uint32_t count = 0;  // wait-frames, walk, apply-front, instance
-  uint64_t seed = 0;   // walk
-  SourceRange range;   // the whole line, for errors while running it
+  std::string target;   // the choice (set, unset), file (load, save, screenshot), folder (load-tune) or view mode
+  std::string value;    // the placement (set), the member (policy member, policy add)
+  uint32_t count = 0;   // wait-frames, walk, apply-front, instance; the level or frame count of policy edits, fly-frame
+  double number = 0.0;  // the distance or hysteresis of policy edits
+  uint64_t seed = 0;    // walk
+  SourceRange range;    // the whole line, for errors while running it
 };
 
 // The actions of `file` in order; malformed lines are E7201 errors with the
 // line and column (every line is checked), and then no action is returned.
 std::vector<ScriptAction> parseScript(const SourceManager& sources, FileId file, DiagnosticList& diags);
+
+// Reads the script file at `path` into `actions`: nullopt to go on, or the
+// exit status after `run` printed why (it cannot be read, or has errors).
+std::optional<int> loadScriptFile(engine::ToolRun& run, const std::filesystem::path& path,
+                                  std::vector<ScriptAction>& actions);
+
+// An action that cannot be carried out: E7202 at its line, printed now.
+void reportScriptError(engine::ToolRun& run, const ScriptAction& action, const std::string& message);
+
+// A path a script names, relative to the script's folder (as given when
+// there is no script: from the window's buttons).
+std::filesystem::path scriptRelative(const std::optional<std::filesystem::path>& script, const std::string& path);
 
 // The action's text as written, for logs ("set Terrain.albedo = PrebakeTex").
 std::string describeAction(const SourceManager& sources, const ScriptAction& action);

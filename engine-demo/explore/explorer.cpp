@@ -5,7 +5,6 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cstring>
 #include <memory>
 #include <random>
 #include <span>
@@ -16,19 +15,18 @@
 #include "explore/explore_script.h"
 #include "explore/explorer_model.h"
 #include "explore/explorer_panels.h"
-#include "explore/imgui_overlay.h"
 #include "explore/instance_session.h"
 #include "explore/live_compiler.h"
+#include "explore/lod_explorer.h"
 #include "explore/source_watch.h"
 #include "explore/tune_results.h"
 #include "explore/view_images.h"
+#include "explore/window_presenter.h"
 #include "graph/decision_file.h"
 #include "renderer/gpu_resources.h"
 #include "scene/texture.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
-#include "vk/frame_blit.h"
-#include "vk/swapchain.h"
 #include "vk/timer.h"
 
 namespace spire::explore {
@@ -171,9 +169,7 @@ class Explorer {
   std::optional<fs::path> referencePath_;
   bool waitReload_ = false;
   std::optional<fs::path> windowShot_;  // written after the next presented frame
-  std::unique_ptr<ImGuiOverlay> overlay_;
-  std::optional<vk::Swapchain> swapchain_;
-  std::optional<vk::FrameBlit> blit_;
+  std::unique_ptr<WindowPresenter> presenter_;
   std::optional<vk::Image> staticImage_;  // error, hazards and split views
   // What the panels are drawn on in those views: a copy of staticImage_ per
   // frame, so the panels of earlier frames do not stay in it.
@@ -210,9 +206,7 @@ std::string Explorer::renderSince(size_t mark) const {
 }
 
 fs::path Explorer::scriptRelative(const std::string& path) const {
-  const fs::path p(path);
-  if (p.is_absolute() || !options_.script) return p;
-  return options_.script->parent_path() / p;
+  return explore::scriptRelative(options_.script, path);
 }
 
 fs::path Explorer::buttonsOrScriptRelative(const std::string& path) const {
@@ -312,12 +306,6 @@ engine::Expected<void> Explorer::selectInstance(size_t index) {
 // decisions; every variant compiled and prepared before the window shows.
 std::optional<int> Explorer::start() {
   const scene::SceneFile& scene = renderer_.scene();
-  if (scene.lod)
-    return run_.fail(
-        {"spire-explore explores one instance's shader; a level-of-detail scene selects shaders per instance and "
-         "frame, which it does not support yet",
-         {},
-         {}});
   referencePath_ = options_.reference;
   if (!referencePath_ && !scene.variants.empty()) referencePath_ = scene.variants.front().decisions;
   if (auto ok = selectInstance(options_.instance); !ok) return run_.fail(ok.error());
@@ -371,13 +359,9 @@ std::optional<int> Explorer::startPresentation() {
   const vk::Context& ctx = renderer_.context();
   vk::Image* color = renderer_.colorImage();
   if (color == nullptr) return run_.fail({"the scene renders no color output to show", {}, {}});
-  auto swapchain = vk::Swapchain::create(ctx, window_.framebufferExtent());
-  if (!swapchain) return run_.fail(engine::Error::fromVk(swapchain.error()));
-  swapchain_.emplace(std::move(swapchain).value());
-  auto blit = vk::FrameBlit::create(ctx, vk::chooseBlitPath(ctx, swapchain_->format()), color->format(),
-                                    color->extent(), swapchain_->format());
-  if (!blit) return run_.fail(engine::Error::fromVk(blit.error()));
-  blit_.emplace(std::move(blit).value());
+  auto presenter = WindowPresenter::create(ctx, window_, *color);
+  if (!presenter) return run_.fail(presenter.error());
+  presenter_ = std::move(presenter).value();
   const VkImageUsageFlags usage =
       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   auto image = vk::Image::create(ctx, {color->extent().width, color->extent().height, color->format(), usage, 0});
@@ -386,31 +370,16 @@ std::optional<int> Explorer::startPresentation() {
   auto panelImage = vk::Image::create(ctx, {color->extent().width, color->extent().height, color->format(), usage, 0});
   if (!panelImage) return run_.fail(engine::Error::fromVk(panelImage.error()));
   panelImage_.emplace(std::move(panelImage).value());
-  auto overlay = ImGuiOverlay::create(ctx, window_.glfwHandle(), color->format());
-  if (!overlay) return run_.fail(engine::Error::fromVk(overlay.error()));
-  overlay_ = std::move(overlay).value();
   return std::nullopt;
 }
 
 std::optional<int> Explorer::loadScript() {
   if (!options_.script) return std::nullopt;
-  auto text = readFileBytes(options_.script->string());
-  if (!text) {
-    return run_.fail(
-        {fmt::format("cannot read script '{}': {}", options_.script->string(), text.error().message()), {}, {}});
-  }
-  const FileId file = run_.sources().addFile(options_.script->string(), std::move(text).value());
-  script_ = parseScript(run_.sources(), file, run_.diagnostics());
-  if (run_.diagnostics().hasErrors()) {
-    run_.reporter().flush();
-    return kExitInputError;
-  }
-  return std::nullopt;
+  return loadScriptFile(run_, *options_.script, script_);
 }
 
 bool Explorer::scriptError(const ScriptAction& action, const std::string& message) {
-  run_.diagnostics().report(DiagCode::E7202, action.range, message);
-  run_.reporter().flush();
+  reportScriptError(run_, action, message);
   scriptFailed_ = true;
   return false;
 }
@@ -471,7 +440,11 @@ bool Explorer::runAction(const ScriptAction& action) {
       return ok ? true : scriptError(action, ok.error().message);
     }
     case ActionKind::Quit: return false;
-    default: return changeAction(action);
+    default:
+      if (isLodAction(action.kind)) {
+        return scriptError(action, "the scene has no level-of-detail policy ('lod') to edit or fly through");
+      }
+      return changeAction(action);
   }
 }
 
@@ -642,13 +615,6 @@ engine::Expected<void> Explorer::updateStaticImage() {
   return engine::writeImage(renderer_.context(), *staticImage_, bytes, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
 }
 
-engine::Expected<void> writeOpaquePng(const fs::path& path, const measure::FloatImage& image) {
-  // Opaque, as spire-demo writes its images.
-  auto ok = scene::writePng(path, measure::opaque(measure::toRgba8(image)));
-  if (!ok) return engine::Error{ok.error()};
-  return {};
-}
-
 // What the view shows without the panels, at the fixed camera view.
 engine::Expected<void> Explorer::screenshot(const fs::path& path) {
   return writeOpaquePng(path, view_ == ViewMode::Variant     ? captures_.variant->color
@@ -661,19 +627,13 @@ vk::Image& Explorer::shownImage() {
 }
 
 engine::Expected<void> Explorer::windowScreenshot(const fs::path& path) {
-  vk::Image& shown = shownImage();
-  auto bytes = engine::readImage(renderer_.context(), shown);
-  if (!bytes) return bytes.error();
-  measure::FloatImage image{shown.extent().width, shown.extent().height,
-                            std::vector<float>(bytes->size() / sizeof(float))};
-  std::memcpy(image.rgba.data(), bytes->data(), bytes->size());
-  return writeOpaquePng(path, image);
+  return writeImagePng(renderer_.context(), shownImage(), path);
 }
 
 scene::CameraView Explorer::cameraView(const demo::WindowInput& input, double now) {
   const scene::SceneFile& scene = renderer_.scene();
   if (options_.script) return scene.camera.views.front();
-  if (!overlay_->wantsMouse()) {
+  if (!presenter_->wantsMouse()) {
     yaw_ -= input.drag.x * kRadiansPerPixel;
     pitch_ = std::clamp(pitch_ + input.drag.y * kRadiansPerPixel, -glm::pi<float>(), glm::pi<float>());
   }
@@ -704,22 +664,14 @@ PanelState Explorer::panelState() const {
 
 // Draws the panels over the shown image and presents it.
 engine::Expected<void> Explorer::present() {
-  auto frame = swapchain_->beginFrame(window_.framebufferExtent());
-  if (!frame) return engine::Error::fromVk(frame.error());
-  if (!frame->has_value()) return {};  // minimized: nothing to present to
-  const vk::SwapchainFrame& target = **frame;
   vk::Image& shown = shownImage();
+  std::function<vk::Expected<void>(VkCommandBuffer)> copy;
   if (&shown == &*panelImage_) {
-    if (auto ok = panelImage_->copyLayerFrom(target.cmd, *staticImage_, 0); !ok)
-      return engine::Error::fromVk(ok.error());
+    copy = [this](VkCommandBuffer cmd) { return panelImage_->copyLayerFrom(cmd, *staticImage_, 0); };
   }
-  overlay_->beginFrame(shown.extent());
-  const PanelRequests requests = drawPanels(panelState());
-  if (auto ok = overlay_->record(target.cmd, shown); !ok) return engine::Error::fromVk(ok.error());
-  if (auto ok = blit_->record(target.cmd, shown, target.image, target.extent, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR); !ok) {
-    return engine::Error::fromVk(ok.error());
-  }
-  if (auto ok = swapchain_->endFrame(); !ok) return engine::Error::fromVk(ok.error());
+  PanelRequests requests;
+  const auto panels = [&] { requests = drawPanels(panelState()); };
+  if (auto ok = presenter_->present(shown, panels, copy); !ok) return ok;
   handleRequests(requests);
   return {};
 }
@@ -809,21 +761,15 @@ int Explorer::run() {
   out_ << fmt::format("spire-explore: {} ({} choices); {}\n", session_->shader, session_->state->rows().size(),
                       options_.script ? "running the script" : "close the window or press Escape to quit")
        << std::flush;
-  uint64_t shown = 0;
-  while (!options_.maxFrames || shown < *options_.maxFrames) {
-    const demo::WindowInput input = window_.poll();
-    if (input.quit) break;
-    auto more = frame(input);
-    if (!more) return run_.fail(more.error());
-    if (!*more) break;
-    ++shown;
-  }
+  auto ran = runFrameLoop(window_, options_.maxFrames, [this](const demo::WindowInput& input) { return frame(input); });
+  if (!ran) return run_.fail(ran.error());
   return finish(scriptFailed_ ? kExitInputError : kExitSuccess);
 }
 
 }  // namespace
 
 int runExplorer(const ExploreOptions& options, engine::ToolRun& run, demo::GlfwWindow& window, std::ostream& out) {
+  if (run.scene().lod) return runLodExplorer(options, run, window, out);
   Explorer explorer(options, run, window, out);
   return explorer.run();
 }

@@ -118,28 +118,28 @@ void drawMetrics(const PanelState& state, PanelRequests& requests) {
   ImGui::End();
 }
 
-void drawDiagnostics(const PanelState& state) {
-  if (state.diagnostics.empty()) return;
-  const ImVec2 size = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(size.x - kMargin, kMargin), ImGuiCond_Always, ImVec2(1.0F, 0.0F));
-  ImGui::SetNextWindowSize(ImVec2(size.x * 0.6F, size.y * 0.45F), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowBgAlpha(kPanelAlpha);
-  ImGui::Begin("Diagnostics", nullptr, ImGuiWindowFlags_HorizontalScrollbar);
-  ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
-  ImGui::TextUnformatted(state.diagnostics.c_str());
-  ImGui::PopStyleColor();
-  ImGui::End();
-}
-
 }  // namespace
 
 PanelRequests drawPanels(const PanelState& state) {
   PanelRequests requests;
   drawChoices(state, requests);
   drawMetrics(state, requests);
-  drawDiagnostics(state);
+  drawDiagnosticsPanel(state.diagnostics);
   drawParetoPanel(state, requests);
   return requests;
+}
+
+void drawDiagnosticsPanel(const std::string& diagnostics) {
+  if (diagnostics.empty()) return;
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(size.x - kMargin, kMargin), ImGuiCond_Always, ImVec2(1.0F, 0.0F));
+  ImGui::SetNextWindowSize(ImVec2(size.x * 0.6F, size.y * 0.45F), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(kPanelAlpha);
+  ImGui::Begin("Diagnostics", nullptr, ImGuiWindowFlags_HorizontalScrollbar);
+  ImGui::PushStyleColor(ImGuiCol_Text, kErrorColor);
+  ImGui::TextUnformatted(diagnostics.c_str());
+  ImGui::PopStyleColor();
+  ImGui::End();
 }
 
 }  // namespace spire::explore

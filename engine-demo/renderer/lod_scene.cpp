@@ -75,6 +75,7 @@ std::string sharedValues(const KernelProgram& kernel, const MaterialValues& mate
 struct LodScene::Impl {
   SceneRenderer& renderer;
   lod::LodPolicy policy;
+  LodOptions options;
   std::vector<Level> levels;
   std::vector<const GpuMesh*> meshes;  // distinct meshes
   std::vector<bool> doubleSided;       // per prototype
@@ -91,7 +92,7 @@ struct LodScene::Impl {
   std::vector<uint32_t> drawnOnly;  // empty: every instance
   LodFrameStats stats;
 
-  Impl(SceneRenderer& r, lod::LodPolicy p) : renderer(r), policy(std::move(p)) {}
+  Impl(SceneRenderer& r, lod::LodPolicy p, LodOptions o) : renderer(r), policy(std::move(p)), options(o) {}
 
   Expected<void> compileLevels();
   Expected<void> placeInstances(uint32_t blocksPerSide);
@@ -281,8 +282,10 @@ void LodScene::Impl::recordBatches(VkCommandBuffer cmd) const {
   }
 }
 
-Expected<std::unique_ptr<LodScene>> LodScene::create(SceneRenderer& renderer, lod::LodPolicy policy,
-                                                     const LodOptions& options) {
+namespace {
+
+// The policy as `options` draws it: one level, or no cross-fades.
+Expected<lod::LodPolicy> appliedPolicy(lod::LodPolicy policy, const LodOptions& options) {
   if (options.fixedLevel) {
     if (*options.fixedLevel >= policy.levels.size()) {
       return Error{fmt::format("level {} of a policy of {} levels", *options.fixedLevel, policy.levels.size()), {}, {}};
@@ -292,7 +295,16 @@ Expected<std::unique_ptr<LodScene>> LodScene::create(SceneRenderer& renderer, lo
     policy.levels = {only};
   }
   if (!options.transitions || options.fixedLevel) policy.transitionFrames = 0;
-  auto impl = std::make_unique<Impl>(renderer, policy);
+  return policy;
+}
+
+}  // namespace
+
+Expected<std::unique_ptr<LodScene>> LodScene::create(SceneRenderer& renderer, lod::LodPolicy policy,
+                                                     const LodOptions& options) {
+  auto applied = appliedPolicy(std::move(policy), options);
+  if (!applied) return applied.error();
+  auto impl = std::make_unique<Impl>(renderer, std::move(applied).value(), options);
   const uint32_t blocks = renderer.scene().lod ? renderer.scene().lod->blocks : 1;
   if (auto ok = impl->compileLevels(); !ok) return ok.error();
   if (auto ok = impl->placeInstances(blocks); !ok) return ok.error();
@@ -341,6 +353,21 @@ Expected<std::vector<uint8_t>> LodScene::readCoverage() {
 
 void LodScene::drawOnly(std::vector<uint32_t> instances) { impl_->drawnOnly = std::move(instances); }
 
+Expected<void> LodScene::setBands(const lod::LodPolicy& policy, const scene::CameraView& view) {
+  auto applied = appliedPolicy(policy, impl_->options);
+  if (!applied) return applied.error();
+  const std::vector<Level>& levels = impl_->levels;
+  const bool same = std::equal(levels.begin(), levels.end(), applied->levels.begin(), applied->levels.end(),
+                               [](const Level& a, const lod::LodLevel& b) { return a.member == b.member; });
+  if (!same)
+    return Error{"the policy's members differ from the compiled levels': the scene must be made again", {}, {}};
+  impl_->policy = std::move(applied).value();
+  impl_->selector.emplace(impl_->policy, impl_->instances.size());
+  resetLevels(view);
+  return {};
+}
+
+const lod::LodPolicy& LodScene::policy() const { return impl_->policy; }
 const LodFrameStats& LodScene::lastStats() const { return impl_->stats; }
 size_t LodScene::instanceCount() const { return impl_->instances.size(); }
 const lod::DrawGroups& LodScene::drawGroups() const { return impl_->batcher->groups(); }

@@ -62,6 +62,13 @@ class LodScene {
   // object alone in the frame, as spire-tune --lod-policy measures a level's
   // error at a distance. Indices must be below instanceCount().
   void drawOnly(std::vector<uint32_t> instances);
+  // New band edges, hysteresis or cross-fade length for the levels already
+  // compiled, without compiling anything: `policy` must name the same
+  // members in the same order (else an error, and nothing changes). Levels
+  // are placed again from `view` without fading, so an edit shows at once.
+  Expected<void> setBands(const lod::LodPolicy& policy, const scene::CameraView& view);
+  // The policy the scene draws with (LodOptions applied).
+  const lod::LodPolicy& policy() const;
 
   const LodFrameStats& lastStats() const;
   size_t instanceCount() const;

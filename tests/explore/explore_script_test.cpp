@@ -78,7 +78,9 @@ TEST(ExploreScript, EveryMalformedLineIsAnErrorAtItsPlace) {
       " 3 | view sideways\n"
       "   |      ^~~~~~~~\n"
       "s.explore:4:1: error[E7201]: unknown action 'explode' (actions: set, unset, reset, load, save, undo, walk, "
-      "view, wait-frames, wait-reload, screenshot, screenshot-window, load-tune, apply-front, instance, quit)\n"
+      "view, wait-frames, wait-reload, screenshot, screenshot-window, load-tune, apply-front, instance, quit, "
+      "policy until, policy member, policy hysteresis, policy transition, policy add, policy remove, policy save, "
+      "fly-frame)\n"
       " 4 | explode now\n"
       "   | ^~~~~~~\n"
       "s.explore:5:6: error[E7201]: 'undo' takes nothing after it\n"
@@ -91,6 +93,49 @@ TEST(ExploreScript, EveryMalformedLineIsAnErrorAtItsPlace) {
       " 7 | instance -1\n"
       "   |          ^~\n"
       "7 errors generated.\n");
+}
+
+TEST(ExploreScript, ParsesThePolicyEditsOfALevelOfDetailScene) {
+  Parsed p;
+  parse(p,
+        "policy until 0 20.5\npolicy   member 2 LodMQ\npolicy hysteresis 0.2\npolicy transition 6\n"
+        "policy add LodMQ 50\npolicy remove 1\npolicy save\npolicy save out.json\nfly-frame 7\n");
+  ASSERT_FALSE(p.diags.hasErrors()) << renderDiagnostics(p.sources, p.diags, DiagnosticFormat::Text);
+  ASSERT_EQ(p.actions.size(), 9U);
+  EXPECT_EQ(p.actions[0].kind, ActionKind::PolicyUntil);
+  EXPECT_EQ(p.actions[0].count, 0U);
+  EXPECT_EQ(p.actions[0].number, 20.5);
+  EXPECT_EQ(p.actions[1].kind, ActionKind::PolicyMember);
+  EXPECT_EQ(p.actions[1].count, 2U);
+  EXPECT_EQ(p.actions[1].value, "LodMQ");
+  EXPECT_EQ(describeAction(p.sources, p.actions[1]), "policy   member 2 LodMQ");
+  EXPECT_EQ(p.actions[2].number, 0.2);
+  EXPECT_EQ(p.actions[3].kind, ActionKind::PolicyTransition);
+  EXPECT_EQ(p.actions[3].count, 6U);
+  EXPECT_EQ(p.actions[4].kind, ActionKind::PolicyAdd);
+  EXPECT_EQ(p.actions[4].value, "LodMQ");
+  EXPECT_EQ(p.actions[4].number, 50.0);
+  EXPECT_EQ(p.actions[5].kind, ActionKind::PolicyRemove);
+  EXPECT_EQ(p.actions[6].kind, ActionKind::PolicySave);
+  EXPECT_EQ(p.actions[6].target, "");
+  EXPECT_EQ(p.actions[7].target, "out.json");
+  EXPECT_EQ(p.actions[8].kind, ActionKind::FlyFrame);
+  EXPECT_EQ(p.actions[8].count, 7U);
+  for (const ScriptAction& action : p.actions) EXPECT_TRUE(isLodAction(action.kind));
+}
+
+TEST(ExploreScript, MalformedPolicyEditsAreErrorsAtTheirPlace) {
+  Parsed p;
+  parse(p, "policy until one 5\npolicy hysteresis much\npolicy frobnicate 2\npolicy\npolicy member 1\nfly-frame -2\n");
+  EXPECT_TRUE(p.actions.empty());
+  const std::string text = renderDiagnostics(p.sources, p.diags, DiagnosticFormat::Text);
+  EXPECT_NE(text.find("s.explore:1:14: error[E7201]: expected a level from 0 to 254"), std::string::npos) << text;
+  EXPECT_NE(text.find("s.explore:2:19: error[E7201]: expected a hysteresis (a number)"), std::string::npos) << text;
+  EXPECT_NE(text.find("s.explore:3:1: error[E7201]: unknown action 'policy frobnicate'"), std::string::npos) << text;
+  EXPECT_NE(text.find("s.explore:4:1: error[E7201]: unknown action 'policy'"), std::string::npos) << text;
+  EXPECT_NE(text.find("s.explore:5:15: error[E7201]: expected 'policy member LEVEL NAME'"), std::string::npos) << text;
+  EXPECT_NE(text.find("s.explore:6:11: error[E7201]: expected a fly-through frame from 0 to 100000"), std::string::npos)
+      << text;
 }
 
 }  // namespace

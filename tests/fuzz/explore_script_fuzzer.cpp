@@ -5,7 +5,9 @@
 // decisions over an example shader (fuzz_support.h: every examples/*.spire in
 // one library). Whatever the explorer accepts must build a variant with every
 // decision applied: that is what it promises when it shows an alternative as
-// possible, so a skipped decision aborts.
+// possible, so a skipped decision aborts. Its policy edits are carried out
+// on the LOD policy editor: a policy the editor calls valid must be a file
+// that reads back to itself, and the last valid one must stay one.
 //
 // Built two ways (see CMakeLists.txt beside this file):
 //   spire_explore_script_fuzzer  clang + -fsanitize=fuzzer,address,undefined (fuzz preset)
@@ -15,11 +17,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <random>
 #include <string>
 
 #include "explore/decision_state.h"
 #include "explore/explore_script.h"
+#include "explore/policy_editor.h"
 #include "fuzz/fuzz_support.h"
 
 namespace {
@@ -56,6 +60,37 @@ void apply(DecisionState& state, const ScriptAction& action) {
   }
 }
 
+// Writes the policy, reads it back and writes that again: the same text.
+bool readsBack(const spire::lod::LodPolicy& policy) {
+  spire::SourceManager sources;
+  spire::DiagnosticList diags;
+  const std::string text = spire::lod::formatLodPolicy(policy);
+  const auto read = spire::lod::parseLodPolicy("policy.json", text, sources, diags);
+  return read && spire::lod::formatLodPolicy(*read) == text;
+}
+
+void edit(spire::explore::PolicyEditor& editor, const ScriptAction& action) {
+  const auto level = static_cast<size_t>(action.count);
+  const auto number = static_cast<float>(action.number);
+  switch (action.kind) {
+    case ActionKind::PolicyUntil: (void)editor.setUntil(level, number); break;
+    case ActionKind::PolicyMember: (void)editor.setMember(level, action.value); break;
+    case ActionKind::PolicyHysteresis: editor.setHysteresis(number); break;
+    case ActionKind::PolicyTransition: editor.setTransitionFrames(action.count); break;
+    case ActionKind::PolicyAdd: editor.addLevel(action.value, number); break;
+    case ActionKind::PolicyRemove: (void)editor.removeLevel(level); break;
+    default: return;
+  }
+  if (editor.isValid() && !readsBack(editor.edited())) std::abort();
+  if (!readsBack(editor.valid())) std::abort();
+}
+
+spire::lod::LodPolicy startPolicy() {
+  spire::lod::LodPolicy policy;
+  policy.levels = {{"LodHQ", 12.0F, {}}, {"LodMQ", 35.0F, {}}, {"LodLQ", std::numeric_limits<float>::infinity(), {}}};
+  return policy;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -73,9 +108,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (shaders.empty() || actions.empty()) return 0;
   const std::string& shader = shaders[size % shaders.size()];
   DecisionState state(*library.choiceSpace(shader));
+  explore::PolicyEditor policy(startPolicy());
   for (const ScriptAction& action : actions) {
     (void)explore::describeAction(sources, action);
     apply(state, action);
+    edit(policy, action);
     std::vector<std::string> skipped;
     if (!library.buildVariant(shader, state.decisions(), &skipped) || !skipped.empty()) std::abort();
   }
