@@ -19,6 +19,7 @@ std::string_view siteName(AttributeSite site) {
     case AttributeSite::Import: return "an import";
     case AttributeSite::Component: return "a component declaration";
     case AttributeSite::Decision: return "a decision";
+    case AttributeSite::Statement: return "a statement";
   }
   return "?";
 }
@@ -62,8 +63,8 @@ const std::vector<AttributeSpec>& catalog() {
        {},
        "signed"},
       {"Immutable",
-       {AttributeSite::Component},
-       "automatic simplification leaves the component as written",
+       {AttributeSite::Component, AttributeSite::Statement},
+       "automatic simplification leaves the component or statement as written",
        {},
        {},
        {},
@@ -100,6 +101,20 @@ std::optional<AttributeProblem> unknownName(std::string_view name) {
                                       name, *suggestion)};
 }
 
+// No engine reads a statement's attributes, so an unknown one there is a
+// mistake rather than a hint.
+AttributeProblem unknownOnStatement(std::string_view name) {
+  std::vector<std::string_view> names;
+  for (const AttributeSpec& spec : catalog()) {
+    if (std::find(spec.sites.begin(), spec.sites.end(), AttributeSite::Statement) != spec.sites.end()) {
+      names.push_back(spec.name);
+    }
+  }
+  std::string message = fmt::format("unknown attribute [{}] on a statement; a statement takes ", name);
+  for (size_t i = 0; i < names.size(); ++i) message += fmt::format("{}[{}]", i == 0 ? "" : " or ", names[i]);
+  return AttributeProblem{true, false, std::move(message)};
+}
+
 }  // namespace
 
 std::span<const AttributeSpec> attributeCatalog() { return catalog(); }
@@ -113,7 +128,7 @@ const AttributeSpec* findAttribute(std::string_view name) {
 std::optional<AttributeProblem> checkAttribute(AttributeSite site, std::string_view name,
                                                const std::optional<std::string>& value) {
   const AttributeSpec* spec = findAttribute(name);
-  if (!spec) return unknownName(name);
+  if (!spec) return site == AttributeSite::Statement ? unknownOnStatement(name) : unknownName(name);
   if (std::find(spec->sites.begin(), spec->sites.end(), site) == spec->sites.end()) {
     return AttributeProblem{true, false,
                             fmt::format("[{}] ({}) does not belong on {}; it goes on {}", name, spec->meaning,

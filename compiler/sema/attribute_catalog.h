@@ -17,7 +17,7 @@
 
 namespace spire::sem {
 
-enum class AttributeSite : uint8_t { World, Import, Component, Decision };
+enum class AttributeSite : uint8_t { World, Import, Component, Decision, Statement };
 
 struct AttributeSpec {
   std::string_view name;

@@ -1,6 +1,7 @@
 // Statement checking, scopes and type resolution for BodyChecker.
 #include <fmt/format.h>
 
+#include "sema/attribute_catalog.h"
 #include "sema/body_checker.h"
 #include "support/spelling.h"
 
@@ -139,6 +140,7 @@ void BodyChecker::checkVarDecl(const ast::VarDeclStmt& decl) {
 }
 
 void BodyChecker::checkStmt(const ast::Stmt& stmt) {
+  checkAttributes(stmt.attributes, AttributeSite::Statement, diags_);
   switch (stmt.kind) {
     case ast::StmtKind::Block: checkBlock(ast::cast<ast::BlockStmt>(stmt)); return;
     case ast::StmtKind::VarDecl: checkVarDecl(ast::cast<ast::VarDeclStmt>(stmt)); return;

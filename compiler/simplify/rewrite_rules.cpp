@@ -7,7 +7,7 @@ namespace spire::simplify {
 namespace {
 
 // Calls the visitors on every expression and statement of a definition,
-// outermost first.
+// outermost first, except those inside [Immutable] statements.
 class ExprWalker {
  public:
   ExprWalker(std::function<void(const ast::Expr&)> visit, std::function<void(const ast::Stmt&)> visitStmt)
@@ -64,8 +64,14 @@ class ExprWalker {
   std::function<void(const ast::Stmt&)> visitStmt_;
 };
 
+bool immutable(const ast::Stmt& s) {
+  return std::any_of(s.attributes.begin(), s.attributes.end(),
+                     [](const ast::Attribute& a) { return a.name == "Immutable"; });
+}
+
+// An [Immutable] statement is not walked, so no rule sees anything in it.
 void ExprWalker::stmt(const ast::Stmt* s) {
-  if (!s) return;
+  if (!s || immutable(*s)) return;
   visitStmt_(*s);
   switch (s->kind) {
     case ast::StmtKind::Block:

@@ -217,6 +217,17 @@ struct IndexExpr final : Expr {
 };
 
 // ---------------------------------------------------------------------------
+// Attributes
+
+// `[Name]` or `[Name: "value"]`.
+struct Attribute {
+  SourceRange range;
+  std::string name;
+  std::optional<std::string> value;  // unescaped string contents
+  SourceRange valueRange;
+};
+
+// ---------------------------------------------------------------------------
 // Statements
 
 enum class StmtKind : uint8_t {
@@ -236,7 +247,9 @@ enum class StmtKind : uint8_t {
 
 struct Stmt {
   StmtKind kind;
-  SourceRange range;
+  SourceRange range;  // the statement, without its attributes
+  // `[Immutable] { ... }`: attributes written before the statement.
+  std::vector<Attribute> attributes;
   virtual ~Stmt() = default;
 
  protected:
@@ -340,14 +353,6 @@ struct EmptyStmt final : Stmt {
 
 // ---------------------------------------------------------------------------
 // Declarations
-
-// `[Name]` or `[Name: "value"]`.
-struct Attribute {
-  SourceRange range;
-  std::string name;
-  std::optional<std::string> value;  // unescaped string contents
-  SourceRange valueRange;
-};
 
 // A strategy use: `textureImport(vert_uv)`, `standardExport`. Arguments are
 // expressions evaluated in the world that runs the generated code.

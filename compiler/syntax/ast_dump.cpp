@@ -201,7 +201,16 @@ class TreeDumper {
     close();
   }
 
+  // An attributed statement is a node of its own, so that a statement's
+  // line looks the same whether or not it carries attributes.
   void statement(const ast::Stmt& s) {
+    if (s.attributes.empty()) return unattributedStatement(s);
+    open("attributed" + attributes(s.attributes));
+    unattributedStatement(s);
+    close();
+  }
+
+  void unattributedStatement(const ast::Stmt& s) {
     using namespace ast;
     switch (s.kind) {
       case StmtKind::Block:

@@ -249,7 +249,7 @@ class SourcePrinter {
   // when it was a block, whose '}' leaves the line open.
   bool body(const ast::Stmt& s) {
     if (s.kind == ast::StmtKind::Block) {
-      out_ += " ";
+      out_ += " " + attributes(s.attributes);
       block(ast::cast<ast::BlockStmt>(s));
       return true;
     }
@@ -278,6 +278,7 @@ class SourcePrinter {
   // ending with a newline.
   void statement(const ast::Stmt& s) {
     using namespace ast;
+    out_ += attributes(s.attributes);
     switch (s.kind) {
       case StmtKind::Block:
         block(cast<BlockStmt>(s));

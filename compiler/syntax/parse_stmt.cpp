@@ -26,9 +26,30 @@ std::unique_ptr<ast::BlockStmt> Parser::parseBlock() {
   return block;
 }
 
-// statement = block | local-decl | if-stmt | for-stmt | while-stmt | do-stmt
-//           | jump-stmt | return-stmt | ";" | expression-stmt ;
+// statement = { attribute } unattributed-statement ;
+// No GLSL statement starts with '[', so attributes cannot be confused with
+// an expression.
 ast::StmtPtr Parser::parseStatement() {
+  if (!at(TokenKind::LBracket)) return parseUnattributedStatement();
+  auto attributes = parseAttributes();
+  if (!attributes) {
+    synchronize(SyncLevel::Statement);
+    return nullptr;
+  }
+  // Left for the block to close: attributes need a statement to belong to.
+  if (at(TokenKind::RBrace) || at(TokenKind::EndOfFile)) {
+    reportMissing("expected a statement after the attributes");
+    return nullptr;
+  }
+  ast::StmtPtr statement = parseUnattributedStatement();
+  if (statement) statement->attributes = std::move(*attributes);
+  return statement;
+}
+
+// unattributed-statement = block | local-decl | if-stmt | for-stmt
+//           | while-stmt | do-stmt | jump-stmt | return-stmt | ";"
+//           | expression-stmt ;
+ast::StmtPtr Parser::parseUnattributedStatement() {
   if (at(TokenKind::LBrace)) return parseBlock();
   DepthScope scope(*this);
   if (!nestDeeper()) {

@@ -129,6 +129,7 @@ class Parser {
   // --- Statements (parse_stmt.cpp)
   std::unique_ptr<ast::BlockStmt> parseBlock();
   ast::StmtPtr parseStatement();
+  ast::StmtPtr parseUnattributedStatement();
   bool atLocalDecl() const;
   bool atTypedName() const;
   std::unique_ptr<ast::VarDeclStmt> parseLocalDecl();

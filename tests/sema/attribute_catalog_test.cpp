@@ -33,7 +33,8 @@ TEST(AttributeCatalog, KnownAttributesTakeTheirValuesInTheirPlaces) {
   const auto noValue = checkAttribute(AttributeSite::World, "Stage", std::nullopt);
   ASSERT_TRUE(noValue);
   EXPECT_FALSE(noValue->atValue);
-  // [Immutable] is a flag: it takes no value, and only components have it.
+  // [Immutable] is a flag: it takes no value, and only components and
+  // statements have it.
   EXPECT_FALSE(checkAttribute(AttributeSite::Component, "Immutable", std::nullopt));
   const auto immutableValue = checkAttribute(AttributeSite::Component, "Immutable", "yes");
   ASSERT_TRUE(immutableValue);
@@ -47,6 +48,19 @@ TEST(AttributeCatalog, KnownAttributesTakeTheirValuesInTheirPlaces) {
   const auto typo = checkAttribute(AttributeSite::Decision, "Format", "rgba8");
   ASSERT_TRUE(typo);
   EXPECT_NE(typo->message.find("did you mean \"RGBA8\"?"), std::string::npos) << typo->message;
+}
+
+// A statement takes [Immutable] only: nothing reads a statement's other
+// attributes, so an unknown one there is an error, not a hint.
+TEST(AttributeCatalog, StatementsTakeImmutableAndNothingElse) {
+  EXPECT_FALSE(checkAttribute(AttributeSite::Statement, "Immutable", std::nullopt));
+  const auto unknown = checkAttribute(AttributeSite::Statement, "Tonemap", std::nullopt);
+  ASSERT_TRUE(unknown);
+  EXPECT_TRUE(unknown->isError);
+  EXPECT_EQ(unknown->message, "unknown attribute [Tonemap] on a statement; a statement takes [Immutable]");
+  const auto misplaced = checkAttribute(AttributeSite::Statement, "Format", "RGBA8");
+  ASSERT_TRUE(misplaced);
+  EXPECT_NE(misplaced->message.find("does not belong on a statement"), std::string::npos) << misplaced->message;
 }
 
 TEST(AttributeCatalog, UnknownNamesAreHintsUnlessTheyLookLikeKnownOnes) {

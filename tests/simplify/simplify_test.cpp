@@ -96,6 +96,43 @@ TEST_F(SimplifyTest, RulesRewriteToExpressionsOfTheSameType) {
   EXPECT_EQ(loop[0].before + " -> " + loop[0].replacement, "4 -> 3");
 }
 
+// Nothing inside an [Immutable] statement or block is rewritten, however
+// deep, while the rest of the same definition still is.
+TEST_F(SimplifyTest, ImmutableStatementsAndBlocksAreNeverRewritten) {
+  load(R"(using "pipelines/engine.spire";
+shader S using EnginePipeline {
+    @FrameUniform mat4 mvp;
+    @MaterialUniform float gain;
+    vec4 projPos = mvp * vec4(vert_pos, 1.0);
+    float guarded {
+        [Immutable] float a = gain * 2.0;
+        [Immutable] {
+            a = clamp(a, 0.0, 1.0);
+            for (int i = 0; i < 4; i++) { a += gain * 0.5; }
+        }
+        if (gain > 0.5) [Immutable] a = mix(a, gain, 0.25);
+        for (int j = 0; j < 2; j++) [Immutable] { a -= gain + 1.0; }
+        return a * 0.5;
+    }
+    vec4 output = vec4(guarded);
+}
+)");
+  std::vector<std::string> rewrites;
+  for (const Rewrite& r : rewritesOf("S", "guarded")) rewrites.push_back(r.rule + ": " + r.before);
+  EXPECT_EQ(rewrites, (std::vector<std::string>{"constant-operand: a * 0.5", "loop-iteration: 2"}));
+
+  SimplifyOptions options;
+  options.shader = "S";
+  options.outputPath = (dir_ / "s_simplified.spire").string();
+  options.frontEnd = frontEnd();
+  auto result = simplifyShader(*library_, options);
+  ASSERT_TRUE(result) << result.error().message;
+  ASSERT_EQ(result->variations.size(), 2U) << result->module;
+  // The variation keeps the immutable statements byte for byte.
+  EXPECT_NE(result->module.find("[Immutable] float a = gain * 2.0;"), std::string::npos) << result->module;
+  EXPECT_NE(result->module.find("return (a);"), std::string::npos) << result->module;
+}
+
 TEST_F(SimplifyTest, TheModuleCompilesAndItsVariationsAreChoicesWithTheirOwnKernels) {
   ShaderLibrary& library = load(kShader);
   SimplifyOptions options;

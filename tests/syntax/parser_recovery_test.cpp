@@ -30,6 +30,15 @@ TEST(ParserRecovery, UnexpectedTokenOnTheSameLineIsPointedAt) {
             (Lines{"E2001 1:18 expected ';' after expression", "E2001 1:31 expected ';' after expression"}));
 }
 
+// Attributes need a statement; the block still closes where it did, so the
+// next statement of the function is not lost.
+TEST(ParserRecovery, AttributesWithoutAStatement) {
+  EXPECT_EQ(errorsOf("void f() {\n  if (a) { [Immutable]\n  }\n  x = 1 y;\n}"),
+            (Lines{"E2001 2:23 expected a statement after the attributes", "E2001 4:9 expected ';' after expression"}));
+  EXPECT_EQ(errorsOf("void f() { [Immutable: ] x = 1; }"),
+            Lines{"E2001 1:24 expected string literal after ':' in attribute"});
+}
+
 TEST(ParserRecovery, ClosingBracketsNoteTheOpeningOne) {
   EXPECT_EQ(errorsOf("void f() {\n  x = g(a, (b + c];\n}"),
             (Lines{"E2001 2:18 expected ')' after expression", "  note 2:12 to match this '('"}));

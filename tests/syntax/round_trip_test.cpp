@@ -55,6 +55,26 @@ TEST(RoundTrip, ExpressionsNeedingParentheses) {
                   "expressions");
 }
 
+// Attributes stay with the statement they precede, wherever it stands, and
+// a statement's own node is the same with or without them.
+TEST(RoundTrip, StatementAttributes) {
+  expectRoundTrip(R"(float f(float x) {
+    [Immutable] { x = x * 2.0; }
+    [Immutable] [Note: "kept"] float y = x + 1.0;
+    for (int i = 0; i < 4; ++i) [Immutable] x += y;
+    while (x > 1.0) [Immutable] { x = x * 0.5; }
+    if (x > 0.0) [Immutable] return x; else [Immutable] if (x < -1.0) return -x;
+    do [Immutable] { x += 1.0; } while (x < 0.0);
+    return y;
+  })",
+                  "statement attributes");
+  const auto parsed = test::parse("void f() { [Immutable] { x = 1; } x = 2; }");
+  ASSERT_EQ(parsed->diagnostics(), std::vector<std::string>{});
+  const std::string dump = parsed->dump();
+  EXPECT_NE(dump.find("(attributed (attribute Immutable)\n"), std::string::npos) << dump;
+  EXPECT_EQ(printModule(*parsed->module), "void f() {\n  [Immutable] {\n    x = 1;\n  }\n  x = 2;\n}\n");
+}
+
 // Chains of binary operators are printed, dumped and copied (a type shared
 // by two fields) in a loop: 10000 terms would otherwise recurse 10000 deep.
 // Parentheses inside a chain must survive, wherever they stand.
