@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <functional>
 
+#include "simplify/rule_matching.h"
+
 namespace spire::simplify {
 namespace {
 
@@ -115,11 +117,13 @@ void ExprWalker::stmt(const ast::Stmt* s) {
 
 class RuleSet {
  public:
-  RuleSet(const sem::Model& model, const SourceManager& sources) : model_(model), sources_(sources) {}
+  RuleSet(const sem::Model& model, const SourceManager& sources, const std::vector<UserRule>& userRules)
+      : model_(model), sources_(sources), userRules_(userRules) {}
 
   void propose(const ast::Expr& e) {
     if (const auto* b = ast::dyn_cast<ast::BinaryExpr>(&e)) constantOperand(*b);
     if (const auto* c = ast::dyn_cast<ast::CallExpr>(&e)) callToArgument(*c);
+    for (const UserRule& rule : userRules_) userRule(rule, e);
   }
   void loop(const ast::Stmt& s);
   std::vector<Rewrite> take() { return std::move(rewrites_); }
@@ -137,7 +141,7 @@ class RuleSet {
   void collapse(const char* rule, const ast::Expr& e, const ast::Expr& kept) {
     const std::string type = typeName(e);
     if (type.empty() || typeName(kept) != type) return;
-    add({rule, e.range, "(" + text(kept) + ")", text(e)});
+    add({rule, e.range, "(" + text(kept) + ")", text(e), ""});
   }
   void add(Rewrite r) {
     for (const Rewrite& other : rewrites_) {
@@ -162,8 +166,17 @@ class RuleSet {
     }
   }
 
+  // Whatever the replacement's type, it is checked when compiled (the
+  // Rewrite's `type`): only an expression with a type is rewritten.
+  void userRule(const UserRule& rule, const ast::Expr& e) {
+    const std::string type = typeName(e);
+    if (type.empty()) return;
+    if (auto replacement = applyUserRule(rule, e, sources_)) add({rule.name, e.range, *replacement, text(e), type});
+  }
+
   const sem::Model& model_;
   const SourceManager& sources_;
+  const std::vector<UserRule>& userRules_;
   std::vector<Rewrite> rewrites_;
 };
 
@@ -195,14 +208,14 @@ void RuleSet::loop(const ast::Stmt& s) {
   const auto* bound = ast::dyn_cast<ast::IntLiteral>(condition->rhs.get());
   const uint64_t lowest = condition->op == ast::BinaryOp::Less ? 2 : 1;
   if (!bound || bound->value < lowest) return;
-  add({"loop-iteration", bound->range, std::to_string(bound->value - 1), text(*bound)});
+  add({"loop-iteration", bound->range, std::to_string(bound->value - 1), text(*bound), ""});
 }
 
 }  // namespace
 
 std::vector<Rewrite> proposeRewrites(const sem::Model& model, const SourceManager& sources,
-                                     const ast::ComponentDecl& decl) {
-  RuleSet rules(model, sources);
+                                     const ast::ComponentDecl& decl, const std::vector<UserRule>& userRules) {
+  RuleSet rules(model, sources, userRules);
   ExprWalker walker([&](const ast::Expr& e) { rules.propose(e); }, [&](const ast::Stmt& s) { rules.loop(s); });
   walker.expr(decl.init.get());
   walker.stmt(decl.body.get());
@@ -216,6 +229,23 @@ std::vector<Rewrite> proposeRewrites(const sem::Model& model, const SourceManage
     return removed(a) != removed(b) ? removed(a) > removed(b) : a.range.begin < b.range.begin;
   });
   return rewrites;
+}
+
+const ast::Expr* widestExprWithin(const ast::ComponentDecl& decl, const SourceRange& range) {
+  const ast::Expr* widest = nullptr;
+  const auto within = [&](const ast::Expr& e) {
+    return e.range.file == range.file && e.range.begin >= range.begin && e.range.end <= range.end;
+  };
+  ExprWalker walker(
+      [&](const ast::Expr& e) {
+        if (within(e) && (!widest || e.range.end - e.range.begin > widest->range.end - widest->range.begin)) {
+          widest = &e;
+        }
+      },
+      [](const ast::Stmt&) {});
+  walker.expr(decl.init.get());
+  walker.stmt(decl.body.get());
+  return widest;
 }
 
 }  // namespace spire::simplify

@@ -14,28 +14,41 @@
 //
 // Pellacini's third rule, a subtree replaced by its average over the
 // parameter ranges, needs values measured by rendering and is not here.
+//
+// User rules (user_rules.h) propose rewrites on the same walk, so they reach
+// the same expressions and skip what the built-in rules skip.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "sema/semantic_model.h"
+#include "simplify/user_rules.h"
 #include "support/source_manager.h"
 #include "syntax/ast.h"
 
 namespace spire::simplify {
 
 struct Rewrite {
-  std::string rule;         // "constant-operand", "call-to-argument", "loop-iteration"
+  std::string rule;         // "constant-operand", "call-to-argument", "loop-iteration", a user rule's name
   SourceRange range;        // the source replaced
   std::string replacement;  // the Spire source put in its place
   std::string before;       // the replaced source, for the reader
+  // The type the replacement must have, where the rule cannot promise it
+  // (a user rule): simplifyShader checks it on the compiled module. Empty
+  // for the built-in rules, which only keep expressions of the same type.
+  std::string type;
 };
 
 // Every single rewrite of `decl`'s definition, each to be applied alone:
 // those that remove the most source first, then in source order; duplicates
 // (same range and replacement) once.
+// `userRules` propose theirs alongside the built-in ones.
 std::vector<Rewrite> proposeRewrites(const sem::Model& model, const SourceManager& sources,
-                                     const ast::ComponentDecl& decl);
+                                     const ast::ComponentDecl& decl, const std::vector<UserRule>& userRules = {});
+
+// The widest expression of `decl`'s definition inside `range`: the one a
+// rewrite put there, found again in the compiled module to check its type.
+const ast::Expr* widestExprWithin(const ast::ComponentDecl& decl, const SourceRange& range);
 
 }  // namespace spire::simplify

@@ -17,6 +17,8 @@ namespace fs = std::filesystem;
 struct Candidate {
   Variation variation;
   std::string text;
+  size_t replacementAt = 0;  // where the rewrite's replacement starts in `text`
+  std::string type;          // Rewrite::type
 };
 
 bool immutable(const sem::Component& component) {
@@ -66,20 +68,32 @@ std::string rewrittenText(const SourceManager& sources, const ast::ComponentDecl
   return text;
 }
 
+// Where rewrittenText puts `rewrite`'s replacement: after the name, whose
+// variation part grew or shrank.
+size_t replacementOffset(const ast::ComponentDecl& decl, const Rewrite& rewrite, const std::string& variation) {
+  const size_t before = rewrite.range.begin - decl.range.begin;
+  if (decl.variation.empty()) return before + 1 + variation.size();
+  return before + variation.size() - (decl.variationRange.end - decl.variationRange.begin);
+}
+
 std::set<std::string> variationNames(const sem::Component& component) {
   std::set<std::string> names;
   for (const sem::Definition& d : component.definitions) names.insert(d.variation);
   return names;
 }
 
-std::vector<Candidate> candidatesOf(const ShaderLibrary& library, const sem::Component& component, size_t maxCount) {
+std::vector<Candidate> candidatesOf(const ShaderLibrary& library, const sem::Component& component,
+                                    const SimplifyOptions& options) {
+  const size_t maxCount = options.maxPerComponent;
+  const std::vector<UserRule> none;
+  const std::vector<UserRule>& userRules = options.userRules ? options.userRules->rules() : none;
   std::vector<Candidate> candidates;
   std::set<std::string> taken = variationNames(component);
   int number = 0;
   for (const sem::Definition& definition : component.definitions) {
     if (definition.isInput() || candidates.size() >= maxCount) continue;
     const ast::ComponentDecl& decl = *definition.decl;
-    for (const Rewrite& rewrite : proposeRewrites(library.model(), library.sources(), decl)) {
+    for (const Rewrite& rewrite : proposeRewrites(library.model(), library.sources(), decl, userRules)) {
       if (candidates.size() >= maxCount) break;
       std::string variation;
       do {
@@ -89,7 +103,8 @@ std::vector<Candidate> candidatesOf(const ShaderLibrary& library, const sem::Com
       Variation v{component.name, component.name + ":" + variation,
                   rewrite.rule,   siteOf(library.sources(), rewrite.range),
                   rewrite.before, rewrite.replacement};
-      candidates.push_back({std::move(v), rewrittenText(library.sources(), decl, rewrite, variation)});
+      candidates.push_back({std::move(v), rewrittenText(library.sources(), decl, rewrite, variation),
+                            replacementOffset(decl, rewrite, variation), rewrite.type});
     }
   }
   return candidates;
@@ -116,13 +131,36 @@ std::string moduleText(const ModuleHeader& header, const std::vector<const Candi
   return text + "}\n";
 }
 
-// Whether the module compiles with its sources; the diagnostics' first
-// message otherwise.
+// A replacement whose type is not the one it must have (Candidate::type),
+// found in the compiled module: a user rule can compile to another type
+// (`vec3 * float` for `vec3 * vec3`) and mean something else.
+std::optional<std::string> typeError(const ShaderLibrary& library, const std::string& derived,
+                                     const std::vector<const Candidate*>& candidates) {
+  const sem::Shader* shader = library.model().findShader(derived);
+  for (const Candidate* c : candidates) {
+    if (c->type.empty()) continue;
+    const sem::Component& component = shader->components[shader->componentByName.at(c->variation.component)];
+    for (const sem::Definition& d : component.definitions) {
+      if (!d.decl || component.name + ":" + d.variation != c->variation.name) continue;
+      const auto begin = static_cast<uint32_t>(d.decl->range.begin + c->replacementAt);
+      const SourceRange range{d.decl->range.file, begin, static_cast<uint32_t>(begin + c->variation.after.size())};
+      const ast::Expr* e = widestExprWithin(*d.decl, range);
+      const sem::Type* type = e ? library.model().typeOf(*e) : nullptr;
+      if (type && type->name() == c->type) continue;
+      return fmt::format("'{}' has type '{}', not '{}'", c->variation.after, type ? type->name() : "?", c->type);
+    }
+  }
+  return std::nullopt;
+}
+
+// Whether the module compiles with its sources and `candidates` keep their
+// types; the diagnostics' first message otherwise.
 std::optional<std::string> compileError(const std::string& path, const std::string& text, const std::string& derived,
-                                        const FrontEndOptions& options) {
+                                        const FrontEndOptions& options,
+                                        const std::vector<const Candidate*>& candidates) {
   ShaderLibrary library(options);
   library.addSource(path, text);
-  if (library.compile() && library.choiceSpace(derived) != nullptr) return std::nullopt;
+  if (library.compile() && library.choiceSpace(derived) != nullptr) return typeError(library, derived, candidates);
   for (const Diagnostic& d : library.diagnostics().all()) {
     if (d.severity == Severity::Error) return d.message;
   }
@@ -151,17 +189,18 @@ Expected<Simplified, Failure> simplifyShader(const ShaderLibrary& library, const
   if (!components) return components.error();
   std::vector<Candidate> candidates;
   for (const sem::Component* component : *components) {
-    for (Candidate& c : candidatesOf(library, *component, options.maxPerComponent)) candidates.push_back(std::move(c));
+    for (Candidate& c : candidatesOf(library, *component, options)) candidates.push_back(std::move(c));
   }
   Simplified result;
   std::vector<const Candidate*> kept;
   for (const Candidate& c : candidates) kept.push_back(&c);
   // One compile for the common case; only when it fails is each candidate
   // tried alone, to keep those that compile.
-  if (compileError(options.outputPath, moduleText(*header, kept), header->derived, options.frontEnd)) {
+  if (compileError(options.outputPath, moduleText(*header, kept), header->derived, options.frontEnd, kept)) {
     kept.clear();
     for (const Candidate& c : candidates) {
-      if (auto error = compileError(options.outputPath, moduleText(*header, {&c}), header->derived, options.frontEnd)) {
+      if (auto error =
+              compileError(options.outputPath, moduleText(*header, {&c}), header->derived, options.frontEnd, {&c})) {
         result.dropped.push_back(
             fmt::format("{} ({} at {}): {}", c.variation.name, c.variation.rule, c.variation.site, *error));
       } else {
@@ -170,7 +209,7 @@ Expected<Simplified, Failure> simplifyShader(const ShaderLibrary& library, const
     }
   }
   result.module = moduleText(*header, kept);
-  if (auto error = compileError(options.outputPath, result.module, header->derived, options.frontEnd)) {
+  if (auto error = compileError(options.outputPath, result.module, header->derived, options.frontEnd, kept)) {
     return Failure{fmt::format("the simplified module does not compile (a spire-simplify bug): {}", *error)};
   }
   for (const Candidate* c : kept) result.variations.push_back(c->variation);

@@ -4,7 +4,9 @@
 // original (`TerrainSimplified : Terrain`), so spirec's choices, spire-tune
 // and spire-explore offer them like any variation a person wrote, and a
 // person can read and edit them. Components marked [Immutable] are left as
-// they are. Every variation written compiles: the module is compiled with its
+// they are. User rules (user_rules.h) add their rewrites to the built-in
+// ones; what they write must keep the type it replaces. Every variation
+// written compiles: the module is compiled with its
 // sources before it is returned, and a candidate that does not compile is
 // dropped with the reason.
 #pragma once
@@ -14,6 +16,7 @@
 #include <vector>
 
 #include "driver/shader_library.h"
+#include "simplify/user_rules.h"
 #include "support/expected.h"
 
 namespace spire::simplify {
@@ -29,12 +32,15 @@ struct SimplifyOptions {
   std::string outputPath;
   std::string derivedName;   // default: the shader's name + "Simplified"
   FrontEndOptions frontEnd;  // for compiling the module (its -I folders)
+  // Rules read from rule files (user_rules.h), proposing rewrites beside
+  // the built-in ones; null: the built-in ones only.
+  const UserRules* userRules = nullptr;
 };
 
 struct Variation {
   std::string component;  // "albedo"
   std::string name;       // "albedo:simplified1"
-  std::string rule;       // "constant-operand", ...
+  std::string rule;       // "constant-operand", ..., or a user rule's name
   std::string site;       // "terrain.spire:44:16", the rewritten source
   std::string before;     // the source the rewrite replaced
   std::string after;

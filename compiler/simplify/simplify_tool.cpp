@@ -9,6 +9,7 @@
 #include "driver/shader_library.h"
 #include "driver/tool_arguments.h"
 #include "simplify/simplification.h"
+#include "simplify/user_rules.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
 
@@ -20,6 +21,7 @@ constexpr const char* kTool = "spire-simplify";
 struct CliOptions {
   std::vector<std::string> files;
   std::vector<std::string> includeDirs;
+  std::vector<std::string> ruleFiles;
   SimplifyOptions simplify;
 };
 
@@ -36,6 +38,10 @@ void defineOptions(CLI::App& app, CliOptions& options) {
                  "At most N variations per component (default 4)")
       ->check(CLI::Range(size_t{1}, size_t{1000}))
       ->type_name("N");
+  app.add_option("--rules", options.ruleFiles,
+                 "Also apply the rules of FILE: one a line, 'rule NAME: PATTERN -> REPLACEMENT' with $metavariables "
+                 "(repeatable; docs/simplification.md, \"User rules\")")
+      ->type_name("FILE");
   app.add_option("--name", options.simplify.derivedName, "The derived shader's name (default: SHADER + Simplified)")
       ->type_name("NAME");
   app.add_option("-o,--output", options.simplify.outputPath, "Write the module of simplified variations to FILE")
@@ -56,6 +62,21 @@ void printSummary(const Simplified& result, const std::string& path, std::ostrea
   for (const std::string& dropped : result.dropped) out << "  " << dropped << "\n";
 }
 
+// Reads every rule file into `rules`; false after printing why not.
+bool readRules(const std::vector<std::string>& files, UserRules& rules, std::ostream& err) {
+  for (const std::string& file : files) {
+    auto text = readFileBytes(file);
+    if (!text) {
+      err << fmt::format("{}: error: cannot read rule file '{}': {}\n", kTool, file, text.error().message());
+      return false;
+    }
+    rules.add(file, std::move(*text));
+  }
+  if (!rules.diagnostics().hasErrors()) return true;
+  err << renderDiagnostics(rules.sources(), rules.diagnostics(), DiagnosticFormat::Text);
+  return false;
+}
+
 }  // namespace
 
 int runSimplifyTool(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
@@ -64,6 +85,9 @@ int runSimplifyTool(const std::vector<std::string>& args, std::ostream& out, std
   CliOptions options;
   defineOptions(app, options);
   if (const auto status = parseToolArguments(app, args, out, err)) return *status;
+  UserRules rules;
+  if (!readRules(options.ruleFiles, rules, err)) return kExitInputError;
+  options.simplify.userRules = &rules;
   options.simplify.frontEnd.includeDirs = options.includeDirs;
   if (!libraryDir.empty()) options.simplify.frontEnd.includeDirs.push_back(libraryDir);
   ShaderLibrary library(options.simplify.frontEnd);

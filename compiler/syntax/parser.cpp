@@ -434,11 +434,26 @@ bool Parser::parseArrayDims(std::vector<ast::ExprPtr>& dims) {
   return true;
 }
 
+// standalone-expression = expression EOF ;
+ast::ExprPtr Parser::parseStandaloneExpression() {
+  ast::ExprPtr expr = parseExpression();
+  if (expr && !atEnd()) {
+    reportUnexpected(DiagCode::E2001, fmt::format("unexpected {} after the expression", describeToken(current().kind)));
+    return nullptr;
+  }
+  return expr;
+}
+
 }  // namespace parser_detail
 
 std::unique_ptr<ast::Module> parseModule(const SourceManager& sources, FileId file, ast::Program& program,
                                          DiagnosticList& diags, const ParseLimits& limits) {
   return parser_detail::Parser(sources, file, program, diags, limits).parseModule();
+}
+
+ast::ExprPtr parseStandaloneExpression(const SourceManager& sources, FileId file, ast::Program& program,
+                                       DiagnosticList& diags, const ParseLimits& limits) {
+  return parser_detail::Parser(sources, file, program, diags, limits).parseStandaloneExpression();
 }
 
 }  // namespace spire

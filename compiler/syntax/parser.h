@@ -21,4 +21,11 @@ struct ParseLimits {
 std::unique_ptr<ast::Module> parseModule(const SourceManager& sources, FileId file, ast::Program& program,
                                          DiagnosticList& diags, const ParseLimits& limits = {});
 
+// Parses the whole of `file` as one expression, for tools whose inputs hold
+// Spire expressions (spire-simplify's rule files) and must read them as the
+// compiler does. Null after an error was reported, also when tokens follow
+// the expression.
+ast::ExprPtr parseStandaloneExpression(const SourceManager& sources, FileId file, ast::Program& program,
+                                       DiagnosticList& diags, const ParseLimits& limits = {});
+
 }  // namespace spire

@@ -41,6 +41,7 @@ class Parser {
          const ParseLimits& limits);
 
   std::unique_ptr<ast::Module> parseModule();
+  ast::ExprPtr parseStandaloneExpression();
 
  private:
   // Restores the nesting depth when a construct is left, however it is left.

@@ -9,12 +9,11 @@
 #include <sstream>
 #include <string>
 
-#include <unistd.h>
-
 #include "driver/compiler.h"
 #include "simplify/rewrite_rules.h"
 #include "simplify/simplification.h"
 #include "simplify/simplify_tool.h"
+#include "simplify_fixture.h"
 #include "support/file_io.h"
 
 namespace spire::simplify {
@@ -22,40 +21,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class SimplifyTest : public ::testing::Test {
+class SimplifyTest : public SimplifyFixture {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("spire-simplify-" + std::to_string(getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
-  // A library of `shader` written to a file (the module's `using` needs one).
-  ShaderLibrary& load(const std::string& shader) {
-    source_ = dir_ / "s.spire";
-    std::ofstream(source_) << shader;
-    library_ = std::make_unique<ShaderLibrary>(frontEnd());
-    EXPECT_TRUE(library_->addFile(source_.string()));
-    EXPECT_TRUE(library_->compile());
-    return *library_;
-  }
-  // The repository's pipelines and stdlib, as spirec's -I would give them.
-  static FrontEndOptions frontEnd() {
-    FrontEndOptions options;
-    options.includeDirs = {SPIRE_SOURCE_DIR};
-    return options;
-  }
   std::vector<Rewrite> rewritesOf(const std::string& shaderName, const std::string& component) {
     const sem::Shader* shader = library_->model().findShader(shaderName);
     const sem::Component& c = shader->components[shader->componentByName.at(component)];
     return proposeRewrites(library_->model(), library_->sources(), *c.definitions.front().decl);
   }
-
-  fs::path dir_;
-  fs::path source_;
-  std::unique_ptr<ShaderLibrary> library_;
 };
 
 constexpr const char* kShader = R"(using "pipelines/engine.spire";
