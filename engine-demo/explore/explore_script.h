@@ -29,6 +29,7 @@
 //   policy add NAME DIST              a band of NAME ending at DIST
 //   policy remove LEVEL
 //   policy save [FILE]                the policy file (default: the scene's, or --save-to)
+//   policy undo / policy redo         the policy before the last edit / the undone edit again
 //   fly-frame N                       the camera at frame N of the scene's fly-through
 //
 // Each action that changes the decisions finishes when the new variant is on
@@ -71,6 +72,8 @@ enum class ActionKind {
   PolicyAdd,
   PolicyRemove,
   PolicySave,
+  PolicyUndo,
+  PolicyRedo,
   FlyFrame
 };
 
