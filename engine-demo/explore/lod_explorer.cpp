@@ -468,6 +468,9 @@ int LodExplorer::run() {
                       options_.script ? "running the script" : "close the window or press Escape to quit")
        << std::flush;
   auto ran = runFrameLoop(window_, options_.maxFrames, [this](const demo::WindowInput&) { return frame(); });
+  // A window closed while levels compile: the worker is done with the
+  // renderer's libraries before the run reports.
+  levels_.reset();
   if (!ran) return run_.fail(ran.error());
   return finish(scriptFailed_ ? kExitInputError : kExitSuccess);
 }

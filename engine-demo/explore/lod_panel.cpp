@@ -72,7 +72,7 @@ void drawUndo(const LodPanelState& state, LodPanelRequests& requests) {
   ImGui::EndDisabled();
   if (state.compiling) {
     ImGui::SameLine();
-    ImGui::TextDisabled("compiling the new levels; the drawn policy's draw meanwhile");
+    ImGui::TextDisabled("compiling new levels; the previous ones draw meanwhile");
   }
 }
 

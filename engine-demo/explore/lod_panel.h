@@ -31,7 +31,7 @@ struct LodPanelState {
   bool valid = true;
   bool canUndo = false;
   bool canRedo = false;
-  bool compiling = false;  // a new member's levels compile while the drawn policy's draw
+  bool compiling = false;  // new levels compile while the drawn policy's draw
   std::string savePath;
   float flyFrame = 0.0F;
   uint32_t flyFrames = 1;
