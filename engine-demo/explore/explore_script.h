@@ -33,7 +33,8 @@
 //   fly-frame N                       the camera at frame N of the scene's fly-through
 //
 // Each action that changes the decisions finishes when the new variant is on
-// screen (or its compile failed), so the next action sees it.
+// screen (or its compile failed), so the next action sees it; so does a
+// policy edit that makes new levels.
 #pragma once
 
 #include <cstdint>
