@@ -47,7 +47,7 @@ struct Verb {
   bool lastOptional = false;
 };
 
-constexpr std::array<Verb, 24> kVerbs{{{"set", ActionKind::Set, 3},
+constexpr std::array<Verb, 26> kVerbs{{{"set", ActionKind::Set, 3},
                                        {"unset", ActionKind::Unset, 1},
                                        {"reset", ActionKind::Reset, 0},
                                        {"load", ActionKind::Load, 1, true},
@@ -70,6 +70,8 @@ constexpr std::array<Verb, 24> kVerbs{{{"set", ActionKind::Set, 3},
                                        {"policy add", ActionKind::PolicyAdd, 2},
                                        {"policy remove", ActionKind::PolicyRemove, 1},
                                        {"policy save", ActionKind::PolicySave, 1, true},
+                                       {"policy undo", ActionKind::PolicyUndo, 0},
+                                       {"policy redo", ActionKind::PolicyRedo, 0},
                                        {"fly-frame", ActionKind::FlyFrame, 1}}};
 
 const char* usageOf(ActionKind kind) {

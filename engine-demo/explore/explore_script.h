@@ -29,10 +29,12 @@
 //   policy add NAME DIST              a band of NAME ending at DIST
 //   policy remove LEVEL
 //   policy save [FILE]                the policy file (default: the scene's, or --save-to)
+//   policy undo / policy redo         the policy before the last edit / the undone edit again
 //   fly-frame N                       the camera at frame N of the scene's fly-through
 //
 // Each action that changes the decisions finishes when the new variant is on
-// screen (or its compile failed), so the next action sees it.
+// screen (or its compile failed), so the next action sees it; so does a
+// policy edit that makes new levels.
 #pragma once
 
 #include <cstdint>
@@ -71,6 +73,8 @@ enum class ActionKind {
   PolicyAdd,
   PolicyRemove,
   PolicySave,
+  PolicyUndo,
+  PolicyRedo,
   FlyFrame
 };
 

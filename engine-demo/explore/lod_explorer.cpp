@@ -12,6 +12,7 @@
 #include "explore/explore_script.h"
 #include "explore/explorer_model.h"
 #include "explore/explorer_panels.h"
+#include "explore/level_compiler.h"
 #include "explore/lod_panel.h"
 #include "explore/policy_editor.h"
 #include "explore/window_presenter.h"
@@ -56,10 +57,19 @@ engine::Expected<std::vector<std::string>> offeredMembers(engine::SceneRenderer&
 struct EditRecord {
   std::string action;
   bool ok = false;
-  double applyMs = 0.0;
+  double applyMs = 0.0;  // from the edit to its policy drawing
   std::string error;
-  std::vector<uint32_t> levels;  // instances per level of the drawn policy once it was made
+  std::vector<uint32_t> levels;       // instances per level of the drawn policy once it was made
+  double compileMs = 0.0;             // the new levels' compile on the worker, when the edit needed one
+  uint32_t framesWhileCompiling = 0;  // presented meanwhile, with the previous levels
+  bool scripted = false;
+  uint64_t request = 0;  // of the level compile
+  double startMs = 0.0;
 };
+
+std::string errorText(const engine::Error& error) {
+  return error.details.empty() ? error.message : error.message + "\n" + error.details;
+}
 
 std::vector<uint32_t> levelCounts(const engine::LodScene& scene) {
   std::vector<uint32_t> counts(scene.policy().levels.size(), 0);
@@ -75,9 +85,15 @@ class LodExplorer {
 
  private:
   std::optional<int> start();
-  // After an edit: the editor's valid policy drawn, or why not.
+  // After an edit: the editor's valid policy drawn, its levels compiling,
+  // or why not.
   void edited(std::string action, bool scripted);
-  engine::Expected<void> applyPolicy();
+  // True when the policy needs new levels, which are now compiling.
+  engine::Expected<bool> applyPolicy();
+  void pollLevels();
+  // An edit that compiled levels for a policy a later edit replaced.
+  void dropPending();
+  void finishEdit(EditRecord record, std::string error);
   Expected<void, Failure> save(const fs::path& path) const;
   bool stepScript();
   bool runAction(const ScriptAction& action);
@@ -120,6 +136,10 @@ class LodExplorer {
   std::optional<fs::path> windowShot_;  // the next frame as the window shows it
   bool scriptFailed_ = false;
   vk::HostTimer clock_;
+  bool dragging_ = false;  // a panel value is being dragged, and its first change was an edit
+  uint64_t requests_ = 0;
+  std::optional<EditRecord> pending_;      // its levels are compiling
+  std::unique_ptr<LevelCompiler> levels_;  // last: destroyed first, since its worker uses the renderer's libraries
 };
 
 std::optional<int> LodExplorer::start() {
@@ -138,6 +158,10 @@ std::optional<int> LodExplorer::start() {
   auto lodScene = engine::LodScene::create(renderer_, editor_.valid());
   if (!lodScene) return run_.fail(lodScene.error());
   scene_ = std::move(lodScene).value();
+  std::vector<ShaderLibrary*> libraries;
+  for (size_t i = 0; i < renderer_.scene().instances.size(); ++i) libraries.push_back(*renderer_.library(i));
+  // From now on only the worker compiles in the renderer's libraries.
+  levels_ = std::make_unique<LevelCompiler>(compileLevelsIn(renderer_, std::move(libraries)));
   scene_->resetLevels(view_);
   startLevels_ = levelCounts(*scene_);
   // Every level is prepared now, as in spire-demo: an unread value is worth a warning.
@@ -153,7 +177,7 @@ std::optional<int> LodExplorer::start() {
   return std::nullopt;
 }
 
-engine::Expected<void> LodExplorer::applyPolicy() {
+engine::Expected<bool> LodExplorer::applyPolicy() {
   const lod::LodPolicy& policy = editor_.valid();
   for (const lod::LodLevel& level : policy.levels) {
     if (std::find(members_.begin(), members_.end(), level.member) == members_.end()) {
@@ -162,29 +186,65 @@ engine::Expected<void> LodExplorer::applyPolicy() {
     }
   }
   // New edges only: the compiled levels stay.
-  if (scene_->setBands(policy, view_)) return {};
-  auto fresh = engine::LodScene::create(renderer_, policy);
-  if (!fresh) return fresh.error();
-  scene_ = std::move(fresh).value();
-  scene_->resetLevels(view_);
-  return {};
+  if (scene_->setBands(policy, view_)) return false;
+  // New levels: compiled on the worker while the previous ones keep drawing.
+  pending_->request = ++requests_;
+  levels_->submit(pending_->request, policy);
+  return true;
 }
 
 void LodExplorer::edited(std::string action, bool scripted) {
   EditRecord record;
   record.action = std::move(action);
-  const vk::HostTimer timer;
+  record.scripted = scripted;
+  record.startMs = clock_.elapsedMs();
   applyError_.clear();
-  if (editor_.isValid()) {
-    if (auto ok = applyPolicy(); !ok) {
-      applyError_ = ok.error().details.empty() ? ok.error().message : ok.error().message + "\n" + ok.error().details;
-    }
+  // An invalid edit leaves the last valid policy's levels compiling.
+  if (!editor_.isValid()) return finishEdit(std::move(record), diagnostics());
+  dropPending();
+  pending_ = std::move(record);
+  auto compiling = applyPolicy();
+  if (compiling && *compiling) return;
+  if (!compiling) applyError_ = errorText(compiling.error());
+  record = std::move(*pending_);
+  pending_.reset();
+  finishEdit(std::move(record), diagnostics());
+}
+
+void LodExplorer::dropPending() {
+  if (!pending_) return;
+  EditRecord dropped = std::move(*pending_);
+  pending_.reset();
+  finishEdit(std::move(dropped), "replaced by a later edit before its levels were ready");
+}
+
+// The new levels' bakes and pipelines use Vulkan, so they are made here, on
+// the frame loop; the compile was the worker's.
+void LodExplorer::pollLevels() {
+  std::optional<LevelCompiler::Outcome> outcome = levels_->poll();
+  if (!outcome || !pending_ || outcome->request != pending_->request) return;
+  EditRecord record = std::move(*pending_);
+  pending_.reset();
+  record.compileMs = outcome->milliseconds;
+  if (!outcome->programs) {
+    applyError_ = errorText(outcome->programs.error());
+  } else if (auto fresh =
+                 engine::LodScene::createCompiled(renderer_, outcome->policy, std::move(outcome->programs).value());
+             !fresh) {
+    applyError_ = errorText(fresh.error());
+  } else {
+    scene_ = std::move(fresh).value();
+    scene_->resetLevels(view_);
   }
-  record.applyMs = timer.elapsedMs();
-  record.error = diagnostics();
+  finishEdit(std::move(record), applyError_);
+}
+
+void LodExplorer::finishEdit(EditRecord record, std::string error) {
+  record.applyMs = clock_.elapsedMs() - record.startMs;
+  record.error = std::move(error);
   record.ok = record.error.empty();
   record.levels = levelCounts(*scene_);
-  if (scripted) {
+  if (record.scripted) {
     out_ << (record.ok ? fmt::format("spire-explore: {}: drawn in {:.0f} ms\n", record.action, record.applyMs)
                        : fmt::format("spire-explore: {}: not applied, the last valid policy keeps drawing:\n{}",
                                      record.action, record.error))
@@ -197,6 +257,7 @@ Expected<void, Failure> LodExplorer::save(const fs::path& path) const {
   if (!editor_.isValid() || !applyError_.empty()) {
     return Failure{"the edited policy is not the one drawn (see Diagnostics); Save writes only a policy that draws"};
   }
+  if (pending_) return Failure{"the edited policy's levels are still compiling; Save writes only a policy that draws"};
   return writeFileAtomically(path.string(), editor_.text());
 }
 
@@ -219,6 +280,12 @@ bool LodExplorer::policyAction(const ScriptAction& action) {
     case ActionKind::PolicyHysteresis: editor_.setHysteresis(static_cast<float>(action.number)); break;
     case ActionKind::PolicyTransition: editor_.setTransitionFrames(action.count); break;
     case ActionKind::PolicyAdd: editor_.addLevel(action.value, static_cast<float>(action.number)); break;
+    case ActionKind::PolicyUndo:
+      if (!editor_.undo()) ok = Failure{"there is no policy edit to undo"};
+      break;
+    case ActionKind::PolicyRedo:
+      if (!editor_.redo()) ok = Failure{"there is no undone policy edit to redo"};
+      break;
     default: ok = editor_.removeLevel(level);
   }
   if (!ok) return scriptError(action, ok.error().message);
@@ -259,7 +326,9 @@ bool LodExplorer::runAction(const ScriptAction& action) {
 
 // Runs actions until one has to wait for a frame; false to close.
 bool LodExplorer::stepScript() {
-  while (waitFrames_ == 0 && !shot_ && !windowShot_) {
+  // An edit whose levels compile finishes when they draw, so what the
+  // script does next sees them.
+  while (!pending_ && waitFrames_ == 0 && !shot_ && !windowShot_) {
     if (scriptNext_ == script_.size()) return false;
     if (!runAction(script_[scriptNext_++])) return false;
   }
@@ -268,9 +337,13 @@ bool LodExplorer::stepScript() {
 
 void LodExplorer::handleRequests(const LodPanelRequests& requests) {
   if (requests.policy) {
-    editor_.replace(*requests.policy);
+    // One edit per drag, not per frame, for undo.
+    editor_.replace(*requests.policy, dragging_);
     edited("panel edit", false);
   }
+  dragging_ = requests.dragging && (dragging_ || requests.policy);
+  if (requests.undo && editor_.undo()) edited("undo", false);
+  if (requests.redo && editor_.redo()) edited("redo", false);
   if (requests.addLevel) {
     // A band before the farthest, as far again as the edge before it.
     const std::vector<lod::LodLevel>& levels = editor_.edited().levels;
@@ -318,6 +391,9 @@ LodPanelState LodExplorer::panelState() const {
   state.drawn = &scene_->policy();
   state.members = &members_;
   state.valid = editor_.isValid();
+  state.canUndo = editor_.canUndo();
+  state.canRedo = editor_.canRedo();
+  state.compiling = pending_.has_value();
   state.savePath = options_.saveTo;
   state.flyFrame = static_cast<float>(flyFrame_);
   state.flyFrames = std::max<uint32_t>(renderer_.scene().frames, 1);
@@ -329,6 +405,9 @@ LodPanelState LodExplorer::panelState() const {
 
 // False when the explorer should close.
 engine::Expected<bool> LodExplorer::frame() {
+  // Levels that finished compiling first: an edit's levels show no sooner
+  // than the frame after it, which draws the previous ones.
+  pollLevels();
   if (options_.script && !stepScript()) return false;
   const double now = clock_.elapsedMs();
   moveCamera(now);
@@ -351,6 +430,7 @@ engine::Expected<bool> LodExplorer::frame() {
     if (auto ok = writeImagePng(renderer_.context(), shown, *windowShot_); !ok) return ok.error();
     windowShot_.reset();
   }
+  if (pending_) ++pending_->framesWhileCompiling;
   if (waitFrames_ > 0) --waitFrames_;
   return true;
 }
@@ -362,6 +442,8 @@ int LodExplorer::finish(int status) {
       edits.push_back({{"action", edit.action},
                        {"ok", edit.ok},
                        {"apply_ms", edit.applyMs},
+                       {"compile_ms", edit.compileMs},
+                       {"frames_while_compiling", edit.framesWhileCompiling},
                        {"error", edit.error},
                        {"levels", edit.levels}});
     }
@@ -386,6 +468,9 @@ int LodExplorer::run() {
                       options_.script ? "running the script" : "close the window or press Escape to quit")
        << std::flush;
   auto ran = runFrameLoop(window_, options_.maxFrames, [this](const demo::WindowInput&) { return frame(); });
+  // A window closed while levels compile: the worker is done with the
+  // renderer's libraries before the run reports.
+  levels_.reset();
   if (!ran) return run_.fail(ran.error());
   return finish(scriptFailed_ ? kExitInputError : kExitSuccess);
 }

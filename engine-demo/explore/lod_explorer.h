@@ -4,9 +4,10 @@
 // editor: which group member draws each distance band (the member is how a
 // policy assigns a set of decisions to a band: each member is a base shader
 // with its own placements and locks), where each band ends, hysteresis and
-// cross-fade length. Edits draw at once; an edit the policy reader rejects
-// is shown with its diagnostics while the last valid policy keeps drawing;
-// Save writes the policy file.
+// cross-fade length, with undo. New edges draw at once; new members (or
+// bands) compile on a worker while the previous levels keep drawing; an edit
+// the policy reader rejects is shown with its diagnostics while the last
+// valid policy keeps drawing; Save writes the policy file.
 #pragma once
 
 #include <ostream>

@@ -43,6 +43,7 @@ void drawBands(const LodPanelState& state, lod::LodPolicy& policy, LodPanelReque
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.0F);
     if (i + 1 < policy.levels.size()) {
       changed = ImGui::DragFloat("until", &level.until, 0.1F, 0.0F, 0.0F, "%.2f") || changed;
+      requests.dragging = requests.dragging || ImGui::IsItemActive();
     } else {
       ImGui::TextDisabled("and beyond");
     }
@@ -51,6 +52,27 @@ void drawBands(const LodPanelState& state, lod::LodPolicy& policy, LodPanelReque
     if (ImGui::SmallButton("remove")) requests.removeLevel = i;
     ImGui::EndDisabled();
     ImGui::PopID();
+  }
+}
+
+// Undo and Redo, as buttons and as the keys, which are the panel's only
+// while no ImGui widget reads the keyboard (a typed frame count has its own
+// Ctrl+Z).
+void drawUndo(const LodPanelState& state, LodPanelRequests& requests) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const bool keys = !io.WantCaptureKeyboard && io.KeyCtrl;
+  const bool keyZ = keys && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Z), false);
+  const bool keyY = keys && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Y), false);
+  ImGui::BeginDisabled(!state.canUndo);
+  requests.undo = ImGui::Button("Undo") || (state.canUndo && keyZ && !io.KeyShift);
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!state.canRedo);
+  requests.redo = ImGui::Button("Redo") || (state.canRedo && (keyY || (keyZ && io.KeyShift)));
+  ImGui::EndDisabled();
+  if (state.compiling) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("compiling new levels; the previous ones draw meanwhile");
   }
 }
 
@@ -64,12 +86,15 @@ void drawPolicy(const LodPanelState& state, LodPanelRequests& requests) {
   requests.addLevel = ImGui::Button("Add band");
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.0F);
   changed = ImGui::DragFloat("hysteresis", &policy.hysteresis, 0.005F, 0.0F, 0.0F, "%.3f") || changed;
+  requests.dragging = requests.dragging || ImGui::IsItemActive();
   int frames = static_cast<int>(std::min<uint32_t>(policy.transitionFrames, 1000000));
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.0F);
   if (ImGui::InputInt("transition frames", &frames)) {
     policy.transitionFrames = static_cast<uint32_t>(std::max(frames, 0));
     changed = true;
   }
+  requests.dragging = requests.dragging || ImGui::IsItemActive();
+  drawUndo(state, requests);
   if (!state.valid) ImGui::TextColored(kErrorColor, "not valid (see Diagnostics): the last valid policy draws");
   requests.save = ImGui::Button("Save");
   ImGui::SameLine();

@@ -29,6 +29,9 @@ struct LodPanelState {
   const lod::LodPolicy* drawn = nullptr;              // what draws: the last valid policy that compiled
   const std::vector<std::string>* members = nullptr;  // what every instance's group offers
   bool valid = true;
+  bool canUndo = false;
+  bool canRedo = false;
+  bool compiling = false;  // new levels compile while the drawn policy's draw
   std::string savePath;
   float flyFrame = 0.0F;
   uint32_t flyFrames = 1;
@@ -39,6 +42,9 @@ struct LodPanelState {
 
 struct LodPanelRequests {
   std::optional<lod::LodPolicy> policy;  // the edited policy after an edit in the panel
+  bool dragging = false;                 // a value of the policy is held (dragged, typed) this frame
+  bool undo = false;                     // the Undo button, or Ctrl+Z
+  bool redo = false;                     // the Redo button, or Ctrl+Y / Ctrl+Shift+Z
   bool addLevel = false;
   std::optional<size_t> removeLevel;
   bool save = false;

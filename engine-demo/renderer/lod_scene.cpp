@@ -94,7 +94,8 @@ struct LodScene::Impl {
 
   Impl(SceneRenderer& r, lod::LodPolicy p, LodOptions o) : renderer(r), policy(std::move(p)), options(o) {}
 
-  Expected<void> compileLevels();
+  // The levels' programs compiled here, or taken from `compiled`.
+  Expected<void> compileLevels(LevelPrograms* compiled);
   Expected<void> placeInstances(uint32_t blocksPerSide);
   Expected<void> formGroups();
   Expected<void> buildGroup(DrawGroup& group, uint32_t representative);
@@ -102,12 +103,22 @@ struct LodScene::Impl {
   void recordBatches(VkCommandBuffer cmd) const;
 };
 
-Expected<void> LodScene::Impl::compileLevels() {
+Expected<void> LodScene::Impl::compileLevels(LevelPrograms* compiled) {
   const size_t prototypes = renderer.scene().instances.size();
-  for (const lod::LodLevel& policyLevel : policy.levels) {
+  if (compiled && (compiled->size() != policy.levels.size() ||
+                   std::any_of(compiled->begin(), compiled->end(),
+                               [&](const std::vector<VariantProgram>& l) { return l.size() != prototypes; }))) {
+    return Error{
+        fmt::format("programs for {} level(s) of {} instance(s) were expected", policy.levels.size(), prototypes),
+        {},
+        {}};
+  }
+  for (size_t l = 0; l < policy.levels.size(); ++l) {
+    const lod::LodLevel& policyLevel = policy.levels[l];
     Level level;
     level.member = policyLevel.member;
-    for (size_t p = 0; p < prototypes; ++p) {
+    if (compiled) level.programs = std::move((*compiled)[l]);
+    for (size_t p = level.programs.size(); p < prototypes; ++p) {
       const std::string shader = fmt::format("{}<{}>", renderer.scene().instances[p].shader, policyLevel.member);
       auto program = renderer.compileShader(p, shader);
       if (!program) return program.error();
@@ -302,11 +313,21 @@ Expected<lod::LodPolicy> appliedPolicy(lod::LodPolicy policy, const LodOptions& 
 
 Expected<std::unique_ptr<LodScene>> LodScene::create(SceneRenderer& renderer, lod::LodPolicy policy,
                                                      const LodOptions& options) {
+  return make(renderer, std::move(policy), options, nullptr);
+}
+
+Expected<std::unique_ptr<LodScene>> LodScene::createCompiled(SceneRenderer& renderer, lod::LodPolicy policy,
+                                                             LevelPrograms programs, const LodOptions& options) {
+  return make(renderer, std::move(policy), options, &programs);
+}
+
+Expected<std::unique_ptr<LodScene>> LodScene::make(SceneRenderer& renderer, lod::LodPolicy policy,
+                                                   const LodOptions& options, LevelPrograms* programs) {
   auto applied = appliedPolicy(std::move(policy), options);
   if (!applied) return applied.error();
   auto impl = std::make_unique<Impl>(renderer, std::move(applied).value(), options);
   const uint32_t blocks = renderer.scene().lod ? renderer.scene().lod->blocks : 1;
-  if (auto ok = impl->compileLevels(); !ok) return ok.error();
+  if (auto ok = impl->compileLevels(programs); !ok) return ok.error();
   if (auto ok = impl->placeInstances(blocks); !ok) return ok.error();
   if (auto ok = impl->formGroups(); !ok) return ok.error();
   impl->selector.emplace(impl->policy, impl->instances.size());

@@ -11,6 +11,7 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "lod/instance_batches.h"
 #include "lod/lod_policy.h"
@@ -39,6 +40,16 @@ class LodScene {
   // group. `renderer` must outlive the scene.
   static Expected<std::unique_ptr<LodScene>> create(SceneRenderer& renderer, lod::LodPolicy policy,
                                                     const LodOptions& options = {});
+  // Per level of a policy, per scene-file instance (prototype): the programs
+  // create compiles.
+  using LevelPrograms = std::vector<std::vector<VariantProgram>>;
+  // As create, with the programs compiled already, for a tool that compiles
+  // them on a thread of its own (SceneRenderer::compileShaderIn) while the
+  // previous scene draws: only the bakes and pipelines are made here.
+  // `programs` has one entry per level of the policy as `options` applies
+  // it.
+  static Expected<std::unique_ptr<LodScene>> createCompiled(SceneRenderer& renderer, lod::LodPolicy policy,
+                                                            LevelPrograms programs, const LodOptions& options = {});
   ~LodScene();
   LodScene(const LodScene&) = delete;
   LodScene& operator=(const LodScene&) = delete;
@@ -82,6 +93,8 @@ class LodScene {
  private:
   struct Impl;
   explicit LodScene(std::unique_ptr<Impl> impl);
+  static Expected<std::unique_ptr<LodScene>> make(SceneRenderer& renderer, lod::LodPolicy policy,
+                                                  const LodOptions& options, LevelPrograms* programs);
   std::unique_ptr<Impl> impl_;
 };
 

@@ -121,7 +121,18 @@ Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDes
 
   auto library = libraryFor(instance);
   if (!library) return library.error();
-  ShaderLibrary& lib = **library;
+  auto program = compileIn(
+      **library, instance, decisions, [&](std::string_view prefix) { return knownToAnotherSource(instance, prefix); },
+      compilerWarnings_);
+  if (!program) return program.error();
+  return programs_.emplace(key, std::move(program).value()).first->second;
+}
+
+Expected<VariantProgram> SceneRenderer::compileIn(ShaderLibrary& lib, const scene::InstanceDesc& instance,
+                                                  const std::optional<std::filesystem::path>& decisions,
+                                                  const std::function<bool(std::string_view)>& knownElsewhere,
+                                                  std::string& warnings) const {
+  const std::optional<std::filesystem::path> decisionPath = decisions ? decisions : instance.decisions;
   DiagnosticList& diags = lib.diagnostics();
   const size_t mark = diags.size();
   graph::DecisionFile decisionFile;
@@ -130,7 +141,7 @@ Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDes
       decisionFile = graph::parseDecisionFile(lib.sources(), *id, diags);
       graph::checkDecisionPrefixes(decisionFile, lib.model(), diags, [&](std::string_view prefix) {
         // A scene-wide variant names the shaders of every instance's source.
-        return decisions && knownToAnotherSource(instance, prefix);
+        return decisions && knownElsewhere(prefix);
       });
     }
   }
@@ -158,10 +169,10 @@ Expected<VariantProgram> SceneRenderer::compileInstance(const scene::InstanceDes
     return Error{fmt::format("'{}': {}", instance.source.string(), error.message),
                  error.diagnostics.empty() ? instance.shaderRange : where, renderAll(lib.sources(), reported)};
   }
-  compilerWarnings_ += renderAll(lib.sources(), reported) + renderAll(lib.sources(), (*compiled)->warnings);
+  warnings += renderAll(lib.sources(), reported) + renderAll(lib.sources(), (*compiled)->warnings);
   auto program = programFrom(**compiled);
   if (!program) return Error{program.error().message, instance.shaderRange, program.error().details};
-  return programs_.emplace(key, std::move(program).value()).first->second;
+  return program;
 }
 
 Expected<VariantProgram> SceneRenderer::compileVariant(size_t index,
@@ -197,6 +208,15 @@ Expected<VariantProgram> SceneRenderer::compileShader(size_t index, const std::s
   scene::InstanceDesc instance = scene_.instances.at(index);
   instance.shader = shader;
   return compileInstance(instance, std::nullopt);
+}
+
+Expected<VariantProgram> SceneRenderer::compileShaderIn(ShaderLibrary& library, size_t index, const std::string& shader,
+                                                        std::string& warnings) const {
+  scene::InstanceDesc instance = scene_.instances.at(index);
+  instance.shader = shader;
+  // The instance's own decisions only: no scene variant, so no other source's names.
+  return compileIn(
+      library, instance, std::nullopt, [](std::string_view) { return false; }, warnings);
 }
 
 Expected<std::vector<VariantProgram>> SceneRenderer::compile(const std::optional<std::filesystem::path>& decisions) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -90,6 +91,13 @@ class SceneRenderer {
   // Instance `index`'s source compiled as another of its shaders, e.g. a
   // member of a group (`Rock<LodMQ>`), with the instance's own decisions.
   Expected<VariantProgram> compileShader(size_t index, const std::string& shader);
+  // As compileShader, in `library` (such as library(index) gave, or
+  // loadLibrary made), without the renderer's cache: touches nothing else
+  // of the renderer, so a tool may call it on a thread of its own while
+  // this renderer draws, as long as nothing else uses `library` meanwhile.
+  // The compiler's warnings are added to `warnings`.
+  Expected<VariantProgram> compileShaderIn(ShaderLibrary& library, size_t index, const std::string& shader,
+                                           std::string& warnings) const;
   // The library compiled for instance `index` (compiling it on first use).
   Expected<ShaderLibrary*> library(size_t index) { return libraryFor(scene_.instances.at(index)); }
 
@@ -160,6 +168,13 @@ class SceneRenderer {
   Expected<Capture> readBack(const FrameTiming& timing);
   Expected<VariantProgram> compileInstance(const scene::InstanceDesc& instance,
                                            const std::optional<std::filesystem::path>& decisions);
+  // `instance` compiled in `lib` with its decisions, or `decisions` (a
+  // scene variant, whose shader names `knownElsewhere` checks); touches
+  // nothing of the renderer but reads its settings.
+  Expected<VariantProgram> compileIn(ShaderLibrary& lib, const scene::InstanceDesc& instance,
+                                     const std::optional<std::filesystem::path>& decisions,
+                                     const std::function<bool(std::string_view)>& knownElsewhere,
+                                     std::string& warnings) const;
   Expected<ShaderLibrary*> libraryFor(const scene::InstanceDesc& instance);
   // Whether the source of another instance than `instance` declares a shader
   // or group named `prefix`.

@@ -1,12 +1,15 @@
 // The level-of-detail scene on the device: batches formed from kernel keys,
 // each level's image equal to the same shaders drawn one object at a time
 // (so per-instance records and texture-array layers reach the right
-// object), and levels that follow the policy as the camera moves.
+// object), levels that follow the policy as the camera moves, and a scene
+// made from programs compiled on another thread (SceneRenderer::
+// compileShaderIn) that draws exactly as one that compiled them itself.
 #include "renderer/lod_scene.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <future>
 #include <set>
 
 #include "common/lod_test_scene.h"
@@ -134,6 +137,45 @@ TEST_F(LodSceneTest, LevelsFollowThePolicyWithHysteresisAsTheCameraMoves) {
     }
   }
   EXPECT_EQ(seen.size(), 3U);
+}
+
+TEST_F(LodSceneTest, LevelsCompiledOnAnotherThreadDrawAsTheSceneCompilesThem) {
+  auto compiledHere = lodScene(spire::testing::lodTestSceneJson({.scatter = false}), {});
+  ASSERT_TRUE(compiledHere);
+  const scene::CameraView& view = scene_->camera.views.front();
+  compiledHere->resetLevels(view);
+  ASSERT_TRUE(compiledHere->render(view, 0.0F));
+  auto expected = compiledHere->readColor();
+  ASSERT_TRUE(expected);
+
+  std::vector<ShaderLibrary*> libraries;
+  for (size_t p = 0; p < scene_->instances.size(); ++p) libraries.push_back(*renderer_->library(p));
+  // As spire-explore's worker: nothing but the libraries, off the renderer's thread.
+  auto programs = std::async(std::launch::async, [&]() -> Expected<LodScene::LevelPrograms> {
+                    LodScene::LevelPrograms levels;
+                    std::string warnings;
+                    for (const lod::LodLevel& level : policy().levels) {
+                      std::vector<VariantProgram>& row = levels.emplace_back();
+                      for (size_t p = 0; p < libraries.size(); ++p) {
+                        const std::string shader = fmt::format("{}<{}>", scene_->instances[p].shader, level.member);
+                        auto program = renderer_->compileShaderIn(*libraries[p], p, shader, warnings);
+                        if (!program) return program.error();
+                        row.push_back(std::move(program).value());
+                      }
+                    }
+                    return levels;
+                  }).get();
+  ASSERT_TRUE(programs) << programs.error().message << "\n" << programs.error().details;
+  EXPECT_FALSE(LodScene::createCompiled(*renderer_, policy(), LodScene::LevelPrograms(1)))
+      << "one level's programs for a policy of three";
+  auto compiledElsewhere = LodScene::createCompiled(*renderer_, policy(), std::move(programs).value());
+  ASSERT_TRUE(compiledElsewhere) << compiledElsewhere.error().message;
+  LodScene& elsewhere = **compiledElsewhere;
+  elsewhere.resetLevels(view);
+  ASSERT_TRUE(elsewhere.render(view, 0.0F));
+  auto color = elsewhere.readColor();
+  ASSERT_TRUE(color);
+  EXPECT_EQ(color->rgba, expected->rgba);
 }
 
 }  // namespace

@@ -80,7 +80,7 @@ TEST(ExploreScript, EveryMalformedLineIsAnErrorAtItsPlace) {
       "s.explore:4:1: error[E7201]: unknown action 'explode' (actions: set, unset, reset, load, save, undo, walk, "
       "view, wait-frames, wait-reload, screenshot, screenshot-window, load-tune, apply-front, instance, quit, "
       "policy until, policy member, policy hysteresis, policy transition, policy add, policy remove, policy save, "
-      "fly-frame)\n"
+      "policy undo, policy redo, fly-frame)\n"
       " 4 | explode now\n"
       "   | ^~~~~~~\n"
       "s.explore:5:6: error[E7201]: 'undo' takes nothing after it\n"
@@ -99,9 +99,10 @@ TEST(ExploreScript, ParsesThePolicyEditsOfALevelOfDetailScene) {
   Parsed p;
   parse(p,
         "policy until 0 20.5\npolicy   member 2 LodMQ\npolicy hysteresis 0.2\npolicy transition 6\n"
-        "policy add LodMQ 50\npolicy remove 1\npolicy save\npolicy save out.json\nfly-frame 7\n");
+        "policy add LodMQ 50\npolicy remove 1\npolicy save\npolicy save out.json\nfly-frame 7\npolicy undo\n"
+        "policy redo\n");
   ASSERT_FALSE(p.diags.hasErrors()) << renderDiagnostics(p.sources, p.diags, DiagnosticFormat::Text);
-  ASSERT_EQ(p.actions.size(), 9U);
+  ASSERT_EQ(p.actions.size(), 11U);
   EXPECT_EQ(p.actions[0].kind, ActionKind::PolicyUntil);
   EXPECT_EQ(p.actions[0].count, 0U);
   EXPECT_EQ(p.actions[0].number, 20.5);
@@ -121,12 +122,16 @@ TEST(ExploreScript, ParsesThePolicyEditsOfALevelOfDetailScene) {
   EXPECT_EQ(p.actions[7].target, "out.json");
   EXPECT_EQ(p.actions[8].kind, ActionKind::FlyFrame);
   EXPECT_EQ(p.actions[8].count, 7U);
+  EXPECT_EQ(p.actions[9].kind, ActionKind::PolicyUndo);
+  EXPECT_EQ(p.actions[10].kind, ActionKind::PolicyRedo);
   for (const ScriptAction& action : p.actions) EXPECT_TRUE(isLodAction(action.kind));
 }
 
 TEST(ExploreScript, MalformedPolicyEditsAreErrorsAtTheirPlace) {
   Parsed p;
-  parse(p, "policy until one 5\npolicy hysteresis much\npolicy frobnicate 2\npolicy\npolicy member 1\nfly-frame -2\n");
+  parse(p,
+        "policy until one 5\npolicy hysteresis much\npolicy frobnicate 2\npolicy\npolicy member 1\nfly-frame -2\n"
+        "policy undo 2\n");
   EXPECT_TRUE(p.actions.empty());
   const std::string text = renderDiagnostics(p.sources, p.diags, DiagnosticFormat::Text);
   EXPECT_NE(text.find("s.explore:1:14: error[E7201]: expected a level from 0 to 254"), std::string::npos) << text;
@@ -136,6 +141,7 @@ TEST(ExploreScript, MalformedPolicyEditsAreErrorsAtTheirPlace) {
   EXPECT_NE(text.find("s.explore:5:15: error[E7201]: expected 'policy member LEVEL NAME'"), std::string::npos) << text;
   EXPECT_NE(text.find("s.explore:6:11: error[E7201]: expected a fly-through frame from 0 to 100000"), std::string::npos)
       << text;
+  EXPECT_NE(text.find("s.explore:7:13: error[E7201]: 'policy undo' takes nothing after it"), std::string::npos) << text;
 }
 
 }  // namespace

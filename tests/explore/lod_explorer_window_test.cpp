@@ -3,7 +3,9 @@
 // policy edit moves instances to another level and changes the image, and
 // the saved policy file reads back to the edited policy; an edit the policy
 // reader rejects is reported while the last valid policy keeps drawing and
-// the script goes on; a member edit makes the levels again.
+// the script goes on; a member edit makes the levels again, compiled on the
+// worker while frames go on drawing the previous levels; undo brings back
+// the previous policy and its image, and undo with nothing to undo is E7202.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -123,6 +125,41 @@ TEST_F(LodExplorerWindowTest, AnInvalidEditIsReportedAndTheLastValidPolicyKeepsD
   ASSERT_EQ(levels.size(), 3U);
   EXPECT_EQ(levels[2]["member"], "LodMQ");
   EXPECT_GT(differing(dir_ / "before.png", dir_ / "after.png"), 0.001);
+}
+
+TEST_F(LodExplorerWindowTest, AMemberEditCompilesWhileFramesGoOnAndUndoRestoresThePreviousImage) {
+  ASSERT_EQ(exploreLod("screenshot before.png\n"
+                       "policy until 0 4\n"
+                       "screenshot edge.png\n"
+                       "policy member 1 LodLQ\n"
+                       "screenshot member.png\n"
+                       "policy undo\n"
+                       "screenshot member-undone.png\n"
+                       "policy undo\n"
+                       "screenshot undone.png\n"
+                       "policy redo\n"
+                       "screenshot redone.png\n"
+                       "policy undo\n"
+                       "policy undo\n"),  // nothing left to undo
+            1)
+      << err_.str() << out_.str();
+  EXPECT_NE(err_.str().find("script.explore:13:1: error[E7202]: there is no policy edit to undo"), std::string::npos)
+      << err_.str();
+  const nlohmann::json edits = log()["policy_edits"];
+  ASSERT_EQ(edits.size(), 6U) << out_.str();
+  for (const nlohmann::json& edit : edits) EXPECT_TRUE(edit["ok"]) << edit["action"] << ": " << edit["error"];
+  EXPECT_EQ(edits[1]["action"], "policy member 1 LodLQ");
+  EXPECT_GT(edits[1]["compile_ms"].get<double>(), 0.0) << "the new member compiled on the worker";
+  EXPECT_GE(edits[1]["frames_while_compiling"].get<uint32_t>(), 1U)
+      << "the window presented the previous levels while the new member compiled";
+  EXPECT_EQ(edits[0]["compile_ms"].get<double>(), 0.0) << "a new edge compiles nothing";
+  EXPECT_GT(differing(dir_ / "edge.png", dir_ / "member.png"), 0.001) << "the new member shows at once";
+  EXPECT_EQ(differing(dir_ / "edge.png", dir_ / "member-undone.png"), 0.0) << "undo restores the previous image";
+  EXPECT_EQ(differing(dir_ / "before.png", dir_ / "undone.png"), 0.0) << "and the one before that";
+  EXPECT_EQ(differing(dir_ / "edge.png", dir_ / "redone.png"), 0.0);
+  const auto levels = log()["levels"];
+  ASSERT_EQ(levels.size(), 3U);
+  EXPECT_EQ(levels[0]["member"], "LodHQ") << "the drawn policy is the original again";
 }
 
 TEST_F(LodExplorerWindowTest, ActionsOfOneShadersDecisionsAreErrorsAtTheirLine) {

@@ -1,7 +1,8 @@
 // The LOD policy editor without a window: every edit is checked by the
 // policy file's reader, an invalid edit keeps the last valid policy and
 // says why with the reader's codes, and the edited text reads back to the
-// edited policy.
+// edited policy; edits are undone and redone, an invalid one with the
+// valid policy that drew then.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -81,6 +82,59 @@ TEST(PolicyEditor, TheTextReadsBackToTheEditedPolicy) {
   EXPECT_EQ(read->levels[1].member, "LodMQ");
   EXPECT_EQ(lod::formatLodPolicy(*read), editor.text());
   EXPECT_FALSE(editor.setUntil(3, 1.0F)) << "no level 3";
+}
+
+TEST(PolicyEditor, UndoGoesBackEditByEditToTheStartAndRedoForward) {
+  const std::string original = lod::formatLodPolicy(threeLevels());
+  PolicyEditor editor(threeLevels());
+  EXPECT_FALSE(editor.canUndo());
+  EXPECT_FALSE(editor.undo()) << "nothing to undo at the start";
+  EXPECT_FALSE(editor.redo());
+  EXPECT_EQ(editor.text(), original) << "a failed undo changes nothing";
+  ASSERT_TRUE(editor.setMember(1, "LodLQ"));
+  const std::string afterMember = editor.text();
+  ASSERT_TRUE(editor.setUntil(0, 20.0F));
+  ASSERT_TRUE(editor.undo());
+  EXPECT_EQ(editor.text(), afterMember);
+  EXPECT_EQ(lod::formatLodPolicy(editor.valid()), afterMember);
+  ASSERT_TRUE(editor.undo());
+  EXPECT_EQ(editor.text(), original);
+  EXPECT_EQ(lod::formatLodPolicy(editor.valid()), original);
+  EXPECT_FALSE(editor.undo()) << "back at the start";
+  EXPECT_EQ(editor.text(), original);
+  ASSERT_TRUE(editor.redo());
+  EXPECT_EQ(editor.text(), afterMember);
+  editor.setHysteresis(0.5F);
+  EXPECT_FALSE(editor.redo()) << "a new edit forgets what could be redone";
+  EXPECT_FALSE(editor.setUntil(7, 1.0F));
+  ASSERT_TRUE(editor.undo()) << "an edit that could not be made is not undone";
+  EXPECT_EQ(editor.text(), afterMember);
+}
+
+TEST(PolicyEditor, UndoingToAnInvalidEditRestoresTheValidPolicyThatDrewWithIt) {
+  PolicyEditor editor(threeLevels());
+  ASSERT_TRUE(editor.setUntil(1, 10.0F));  // before level 0's edge: invalid
+  ASSERT_FALSE(editor.isValid());
+  ASSERT_TRUE(editor.setUntil(0, 5.0F));  // valid again
+  ASSERT_TRUE(editor.isValid()) << editor.diagnostics();
+  ASSERT_TRUE(editor.undo());
+  EXPECT_FALSE(editor.isValid());
+  EXPECT_NE(editor.diagnostics().find("error[E7004]"), std::string::npos) << editor.diagnostics();
+  EXPECT_EQ(lod::formatLodPolicy(editor.valid()), lod::formatLodPolicy(threeLevels()))
+      << "the policy that drew while the invalid edit was shown";
+}
+
+TEST(PolicyEditor, AnAmendedReplaceIsOneEditWithTheOneItContinues) {
+  PolicyEditor editor(threeLevels());
+  lod::LodPolicy dragged = threeLevels();
+  for (float edge : {13.0F, 14.0F, 15.0F}) {
+    dragged.levels[0].until = edge;
+    editor.replace(dragged, edge != 13.0F);
+  }
+  EXPECT_EQ(editor.edited().levels[0].until, 15.0F);
+  ASSERT_TRUE(editor.undo());
+  EXPECT_EQ(editor.text(), lod::formatLodPolicy(threeLevels())) << "one undo takes back the whole drag";
+  EXPECT_FALSE(editor.canUndo());
 }
 
 }  // namespace

@@ -7,7 +7,8 @@
 // decision applied: that is what it promises when it shows an alternative as
 // possible, so a skipped decision aborts. Its policy edits are carried out
 // on the LOD policy editor: a policy the editor calls valid must be a file
-// that reads back to itself, and the last valid one must stay one.
+// that reads back to itself, and the last valid one must stay one; an undo
+// that is made can be redone to the same policy, and undone again.
 //
 // Built two ways (see CMakeLists.txt beside this file):
 //   spire_explore_script_fuzzer  clang + -fsanitize=fuzzer,address,undefined (fuzz preset)
@@ -69,6 +70,15 @@ bool readsBack(const spire::lod::LodPolicy& policy) {
   return read && spire::lod::formatLodPolicy(*read) == text;
 }
 
+// Undo, checked by redoing and undoing it again: each gives back its text.
+void undo(spire::explore::PolicyEditor& editor) {
+  const std::string before = editor.text();
+  if (!editor.undo()) return;
+  const std::string after = editor.text();
+  if (!editor.redo() || editor.text() != before) std::abort();
+  if (!editor.undo() || editor.text() != after) std::abort();
+}
+
 void edit(spire::explore::PolicyEditor& editor, const ScriptAction& action) {
   const auto level = static_cast<size_t>(action.count);
   const auto number = static_cast<float>(action.number);
@@ -79,6 +89,8 @@ void edit(spire::explore::PolicyEditor& editor, const ScriptAction& action) {
     case ActionKind::PolicyTransition: editor.setTransitionFrames(action.count); break;
     case ActionKind::PolicyAdd: editor.addLevel(action.value, number); break;
     case ActionKind::PolicyRemove: (void)editor.removeLevel(level); break;
+    case ActionKind::PolicyUndo: undo(editor); break;
+    case ActionKind::PolicyRedo: (void)editor.redo(); break;
     default: return;
   }
   if (editor.isValid() && !readsBack(editor.edited())) std::abort();

@@ -1,0 +1,71 @@
+#include "explore/level_compiler.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <map>
+#include <memory>
+
+namespace spire::explore {
+
+void LevelCompiler::submit(uint64_t request, lod::LodPolicy policy) {
+  if (running_.valid()) {
+    queued_.emplace(request, std::move(policy));
+    return;
+  }
+  launch(request, std::move(policy));
+}
+
+void LevelCompiler::launch(uint64_t request, lod::LodPolicy policy) {
+  running_ = std::async(std::launch::async, [this, request, policy = std::move(policy)]() mutable {
+    Outcome outcome;
+    outcome.request = request;
+    const auto start = std::chrono::steady_clock::now();
+    outcome.programs = compile_(policy);
+    outcome.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    outcome.policy = std::move(policy);
+    return outcome;
+  });
+}
+
+std::optional<LevelCompiler::Outcome> LevelCompiler::poll() {
+  if (!running_.valid() || running_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+    return std::nullopt;
+  }
+  Outcome outcome = running_.get();
+  if (!queued_) return outcome;
+  // Only the newest request is worth showing.
+  auto [request, policy] = std::move(*queued_);
+  queued_.reset();
+  launch(request, std::move(policy));
+  return std::nullopt;
+}
+
+LevelCompiler::CompileFunction compileLevelsIn(const engine::SceneRenderer& renderer,
+                                               std::vector<ShaderLibrary*> libraries) {
+  // Only the worker uses the cache, one request at a time.
+  auto cache = std::make_shared<std::map<std::pair<size_t, std::string>, engine::VariantProgram>>();
+  return [&renderer, libraries = std::move(libraries),
+          cache](const lod::LodPolicy& policy) -> engine::Expected<LevelCompiler::Programs> {
+    LevelCompiler::Programs programs;
+    for (const lod::LodLevel& level : policy.levels) {
+      std::vector<engine::VariantProgram>& row = programs.emplace_back();
+      for (size_t p = 0; p < libraries.size(); ++p) {
+        auto it = cache->find({p, level.member});
+        if (it == cache->end()) {
+          const std::string shader = fmt::format("{}<{}>", renderer.scene().instances[p].shader, level.member);
+          // The members' warnings were the compiler's to give when the scene
+          // started; a member new to the session is checked by its errors.
+          std::string warnings;
+          auto program = renderer.compileShaderIn(*libraries[p], p, shader, warnings);
+          if (!program) return program.error();
+          it = cache->emplace(std::pair{p, level.member}, std::move(program).value()).first;
+        }
+        row.push_back(it->second);
+      }
+    }
+    return programs;
+  };
+}
+
+}  // namespace spire::explore
