@@ -205,6 +205,25 @@ TEST_F(UserRulesTest, ImmutableComponentsAreLeftAlone) {
   EXPECT_EQ(result->module.find("keptPow:"), std::string::npos);
 }
 
+TEST_F(UserRulesTest, ImmutableStatementsAndBlocksAreLeftAlone) {
+  load(R"(using "pipelines/engine.spire";
+shader S using EnginePipeline {
+    @FrameUniform mat4 mvp;
+    @MaterialUniform float gain;
+    vec4 projPos = mvp * vec4(vert_pos, 1.0);
+    float guarded {
+        [Immutable] float a = pow(gain, 2.0);
+        [Immutable] { a += pow(a, 2.0); }
+        return pow(a, 2.0);
+    }
+    vec4 output = vec4(guarded);
+}
+)");
+  rules("rule pow-square: pow($x, 2.0) -> $x * $x\n");
+  EXPECT_EQ(rewritesOf("guarded"), (std::vector<std::string>{"call-to-argument: pow(a, 2.0) -> (a)",
+                                                             "pow-square: pow(a, 2.0) -> ((a) * (a))"}));
+}
+
 TEST_F(UserRulesTest, TheToolAppliesRuleFilesAndReportsTheirErrors) {
   load(kShader);
   const fs::path good = dir_ / "good.rules";
