@@ -17,8 +17,9 @@
 namespace spire::codegen {
 
 // Whether `e` is an operation worth checking: one that can turn finite
-// operands into NaN or Inf (a float division, a built-in such as log, sqrt,
-// pow or normalize) or a call of a user function, whose body may hide one.
+// operands into NaN or Inf (float +, -, * and /, a built-in such as log,
+// sqrt, pow or normalize), a texture lookup (a texel may hold NaN or Inf),
+// or a call of a user function, whose body may hide one.
 bool isCheckedOperation(const ast::Expr& e, const sem::ExprInfo& info);
 
 class OperationProbe {

@@ -134,6 +134,13 @@ void HazardCollector::readRecord(const Record& record, std::vector<Hazard>& out)
       }
       hazard.reads.emplace_back(read, std::move(values));
     }
+    // An input that came in non-finite makes the first arithmetic on it
+    // non-finite too: naming that operation would point at where the value
+    // passed through, not where it went wrong.
+    if (hazard.inherited) {
+      hazard.operation.clear();
+      hazard.operationSource.clear();
+    }
     out.push_back(std::move(hazard));
   }
 }
