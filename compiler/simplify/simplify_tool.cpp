@@ -10,6 +10,7 @@
 #include "driver/tool_arguments.h"
 #include "simplify/simplification.h"
 #include "simplify/user_rules.h"
+#include "simplify/variant_cost.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
 
@@ -22,6 +23,7 @@ struct CliOptions {
   std::vector<std::string> files;
   std::vector<std::string> includeDirs;
   std::vector<std::string> ruleFiles;
+  bool costs = false;
   SimplifyOptions simplify;
 };
 
@@ -44,9 +46,29 @@ void defineOptions(CLI::App& app, CliOptions& options) {
       ->type_name("FILE");
   app.add_option("--name", options.simplify.derivedName, "The derived shader's name (default: SHADER + Simplified)")
       ->type_name("NAME");
-  app.add_option("-o,--output", options.simplify.outputPath, "Write the module of simplified variations to FILE")
-      ->required()
+  CLI::Option* costs = app.add_flag(
+      "--costs", options.costs,
+      "Print the shader's cost under its default decisions (He et al. 2015: C = 0.3 C_v + 0.7 C_f + 10 N_var) "
+      "instead of simplifying");
+  app.add_option("-o,--output", options.simplify.outputPath,
+                 "Write the module of simplified variations to FILE (required unless --costs)")
+      ->excludes(costs)
       ->type_name("FILE");
+}
+
+// --costs: the shader's variant under the default decisions (every
+// component in its latest feasible world, as spirec without --decisions).
+int printCosts(const ShaderLibrary& library, const std::string& shader, std::ostream& out, std::ostream& err) {
+  const std::optional<graph::Variant> variant = library.buildVariant(shader, {});
+  if (!variant) {
+    err << fmt::format("{}: error: no concrete shader named '{}' with a valid variant\n", kTool, shader);
+    return kExitInputError;
+  }
+  const VariantCost cost = variantCost(library.model(), *variant);
+  out << formatVariantCost(cost, fmt::format("{} under its default decisions (He et al. 2015's cost model, "
+                                             "docs/simplification.md):",
+                                             shader));
+  return kExitSuccess;
 }
 
 void printSummary(const Simplified& result, const std::string& path, std::ostream& out) {
@@ -85,6 +107,9 @@ int runSimplifyTool(const std::vector<std::string>& args, std::ostream& out, std
   CliOptions options;
   defineOptions(app, options);
   if (const auto status = parseToolArguments(app, args, out, err)) return *status;
+  if (!options.costs && options.simplify.outputPath.empty()) {
+    return usageError(kTool, "-o,--output is required (unless --costs)", err);
+  }
   UserRules rules;
   if (!readRules(options.ruleFiles, rules, err)) return kExitInputError;
   options.simplify.userRules = &rules;
@@ -96,6 +121,7 @@ int runSimplifyTool(const std::vector<std::string>& args, std::ostream& out, std
     err << renderDiagnostics(library.sources(), library.diagnostics(), DiagnosticFormat::Text);
     return kExitInputError;
   }
+  if (options.costs) return printCosts(library, options.simplify.shader, out, err);
   auto result = simplifyShader(library, options.simplify);
   if (!result) {
     err << fmt::format("{}: error: {}\n", kTool, result.error().message);
