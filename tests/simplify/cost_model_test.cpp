@@ -220,11 +220,7 @@ shader S using EnginePipeline {
     vec4 output = albedo;
 }
 )");
-  SimplifyOptions options;
-  options.shader = "S";
-  options.outputPath = (dir_ / "s_simplified.spire").string();
-  options.frontEnd = frontEnd();
-  auto result = simplifyShader(*library_, options);
+  auto result = simplifyS();
   ASSERT_TRUE(result) << result.error().message;
   std::vector<std::string> variations;
   for (const Variation& v : result->variations) variations.push_back(v.name + " " + std::to_string(v.saving));
@@ -253,12 +249,7 @@ shader S using EnginePipeline {
 )");
   UserRules rules;
   ASSERT_TRUE(rules.add("r.rules", "rule expand: $x * 0.5 -> $x * 0.25 + $x * 0.25\n"));
-  SimplifyOptions options;
-  options.shader = "S";
-  options.outputPath = (dir_ / "s_simplified.spire").string();
-  options.frontEnd = frontEnd();
-  options.userRules = &rules;
-  auto result = simplifyShader(*library_, options);
+  auto result = simplifyS(&rules);
   ASSERT_TRUE(result) << result.error().message;
   ASSERT_EQ(result->variations.size(), 2U) << result->module;
   EXPECT_EQ(result->variations[0].rule, "constant-operand");

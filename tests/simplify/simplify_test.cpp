@@ -95,11 +95,7 @@ shader S using EnginePipeline {
   // than a * 0.5 (1).
   EXPECT_EQ(rewrites, (std::vector<std::string>{"loop-iteration: 2", "constant-operand: a * 0.5"}));
 
-  SimplifyOptions options;
-  options.shader = "S";
-  options.outputPath = (dir_ / "s_simplified.spire").string();
-  options.frontEnd = frontEnd();
-  auto result = simplifyShader(*library_, options);
+  auto result = simplifyS();
   ASSERT_TRUE(result) << result.error().message;
   ASSERT_EQ(result->variations.size(), 2U) << result->module;
   // The variation keeps the immutable statements byte for byte.

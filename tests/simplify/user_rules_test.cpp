@@ -112,14 +112,7 @@ class UserRulesTest : public SimplifyFixture {
     }
     return texts;
   }
-  Expected<Simplified, Failure> simplify() {
-    SimplifyOptions options;
-    options.shader = "S";
-    options.outputPath = (dir_ / "s_simplified.spire").string();
-    options.frontEnd = frontEnd();
-    options.userRules = &rules_;
-    return simplifyShader(*library_, options);
-  }
+  Expected<Simplified, Failure> simplify() { return simplifyS(&rules_); }
 
   UserRules rules_;
 };
