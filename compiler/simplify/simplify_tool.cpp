@@ -8,6 +8,7 @@
 #include "driver/exit_codes.h"
 #include "driver/shader_library.h"
 #include "driver/tool_arguments.h"
+#include "graph/decision_file.h"
 #include "simplify/simplification.h"
 #include "simplify/user_rules.h"
 #include "simplify/variant_cost.h"
@@ -24,6 +25,7 @@ struct CliOptions {
   std::vector<std::string> includeDirs;
   std::vector<std::string> ruleFiles;
   bool costs = false;
+  std::string decisionsPath;  // with --costs
   SimplifyOptions simplify;
 };
 
@@ -50,24 +52,49 @@ void defineOptions(CLI::App& app, CliOptions& options) {
       "--costs", options.costs,
       "Print the shader's cost under its default decisions (He et al. 2015: C = 0.3 C_v + 0.7 C_f + 10 N_var) "
       "instead of simplifying");
+  app.add_option("--decisions", options.decisionsPath,
+                 "With --costs: the variant of the decision file PATH instead of the default decisions")
+      ->needs(costs)
+      ->type_name("PATH");
   app.add_option("-o,--output", options.simplify.outputPath,
                  "Write the module of simplified variations to FILE (required unless --costs)")
       ->excludes(costs)
       ->type_name("FILE");
 }
 
-// --costs: the shader's variant under the default decisions (every
-// component in its latest feasible world, as spirec without --decisions).
-int printCosts(const ShaderLibrary& library, const std::string& shader, std::ostream& out, std::ostream& err) {
-  const std::optional<graph::Variant> variant = library.buildVariant(shader, {});
-  if (!variant) {
-    err << fmt::format("{}: error: no concrete shader named '{}' with a valid variant\n", kTool, shader);
-    return kExitInputError;
+// The shader's variant for --costs: the decision file's, or the default
+// decisions (every component in its latest feasible world, as spirec
+// without --decisions). nullopt after printing why not.
+std::optional<graph::Variant> costedVariant(ShaderLibrary& library, const CliOptions& options, std::ostream& err) {
+  const graph::ChoiceSpace* space = library.choiceSpace(options.simplify.shader);
+  if (!space) {
+    err << fmt::format("{}: error: no concrete shader named '{}'\n", kTool, options.simplify.shader);
+    return std::nullopt;
   }
-  const VariantCost cost = variantCost(library.model(), *variant);
-  out << formatVariantCost(cost, fmt::format("{} under its default decisions (He et al. 2015's cost model, "
-                                             "docs/simplification.md):",
-                                             shader));
+  graph::DecisionFile decisions;
+  if (!options.decisionsPath.empty()) {
+    if (const auto id = library.frontEnd().loadAuxiliaryFile(options.decisionsPath)) {
+      decisions = graph::parseDecisionFile(library.sources(), *id, library.diagnostics());
+    }
+  }
+  std::optional<graph::Variant> variant;
+  if (!library.diagnostics().hasErrors()) variant = graph::applyDecisions(decisions, *space, library.diagnostics());
+  // Warnings too: a decision skipped changes what is costed.
+  if (!library.diagnostics().all().empty()) {
+    err << renderDiagnostics(library.sources(), library.diagnostics(), DiagnosticFormat::Text);
+  }
+  return library.diagnostics().hasErrors() ? std::nullopt : variant;
+}
+
+int printCosts(ShaderLibrary& library, const CliOptions& options, std::ostream& out, std::ostream& err) {
+  const std::optional<graph::Variant> variant = costedVariant(library, options, err);
+  if (!variant) return kExitInputError;
+  const std::string decisions = options.decisionsPath.empty()
+                                    ? "its default decisions"
+                                    : fmt::format("the decisions of {}", options.decisionsPath);
+  out << formatVariantCost(variantCost(library.model(), *variant),
+                           fmt::format("{} under {} (He et al. 2015's cost model, docs/simplification.md):",
+                                       options.simplify.shader, decisions));
   return kExitSuccess;
 }
 
@@ -121,7 +148,7 @@ int runSimplifyTool(const std::vector<std::string>& args, std::ostream& out, std
     err << renderDiagnostics(library.sources(), library.diagnostics(), DiagnosticFormat::Text);
     return kExitInputError;
   }
-  if (options.costs) return printCosts(library, options.simplify.shader, out, err);
+  if (options.costs) return printCosts(library, options, out, err);
   auto result = simplifyShader(library, options.simplify);
   if (!result) {
     err << fmt::format("{}: error: {}\n", kTool, result.error().message);

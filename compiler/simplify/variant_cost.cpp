@@ -33,12 +33,13 @@ std::string joined(const std::vector<std::string>& names) {
 }
 
 // What a row adds to C_v or C_f, for the table's last column.
-std::string countedText(const ComponentCost& c) {
+std::string countedText(const ComponentCost& c, const VariantCost& cost) {
   std::vector<std::string> parts;
   if (c.rate == WorldRate::Vertex) parts.push_back(fmt::format("C_v += {}", c.ops));
   if (c.rate == WorldRate::Fragment) parts.push_back(fmt::format("C_f += {}", c.ops));
   for (const std::string& world : c.fetchedIn) {
-    parts.push_back(fmt::format("{} fetch in {}", kTextureFetchCost, world));
+    const bool vertex = std::find(cost.vertexWorlds.begin(), cost.vertexWorlds.end(), world) != cost.vertexWorlds.end();
+    parts.push_back(fmt::format("{} += {} (a fetch in {})", vertex ? "C_v" : "C_f", kTextureFetchCost, world));
   }
   return parts.empty() ? "-" : fmt::format("{}", fmt::join(parts, "; "));
 }
@@ -121,7 +122,7 @@ std::string formatVariantCost(const VariantCost& cost, std::string_view title) {
                                  worldWidth, "rate", "ops", "counted");
   for (const ComponentCost& c : cost.components) {
     text += fmt::format("{:<{}}  {:<{}}  {:<8}  {:>6}  {}\n", c.component, nameWidth, c.world, worldWidth,
-                        rateName(c.rate), c.ops, countedText(c));
+                        rateName(c.rate), c.ops, countedText(c, cost));
   }
   const int64_t tenths = cost.totalTenths();
   text += fmt::format("\nC_v   = {} (vertex rate: {})\n", cost.vertexOps, joined(cost.vertexWorlds));

@@ -4,6 +4,7 @@
 // are worked out by hand in the comments.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
@@ -125,6 +126,28 @@ TEST_F(VariantCostTest, TheToolPrintsTheCostsAndStillWantsAnOutputOtherwise) {
   std::ostringstream err2;
   EXPECT_EQ(runSimplifyTool({source_.string(), "--shader", "S"}, out2, err2), 2);
   EXPECT_NE(err2.str().find("-o,--output is required (unless --costs)"), std::string::npos) << err2.str();
+  std::ostringstream err3;
+  EXPECT_EQ(runSimplifyTool({source_.string(), "--shader", "S", "--decisions", "d", "-o", "m.spire"}, out2, err3), 2);
+}
+
+// albedo baked: C_f = 7 + 100 + 4 = 111, so C = 4.8 + 77.7 + 50.
+TEST_F(VariantCostTest, TheToolCostsTheVariantOfADecisionFile) {
+  load(kShader);
+  const std::string decisions = (dir_ / "baked.decisions").string();
+  std::ofstream(decisions) << "S.albedo = Bake\n";
+  std::ostringstream out;
+  std::ostringstream err;
+  ASSERT_EQ(runSimplifyTool({source_.string(), "--shader", "S", "--costs", "--decisions", decisions}, out, err), 0)
+      << err.str();
+  EXPECT_NE(out.str().find("C_f += 100 (a fetch in PS)"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("C     = 0.3 * 16 + 0.7 * 111 + 10 * 5 = 132.5\n"), std::string::npos) << out.str();
+  // A decision the shader cannot take is skipped with a warning.
+  std::ofstream(decisions) << "S.color = VS\n";
+  std::ostringstream out2;
+  std::ostringstream err2;
+  ASSERT_EQ(runSimplifyTool({source_.string(), "--shader", "S", "--costs", "--decisions", decisions}, out2, err2), 0);
+  EXPECT_NE(err2.str().find("warning"), std::string::npos) << err2.str();
+  EXPECT_NE(out2.str().find("= 135.3\n"), std::string::npos) << out2.str();
 }
 
 }  // namespace
