@@ -1,9 +1,9 @@
 #include "simplify/cost_model.h"
 
-#include "simplify/syntax_walk.h"
-
 #include <algorithm>
 #include <string_view>
+
+#include "simplify/syntax_walk.h"
 
 namespace spire::simplify {
 namespace {
