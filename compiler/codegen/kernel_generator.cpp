@@ -17,17 +17,12 @@
 namespace spire::codegen {
 namespace {
 
-// The world's [Stage]; sema's attribute check has refused any other value.
+// The value of the world's attribute `name` ([Role]).
 std::optional<std::string> attributeValue(const ast::WorldDecl& decl, std::string_view name) {
   for (const ast::Attribute& a : decl.attributes) {
     if (a.name == name && a.value) return a.value;
   }
   return std::nullopt;
-}
-
-std::optional<ShaderStage> stageFromAttribute(const ast::WorldDecl& decl) {
-  const auto stage = attributeValue(decl, "Stage");
-  return stage ? reflection::parseStage(*stage) : std::nullopt;
 }
 
 // One kernel's components, the names it gave them and the functions they
@@ -293,8 +288,7 @@ std::optional<Kernel> KernelGenerator::generate(sem::WorldId w) {
   if (plan.computed.empty() && outputs.empty()) return std::nullopt;
 
   const Strategy* exportStrategy = world.exportStrategy ? strategies_.find(world.exportStrategy->ref->name) : nullptr;
-  std::optional<ShaderStage> stage = stageFromAttribute(*world.decl);
-  if (!stage && exportStrategy) stage = exportStrategy->stage();
+  const std::optional<ShaderStage> stage = worldStage(world, strategies_);
   if (!stage) {
     fail("its export strategy implies no pipeline stage; add [Stage: \"vertex\"], \"fragment\" or \"compute\"");
     return std::nullopt;

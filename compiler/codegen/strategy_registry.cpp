@@ -30,4 +30,14 @@ const Strategy* StrategyRegistry::find(std::string_view name) const {
   return it == strategies_.end() ? nullptr : it->second.get();
 }
 
+// Sema's attribute check has refused any [Stage] value parseStage does not
+// know.
+std::optional<ShaderStage> worldStage(const sem::World& world, const StrategyRegistry& strategies) {
+  for (const ast::Attribute& a : world.decl->attributes) {
+    if (a.name == "Stage" && a.value) return reflection::parseStage(*a.value);
+  }
+  const Strategy* exportStrategy = world.exportStrategy ? strategies.find(world.exportStrategy->ref->name) : nullptr;
+  return exportStrategy ? exportStrategy->stage() : std::nullopt;
+}
+
 }  // namespace spire::codegen

@@ -4,6 +4,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -29,5 +30,10 @@ class StrategyRegistry {
   std::map<std::string, std::unique_ptr<Strategy>, std::less<>> strategies_;
   sem::StrategyCatalog catalog_;
 };
+
+// The pipeline stage `world`'s kernel runs in: its [Stage] attribute, or
+// else what its export strategy implies (vertexExport: vertex, ...);
+// nullopt when neither says.
+std::optional<ShaderStage> worldStage(const sem::World& world, const StrategyRegistry& strategies);
 
 }  // namespace spire::codegen

@@ -1,124 +1,21 @@
 #include "simplify/rewrite_rules.h"
 
 #include <algorithm>
-#include <functional>
 
+#include "simplify/cost_model.h"
 #include "simplify/rule_matching.h"
+#include "simplify/syntax_walk.h"
 
 namespace spire::simplify {
 namespace {
 
-// Calls the visitors on every expression and statement of a definition,
-// outermost first, except those inside [Immutable] statements.
-class ExprWalker {
- public:
-  ExprWalker(std::function<void(const ast::Expr&)> visit, std::function<void(const ast::Stmt&)> visitStmt)
-      : visit_(std::move(visit)), visitStmt_(std::move(visitStmt)) {}
-
-  void expr(const ast::Expr* e) {
-    if (!e) return;
-    visit_(*e);
-    switch (e->kind) {
-      case ast::ExprKind::Unary: expr(ast::cast<ast::UnaryExpr>(*e).operand.get()); break;
-      case ast::ExprKind::Binary: binary(ast::cast<ast::BinaryExpr>(*e)); break;
-      case ast::ExprKind::Assign: {
-        const auto& a = ast::cast<ast::AssignExpr>(*e);
-        expr(a.target.get());
-        expr(a.value.get());
-        break;
-      }
-      case ast::ExprKind::Ternary: {
-        const auto& t = ast::cast<ast::TernaryExpr>(*e);
-        expr(t.condition.get());
-        expr(t.thenValue.get());
-        expr(t.elseValue.get());
-        break;
-      }
-      case ast::ExprKind::Call:
-        for (const ast::ExprPtr& arg : ast::cast<ast::CallExpr>(*e).args) expr(arg.get());
-        break;
-      case ast::ExprKind::Member: expr(ast::cast<ast::MemberExpr>(*e).object.get()); break;
-      case ast::ExprKind::Index: {
-        const auto& i = ast::cast<ast::IndexExpr>(*e);
-        expr(i.object.get());
-        expr(i.index.get());
-        break;
-      }
-      default: break;
-    }
-  }
-
-  void stmt(const ast::Stmt* s);
-
- private:
-  // A left-associative chain is walked in a loop (ast::leftSpine), so that
-  // recursion only goes as deep as the code is really nested.
-  void binary(const ast::BinaryExpr& top) {
-    const std::vector<const ast::BinaryExpr*> spine = ast::leftSpine(top);
-    expr(spine.front()->lhs.get());
-    for (size_t i = 0; i < spine.size(); ++i) {
-      if (i > 0) visit_(*spine[i - 1]);
-      expr(spine[i]->rhs.get());
-    }
-  }
-
-  std::function<void(const ast::Expr&)> visit_;
-  std::function<void(const ast::Stmt&)> visitStmt_;
-};
-
-bool immutable(const ast::Stmt& s) {
-  return std::any_of(s.attributes.begin(), s.attributes.end(),
-                     [](const ast::Attribute& a) { return a.name == "Immutable"; });
-}
-
-// An [Immutable] statement is not walked, so no rule sees anything in it.
-void ExprWalker::stmt(const ast::Stmt* s) {
-  if (!s || immutable(*s)) return;
-  visitStmt_(*s);
-  switch (s->kind) {
-    case ast::StmtKind::Block:
-      for (const ast::StmtPtr& child : ast::cast<ast::BlockStmt>(*s).statements) stmt(child.get());
-      break;
-    case ast::StmtKind::VarDecl:
-      for (const ast::VarDeclarator& d : ast::cast<ast::VarDeclStmt>(*s).declarators) expr(d.init.get());
-      break;
-    case ast::StmtKind::Expr: expr(ast::cast<ast::ExprStmt>(*s).expr.get()); break;
-    case ast::StmtKind::If: {
-      const auto& i = ast::cast<ast::IfStmt>(*s);
-      expr(i.condition.get());
-      stmt(i.thenBranch.get());
-      stmt(i.elseBranch.get());
-      break;
-    }
-    case ast::StmtKind::For: {
-      const auto& f = ast::cast<ast::ForStmt>(*s);
-      stmt(f.init.get());
-      expr(f.condition.get());
-      expr(f.step.get());
-      stmt(f.body.get());
-      break;
-    }
-    case ast::StmtKind::While: {
-      const auto& w = ast::cast<ast::WhileStmt>(*s);
-      expr(w.condition.get());
-      stmt(w.body.get());
-      break;
-    }
-    case ast::StmtKind::DoWhile: {
-      const auto& d = ast::cast<ast::DoWhileStmt>(*s);
-      stmt(d.body.get());
-      expr(d.condition.get());
-      break;
-    }
-    case ast::StmtKind::Return: expr(ast::cast<ast::ReturnStmt>(*s).value.get()); break;
-    default: break;
-  }
-}
-
 class RuleSet {
  public:
-  RuleSet(const sem::Model& model, const SourceManager& sources, const std::vector<UserRule>& userRules)
-      : model_(model), sources_(sources), userRules_(userRules) {}
+  RuleSet(const sem::Model& model, const SourceManager& sources, const ast::ComponentDecl& decl,
+          const std::vector<UserRule>& userRules)
+      : model_(model), sources_(sources), decl_(decl), userRules_(userRules), costs_(model) {
+    cost_ = costs_.definition(decl);
+  }
 
   void propose(const ast::Expr& e) {
     if (const auto* b = ast::dyn_cast<ast::BinaryExpr>(&e)) constantOperand(*b);
@@ -141,12 +38,15 @@ class RuleSet {
   void collapse(const char* rule, const ast::Expr& e, const ast::Expr& kept) {
     const std::string type = typeName(e);
     if (type.empty() || typeName(kept) != type) return;
-    add({rule, e.range, "(" + text(kept) + ")", text(e), ""});
+    add({rule, e.range, "(" + text(kept) + ")", text(e), ""}, {&e, {&kept}, std::nullopt});
   }
-  void add(Rewrite r) {
+  // `r`, with its saving: the definition's cost with `substitution` in
+  // place of what `r` replaces.
+  void add(Rewrite r, const Substitution& substitution) {
     for (const Rewrite& other : rewrites_) {
       if (other.range == r.range && other.replacement == r.replacement) return;
     }
+    r.saving = cost_ - costs_.definition(decl_, substitution);
     rewrites_.push_back(std::move(r));
   }
   void constantOperand(const ast::BinaryExpr& b) {
@@ -171,12 +71,17 @@ class RuleSet {
   void userRule(const UserRule& rule, const ast::Expr& e) {
     const std::string type = typeName(e);
     if (type.empty()) return;
-    if (auto replacement = applyUserRule(rule, e, sources_)) add({rule.name, e.range, *replacement, text(e), type});
+    if (auto match = applyUserRule(rule, e, sources_)) {
+      add({rule.name, e.range, match->replacement, text(e), type}, {&e, match->holes, std::nullopt});
+    }
   }
 
   const sem::Model& model_;
   const SourceManager& sources_;
+  const ast::ComponentDecl& decl_;
   const std::vector<UserRule>& userRules_;
+  CostModel costs_;
+  int64_t cost_ = 0;  // the definition's, as written
   std::vector<Rewrite> rewrites_;
 };
 
@@ -208,27 +113,39 @@ void RuleSet::loop(const ast::Stmt& s) {
   const auto* bound = ast::dyn_cast<ast::IntLiteral>(condition->rhs.get());
   const uint64_t lowest = condition->op == ast::BinaryOp::Less ? 2 : 1;
   if (!bound || bound->value < lowest) return;
-  add({"loop-iteration", bound->range, std::to_string(bound->value - 1), text(*bound), ""});
+  const auto fewer = static_cast<int64_t>(bound->value - 1);
+  add({"loop-iteration", bound->range, std::to_string(fewer), text(*bound), ""}, {bound, {}, fewer});
 }
 
 }  // namespace
 
 std::vector<Rewrite> proposeRewrites(const sem::Model& model, const SourceManager& sources,
                                      const ast::ComponentDecl& decl, const std::vector<UserRule>& userRules) {
-  RuleSet rules(model, sources, userRules);
-  ExprWalker walker([&](const ast::Expr& e) { rules.propose(e); }, [&](const ast::Stmt& s) { rules.loop(s); });
+  RuleSet rules(model, sources, decl, userRules);
+  SyntaxWalker walker([&](const ast::Expr& e) { rules.propose(e); }, [&](const ast::Stmt& s) { rules.loop(s); });
   walker.expr(decl.init.get());
   walker.stmt(decl.body.get());
   std::vector<Rewrite> rewrites = rules.take();
-  // The rewrites that remove the most source first (a rough stand-in for
-  // the work they save), then in source order.
+  std::stable_sort(rewrites.begin(), rewrites.end(),
+                   [](const Rewrite& a, const Rewrite& b) { return a.range.begin < b.range.begin; });
+  std::vector<Rewrite> ranked;
+  for (size_t i : rankRewrites(rewrites)) ranked.push_back(std::move(rewrites[i]));
+  return ranked;
+}
+
+std::vector<size_t> rankRewrites(const std::vector<Rewrite>& rewrites) {
   const auto removed = [](const Rewrite& r) {
-    return static_cast<long>(r.before.size()) - static_cast<long>(r.replacement.size());
+    return static_cast<int64_t>(r.before.size()) - static_cast<int64_t>(r.replacement.size());
   };
-  std::stable_sort(rewrites.begin(), rewrites.end(), [&](const Rewrite& a, const Rewrite& b) {
-    return removed(a) != removed(b) ? removed(a) > removed(b) : a.range.begin < b.range.begin;
+  std::vector<size_t> order(rewrites.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  // Stable: rewrites equal in both keys keep the order they come in.
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    const Rewrite& x = rewrites[a];
+    const Rewrite& y = rewrites[b];
+    return x.saving != y.saving ? x.saving > y.saving : removed(x) > removed(y);
   });
-  return rewrites;
+  return order;
 }
 
 const ast::Expr* widestExprWithin(const ast::ComponentDecl& decl, const SourceRange& range) {
@@ -236,7 +153,7 @@ const ast::Expr* widestExprWithin(const ast::ComponentDecl& decl, const SourceRa
   const auto within = [&](const ast::Expr& e) {
     return e.range.file == range.file && e.range.begin >= range.begin && e.range.end <= range.end;
   };
-  ExprWalker walker(
+  SyntaxWalker walker(
       [&](const ast::Expr& e) {
         if (within(e) && (!widest || e.range.end - e.range.begin > widest->range.end - widest->range.begin)) {
           widest = &e;

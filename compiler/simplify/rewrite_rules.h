@@ -17,8 +17,18 @@
 //
 // User rules (user_rules.h) propose rewrites on the same walk, so they reach
 // the same expressions and skip what the built-in rules skip.
+//
+// Each rewrite carries what it saves in He et al. 2015's cost model
+// (cost_model.h): the definition's cost before minus after, costed on the
+// typed tree with the rewrite substituted. For a built-in rule that is
+// exact. A user rule's replacement is only text until it is compiled, so its
+// saving here is an estimate that counts the replacement as the expressions
+// its metavariables bound, without the rule's own operations (an upper
+// bound); simplifyShader reports the exact one, costed on the compiled
+// module.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -38,14 +48,21 @@ struct Rewrite {
   // (a user rule): simplifyShader checks it on the compiled module. Empty
   // for the built-in rules, which only keep expressions of the same type.
   std::string type;
+  // Scalar operations the rewrite saves in the definition (cost_model.h);
+  // negative when it adds some.
+  int64_t saving = 0;
 };
 
-// Every single rewrite of `decl`'s definition, each to be applied alone:
-// those that remove the most source first, then in source order; duplicates
-// (same range and replacement) once.
+// Every single rewrite of `decl`'s definition, each to be applied alone,
+// ranked by rankRewrites; duplicates (same range and replacement) once.
 // `userRules` propose theirs alongside the built-in ones.
 std::vector<Rewrite> proposeRewrites(const sem::Model& model, const SourceManager& sources,
                                      const ast::ComponentDecl& decl, const std::vector<UserRule>& userRules = {});
+
+// The order to offer rewrites of one component's definitions in, as
+// indices into `rewrites`: the largest saving first, then those that remove
+// the most source, then in the order given (source order).
+std::vector<size_t> rankRewrites(const std::vector<Rewrite>& rewrites);
 
 // The widest expression of `decl`'s definition inside `range`: the one a
 // rewrite put there, found again in the compiled module to check its type.

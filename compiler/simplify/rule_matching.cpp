@@ -121,18 +121,21 @@ bool Matcher::compound(const ast::Expr& pattern, const ast::Expr& target) {
 
 }  // namespace
 
-std::optional<std::string> applyUserRule(const UserRule& rule, const ast::Expr& e, const SourceManager& sources) {
+std::optional<UserRuleMatch> applyUserRule(const UserRule& rule, const ast::Expr& e, const SourceManager& sources) {
   Matcher matcher(rule);
   if (!matcher.match(*rule.pattern, e)) return std::nullopt;
-  std::string text = "(";
+  UserRuleMatch result{"(", {}};
   size_t copied = 0;
   for (const MetavariableUse& hole : rule.holes) {
-    text.append(rule.replacement, copied, hole.offset - copied);
-    text += "(" + std::string(sources.text(matcher.bound(hole.name)->range)) + ")";
+    const ast::Expr* bound = matcher.bound(hole.name);
+    result.replacement.append(rule.replacement, copied, hole.offset - copied);
+    result.replacement += "(" + std::string(sources.text(bound->range)) + ")";
+    result.holes.push_back(bound);
     copied = hole.offset + hole.length;
   }
-  text.append(rule.replacement, copied);
-  return text + ")";
+  result.replacement.append(rule.replacement, copied);
+  result.replacement += ")";
+  return result;
 }
 
 }  // namespace spire::simplify

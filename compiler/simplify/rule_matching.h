@@ -12,6 +12,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "simplify/user_rules.h"
 #include "support/source_manager.h"
@@ -19,10 +20,15 @@
 
 namespace spire::simplify {
 
+struct UserRuleMatch {
+  std::string replacement;
+  std::vector<const ast::Expr*> holes;  // the expression each `$name` of the replacement bound, in order
+};
+
 // What `e` becomes when `rule` matches it: the rule's replacement with each
 // metavariable replaced by the source it bound (`sources` holds `e`'s file),
 // each of those parenthesized and the whole too, so that precedence around
 // and within it stays what the rule's author wrote.
-std::optional<std::string> applyUserRule(const UserRule& rule, const ast::Expr& e, const SourceManager& sources);
+std::optional<UserRuleMatch> applyUserRule(const UserRule& rule, const ast::Expr& e, const SourceManager& sources);
 
 }  // namespace spire::simplify

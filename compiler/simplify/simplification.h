@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,8 @@ struct SimplifyOptions {
   // Components to simplify; empty: every component the shader and its bases
   // define (not the pipeline's, not inputs, not [Immutable] ones).
   std::vector<std::string> components;
+  // The rewrites of all of a component's definitions are ranked together
+  // (rankRewrites: the largest saving first) and the first N kept.
   size_t maxPerComponent = 4;
   // Where the module will be written: its `using` names the shader's source
   // relative to this file's folder.
@@ -44,6 +47,10 @@ struct Variation {
   std::string site;       // "terrain.spire:44:16", the rewritten source
   std::string before;     // the source the rewrite replaced
   std::string after;
+  // Scalar operations the variation saves against the definition it
+  // rewrites (cost_model.h), costed on the compiled module; negative when it
+  // adds some.
+  int64_t saving = 0;
 };
 
 struct Simplified {

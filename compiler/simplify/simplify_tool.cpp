@@ -8,8 +8,10 @@
 #include "driver/exit_codes.h"
 #include "driver/shader_library.h"
 #include "driver/tool_arguments.h"
+#include "graph/decision_file.h"
 #include "simplify/simplification.h"
 #include "simplify/user_rules.h"
+#include "simplify/variant_cost.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
 
@@ -22,6 +24,8 @@ struct CliOptions {
   std::vector<std::string> files;
   std::vector<std::string> includeDirs;
   std::vector<std::string> ruleFiles;
+  bool costs = false;
+  std::string decisionsPath;  // with --costs
   SimplifyOptions simplify;
 };
 
@@ -44,9 +48,54 @@ void defineOptions(CLI::App& app, CliOptions& options) {
       ->type_name("FILE");
   app.add_option("--name", options.simplify.derivedName, "The derived shader's name (default: SHADER + Simplified)")
       ->type_name("NAME");
-  app.add_option("-o,--output", options.simplify.outputPath, "Write the module of simplified variations to FILE")
-      ->required()
+  CLI::Option* costs = app.add_flag(
+      "--costs", options.costs,
+      "Print the shader's cost under its default decisions (He et al. 2015: C = 0.3 C_v + 0.7 C_f + 10 N_var) "
+      "instead of simplifying");
+  app.add_option("--decisions", options.decisionsPath,
+                 "With --costs: the variant of the decision file PATH instead of the default decisions")
+      ->needs(costs)
+      ->type_name("PATH");
+  app.add_option("-o,--output", options.simplify.outputPath,
+                 "Write the module of simplified variations to FILE (required unless --costs)")
+      ->excludes(costs)
       ->type_name("FILE");
+}
+
+// The shader's variant for --costs: the decision file's, or the default
+// decisions (every component in its latest feasible world, as spirec
+// without --decisions). nullopt after printing why not.
+std::optional<graph::Variant> costedVariant(ShaderLibrary& library, const CliOptions& options, std::ostream& err) {
+  const graph::ChoiceSpace* space = library.choiceSpace(options.simplify.shader);
+  if (!space) {
+    err << fmt::format("{}: error: no concrete shader named '{}'\n", kTool, options.simplify.shader);
+    return std::nullopt;
+  }
+  graph::DecisionFile decisions;
+  if (!options.decisionsPath.empty()) {
+    if (const auto id = library.frontEnd().loadAuxiliaryFile(options.decisionsPath)) {
+      decisions = graph::parseDecisionFile(library.sources(), *id, library.diagnostics());
+    }
+  }
+  std::optional<graph::Variant> variant;
+  if (!library.diagnostics().hasErrors()) variant = graph::applyDecisions(decisions, *space, library.diagnostics());
+  // Warnings too: a decision skipped changes what is costed.
+  if (!library.diagnostics().all().empty()) {
+    err << renderDiagnostics(library.sources(), library.diagnostics(), DiagnosticFormat::Text);
+  }
+  return library.diagnostics().hasErrors() ? std::nullopt : variant;
+}
+
+int printCosts(ShaderLibrary& library, const CliOptions& options, std::ostream& out, std::ostream& err) {
+  const std::optional<graph::Variant> variant = costedVariant(library, options, err);
+  if (!variant) return kExitInputError;
+  const std::string decisions = options.decisionsPath.empty()
+                                    ? "its default decisions"
+                                    : fmt::format("the decisions of {}", options.decisionsPath);
+  out << formatVariantCost(variantCost(library.model(), *variant),
+                           fmt::format("{} under {} (He et al. 2015's cost model, docs/simplification.md):",
+                                       options.simplify.shader, decisions));
+  return kExitSuccess;
 }
 
 void printSummary(const Simplified& result, const std::string& path, std::ostream& out) {
@@ -85,6 +134,9 @@ int runSimplifyTool(const std::vector<std::string>& args, std::ostream& out, std
   CliOptions options;
   defineOptions(app, options);
   if (const auto status = parseToolArguments(app, args, out, err)) return *status;
+  if (!options.costs && options.simplify.outputPath.empty()) {
+    return usageError(kTool, "-o,--output is required (unless --costs)", err);
+  }
   UserRules rules;
   if (!readRules(options.ruleFiles, rules, err)) return kExitInputError;
   options.simplify.userRules = &rules;
@@ -96,6 +148,7 @@ int runSimplifyTool(const std::vector<std::string>& args, std::ostream& out, std
     err << renderDiagnostics(library.sources(), library.diagnostics(), DiagnosticFormat::Text);
     return kExitInputError;
   }
+  if (options.costs) return printCosts(library, options, out, err);
   auto result = simplifyShader(library, options.simplify);
   if (!result) {
     err << fmt::format("{}: error: {}\n", kTool, result.error().message);

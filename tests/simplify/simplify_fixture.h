@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "driver/shader_library.h"
+#include "simplify/simplification.h"
 
 namespace spire::simplify {
 
@@ -36,6 +37,16 @@ class SimplifyFixture : public ::testing::Test {
     EXPECT_TRUE(library_->addFile(source_.string()));
     EXPECT_TRUE(library_->compile());
     return *library_;
+  }
+  // The module of simplified variations of the shader S of load(),
+  // written beside it, with `rules` besides the built-in ones.
+  Expected<Simplified, Failure> simplifyS(const UserRules* rules = nullptr) {
+    SimplifyOptions options;
+    options.shader = "S";
+    options.outputPath = (dir_ / "s_simplified.spire").string();
+    options.frontEnd = frontEnd();
+    options.userRules = rules;
+    return simplifyShader(*library_, options);
   }
   // The repository's pipelines and stdlib, as spirec's -I would give them.
   static FrontEndOptions frontEnd() {
