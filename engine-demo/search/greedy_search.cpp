@@ -45,6 +45,7 @@ class GreedySearch {
   std::vector<Trial> measureCandidates(const std::vector<Candidate>& candidates);
   Choice choose(const std::vector<size_t>& order, std::vector<Trial>& trials);
   tune::VariantResult measure(const Placement& placement);
+  Placement live(const Placement& placement);
   Level levelOf(const tune::VariantResult& result, Placement placement) const;
   std::vector<const Rewriting*> accepted() const;
   void note(const std::string& line);
@@ -69,6 +70,16 @@ tune::VariantResult GreedySearch::measure(const Placement& placement) {
   point.index = points_++;
   point.decisions = {placement.begin(), placement.end()};
   return setup_.tuner->measure(point);
+}
+
+// The components `placement` computes: a rewrite can leave another
+// component unread (`max(a, b)` -> `a` drops b), and rewriting that one
+// would change nothing.
+Placement GreedySearch::live(const Placement& placement) {
+  tune::TunePoint point;
+  point.decisions = {placement.begin(), placement.end()};
+  auto program = setup_.tuner->program(point);
+  return program ? program->placement : placement;
 }
 
 Level GreedySearch::levelOf(const tune::VariantResult& result, Placement placement) const {
@@ -178,7 +189,9 @@ Choice GreedySearch::choose(const std::vector<size_t>& order, std::vector<Trial>
                        t.measure.error, fresh.rmse));
       return {std::nullopt, true};
     }
-    Level level = levelOf(fresh, withVariation(current.placement, r.component, r.variation));
+    // Liveness from the step's module, which names the rewrite as the candidate.
+    const Placement measured = live(withVariation(current.placement, r.component, t.candidate.rewriting.variation));
+    Level level = levelOf(fresh, withVariation(measured, r.component, r.variation));
     if (level.error > options_.errorBudget || !keepsChainMonotone(measureOf(current), measureOf(level))) {
       note(fmt::format(
           "  not taken: {} ({}) RMSE {:.6f}, time ratio {:.3f} is over the budget or breaks the monotone chain", r.from,
