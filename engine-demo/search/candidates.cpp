@@ -65,7 +65,6 @@ Expected<std::vector<Candidate>, Failure> proposeCandidates(const StepRequest& r
   const sem::Shader* shader = library.model().findShader(request.derived);
   if (!shader) return Failure{fmt::format("no shader named '{}'", request.derived)};
   std::vector<Candidate> candidates;
-  std::map<std::string, size_t> seen;  // key -> times, so a repeated rewrite keeps its own key
   for (const std::string& name : request.components) {
     const sem::Component* component = shader->findComponent(name);
     const std::string placement = placementFor(request.placement, name);
@@ -88,8 +87,9 @@ Expected<std::vector<Candidate>, Failure> proposeCandidates(const StepRequest& r
       c.level = c.rewriting;
       c.level.variation = searchVariation(original, "level", request.level);
       c.level.text = simplify::rewrittenText(library.sources(), *decl, rewrite, c.level.variation);
-      c.key = fmt::format("{}|{}|{}|{}", name, rewrite.rule, rewrite.before, rewrite.replacement);
-      c.key += fmt::format("|{}", seen[c.key]++);
+      // The same rewrite is the same rewritten definition: a step that
+      // changed another component leaves it, and its cached error, as it was.
+      c.key = name + "\n" + simplify::rewrittenText(library.sources(), *decl, rewrite, "cached");
       candidates.push_back(std::move(c));
     }
   }

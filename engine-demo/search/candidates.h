@@ -33,7 +33,7 @@ Expected<std::unique_ptr<ShaderLibrary>, Failure> compileModule(const ModuleComp
 struct Candidate {
   Rewriting rewriting;  // as measured: variation `candidateJ`
   Rewriting level;      // the same rewrite named as the level it would make
-  std::string key;      // the rewrite's identity across steps, for the error cache
+  std::string key;      // the rewrite's identity across steps, for the error cache: the definition it makes
 };
 
 struct StepRequest {
