@@ -1,7 +1,10 @@
 // spire-simplify: the compiler-only tool (compiler/simplify), and with
 // --search the greedy search, which renders (engine-demo/search). The plain
 // tool never opens a device.
+#include <algorithm>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "driver/library_location.h"
 #include "search/search_tool.h"
@@ -14,5 +17,10 @@ int main(int argc, char** argv) {
   if (const auto self = spire::runningExecutable()) {
     if (const auto library = spire::bundledLibraryDir(*self)) libraryDir = library->string();
   }
-  return spire::simplify::runSimplifyTool(args, std::cout, std::cerr, libraryDir);
+  const int status = spire::simplify::runSimplifyTool(args, std::cout, std::cerr, libraryDir);
+  const auto help = [&](const std::string& arg) { return arg == "-h" || arg == "--help"; };
+  if (std::any_of(args.begin(), args.end(), help)) {
+    std::cout << "\nWith --search, the greedy search on a scene instead (spire-simplify --search --help).\n";
+  }
+  return status;
 }

@@ -9,7 +9,7 @@ namespace spire::search {
 namespace {
 
 void defineMeasurement(CLI::App& app, SearchOptions& options) {
-  app.add_option("--frames", options.frames, "Pairs of frames (candidate, reference) timed per candidate")
+  app.add_option("--frames", options.frames, "Pairs of frames (candidate, reference) timed per candidate (default 5)")
       ->check(CLI::Range(3U, 1000U))
       ->type_name("N");
   app.add_option("--warmup", options.warmup,
