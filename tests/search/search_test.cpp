@@ -163,6 +163,37 @@ TEST_F(SearchRun, WritesAMonotoneChainOfAccumulatingRewrites) {
   EXPECT_GT(fs::file_size(dir_ / "out/error_time.png"), 0U);
 }
 
+// Dropping the faint blur changes no pixel; dropping either of the others
+// costs an RMSE near 0.09 (see the test above), over the budget: the chain
+// ends after one level and says why.
+TEST_F(SearchRun, StopsAtTheErrorBudget) {
+  std::ostringstream out, err;
+  const std::vector<std::string> args{"--search",
+                                      "--scene",
+                                      (dir_ / "scene.json").string(),
+                                      "--shader",
+                                      "Blurred",
+                                      "--component",
+                                      "color",
+                                      "--k1",
+                                      "4",
+                                      "--frames",
+                                      "3",
+                                      "--error-budget",
+                                      "0.05",
+                                      "--validation",
+                                      "-o",
+                                      (dir_ / "out").string()};
+  ASSERT_EQ(runSearchTool(args, out, err), kExitSuccess) << err.str() << out.str();
+  const auto rows = csvRows(dir_ / "out/chain.csv");
+  ASSERT_EQ(rows.size(), 2U) << out.str();
+  EXPECT_EQ(rows[1][7], "call-to-argument");
+  EXPECT_LE(std::stod(rows[1][1]), 0.05);
+  EXPECT_NE(readText(dir_ / "out/report.md").find("Stopped: no candidate is within the error budget"),
+            std::string::npos)
+      << readText(dir_ / "out/report.md");
+}
+
 TEST(SearchCommandLine, RefusesWhatItCannotRun) {
   const fs::path dir = fs::temp_directory_path() / fmt::format("spire_search_cli_{}", ::getpid());
   fs::remove_all(dir);
