@@ -101,6 +101,27 @@ class SearchRun : public vk::testing::DeviceTest {
     DeviceTest::TearDown();
     if (!HasFailure()) fs::remove_all(dir_);
   }
+  // The search of `color` on the test's scene into out/, with validation,
+  // and `extra` options. Nine pairs of frames per candidate: a median the
+  // timing noise of a busy machine does not move.
+  std::vector<std::string> searchArgs(const std::vector<std::string>& extra) const {
+    std::vector<std::string> args{"--search",
+                                  "--scene",
+                                  (dir_ / "scene.json").string(),
+                                  "--shader",
+                                  "Blurred",
+                                  "--component",
+                                  "color",
+                                  "--k1",
+                                  "4",
+                                  "--frames",
+                                  "9",
+                                  "--validation",
+                                  "-o",
+                                  (dir_ / "out").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  }
   // spirec on the written module with level K's decisions: the placement it dumps.
   std::string compileLevel(size_t k) {
     const fs::path err = dir_ / "spirec.err";
@@ -119,22 +140,7 @@ class SearchRun : public vk::testing::DeviceTest {
 
 TEST_F(SearchRun, WritesAMonotoneChainOfAccumulatingRewrites) {
   std::ostringstream out, err;
-  const std::vector<std::string> args{"--search",
-                                      "--scene",
-                                      (dir_ / "scene.json").string(),
-                                      "--shader",
-                                      "Blurred",
-                                      "--component",
-                                      "color",
-                                      "--k1",
-                                      "4",
-                                      "--max-levels",
-                                      "3",
-                                      "--frames",
-                                      "3",
-                                      "--validation",
-                                      "-o",
-                                      (dir_ / "out").string()};
+  const std::vector<std::string> args = searchArgs({"--max-levels", "3"});
   ASSERT_EQ(runSearchTool(args, out, err), kExitSuccess) << err.str() << out.str();
   const auto rows = csvRows(dir_ / "out/chain.csv");
   // Every rewrite drops a blur, so there are two levels at least (then only
@@ -168,22 +174,7 @@ TEST_F(SearchRun, WritesAMonotoneChainOfAccumulatingRewrites) {
 // ends after one level and says why.
 TEST_F(SearchRun, StopsAtTheErrorBudget) {
   std::ostringstream out, err;
-  const std::vector<std::string> args{"--search",
-                                      "--scene",
-                                      (dir_ / "scene.json").string(),
-                                      "--shader",
-                                      "Blurred",
-                                      "--component",
-                                      "color",
-                                      "--k1",
-                                      "4",
-                                      "--frames",
-                                      "3",
-                                      "--error-budget",
-                                      "0.05",
-                                      "--validation",
-                                      "-o",
-                                      (dir_ / "out").string()};
+  const std::vector<std::string> args = searchArgs({"--error-budget", "0.05"});
   ASSERT_EQ(runSearchTool(args, out, err), kExitSuccess) << err.str() << out.str();
   const auto rows = csvRows(dir_ / "out/chain.csv");
   ASSERT_EQ(rows.size(), 2U) << out.str();
