@@ -10,6 +10,7 @@
 
 #include "simplify/cost_model.h"
 #include "simplify/rewrite_rules.h"
+#include "simplify/rewrite_target.h"
 
 namespace spire::simplify {
 namespace {
@@ -25,59 +26,9 @@ struct Candidate {
   int64_t cost = 0;          // of the definition it rewrites, as written (cost_model.h)
 };
 
-bool immutable(const sem::Component& component) {
-  return std::any_of(component.attributes.begin(), component.attributes.end(),
-                     [](const ast::Attribute* a) { return a->name == "Immutable"; });
-}
-
-// The components to simplify, in the shader's order.
-Expected<std::vector<const sem::Component*>, Failure> selectComponents(const sem::Shader& shader,
-                                                                       const SimplifyOptions& options) {
-  std::set<std::string> wanted(options.components.begin(), options.components.end());
-  std::vector<const sem::Component*> selected;
-  for (const sem::Component& c : shader.components) {
-    const bool fromPipeline = shader.pipeline && c.origin == shader.pipeline->name;
-    const bool named = wanted.erase(c.name) > 0;
-    if (!options.components.empty() && !named) continue;
-    if (named && (fromPipeline || immutable(c))) {
-      return Failure{fmt::format("'{}' cannot be simplified: it is {}", c.name,
-                                 fromPipeline ? "the pipeline's" : "marked [Immutable]")};
-    }
-    if (fromPipeline || immutable(c)) continue;
-    selected.push_back(&c);
-  }
-  if (!wanted.empty()) {
-    return Failure{fmt::format("'{}' has no component '{}'", shader.name, *wanted.begin())};
-  }
-  return selected;
-}
-
 std::string siteOf(const SourceManager& sources, const SourceRange& range) {
   const LineCol at = sources.begin(range);
   return fmt::format("{}:{}:{}", fs::path(sources.file(range.file).path).filename().string(), at.line, at.column);
-}
-
-// `decl`'s source with `rewrite` applied and the name given `variation`.
-std::string rewrittenText(const SourceManager& sources, const ast::ComponentDecl& decl, const Rewrite& rewrite,
-                          const std::string& variation) {
-  const uint32_t base = decl.range.begin;
-  std::string text(sources.text(decl.range));
-  text.replace(rewrite.range.begin - base, rewrite.range.end - rewrite.range.begin, rewrite.replacement);
-  // The name comes before the definition, so its offsets still hold.
-  if (decl.variation.empty()) {
-    text.insert(decl.nameRange.end - base, ":" + variation);
-  } else {
-    text.replace(decl.variationRange.begin - base, decl.variationRange.end - decl.variationRange.begin, variation);
-  }
-  return text;
-}
-
-// Where rewrittenText puts `rewrite`'s replacement: after the name, whose
-// variation part grew or shrank.
-size_t replacementOffset(const ast::ComponentDecl& decl, const Rewrite& rewrite, const std::string& variation) {
-  const size_t before = rewrite.range.begin - decl.range.begin;
-  if (decl.variation.empty()) return before + 1 + variation.size();
-  return before + variation.size() - (decl.variationRange.end - decl.variationRange.begin);
 }
 
 std::set<std::string> variationNames(const sem::Component& component) {
@@ -238,7 +189,7 @@ Expected<Simplified, Failure> simplifyShader(const ShaderLibrary& library, const
   if (!shader) return Failure{fmt::format("no shader named '{}'", options.shader)};
   auto header = headerFor(library, *shader, options);
   if (!header) return header.error();
-  auto components = selectComponents(*shader, options);
+  auto components = selectComponents(*shader, options.components);
   if (!components) return components.error();
   std::vector<Candidate> candidates;
   for (const sem::Component* component : *components) {

@@ -35,6 +35,8 @@ ALLOWED = {
     "tool": {"support", "driver", "renderer", "vk", "scene", "measure", "lod"},
     "tune": {"support", "graph", "driver", "renderer", "tool", "vk", "scene", "measure", "lod"},
     "demo": {"support", "driver", "renderer", "tool", "vk", "scene", "measure", "lod"},
+    "search": {"support", "syntax", "sema", "graph", "driver", "simplify", "renderer", "tool", "vk", "scene",
+               "measure", "lod", "tune"},
     "explore": {"support", "graph", "driver", "renderer", "tool", "vk", "scene", "measure", "lod", "demo", "tune"},
 }
 

@@ -1,0 +1,56 @@
+#include "simplify/rewrite_target.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <set>
+
+namespace spire::simplify {
+
+bool immutable(const sem::Component& component) {
+  return std::any_of(component.attributes.begin(), component.attributes.end(),
+                     [](const ast::Attribute* a) { return a->name == "Immutable"; });
+}
+
+Expected<std::vector<const sem::Component*>, Failure> selectComponents(const sem::Shader& shader,
+                                                                       const std::vector<std::string>& components) {
+  std::set<std::string> wanted(components.begin(), components.end());
+  std::vector<const sem::Component*> selected;
+  for (const sem::Component& c : shader.components) {
+    const bool fromPipeline = shader.pipeline && c.origin == shader.pipeline->name;
+    const bool named = wanted.erase(c.name) > 0;
+    if (!components.empty() && !named) continue;
+    if (named && (fromPipeline || immutable(c))) {
+      return Failure{fmt::format("'{}' cannot be simplified: it is {}", c.name,
+                                 fromPipeline ? "the pipeline's" : "marked [Immutable]")};
+    }
+    if (fromPipeline || immutable(c)) continue;
+    selected.push_back(&c);
+  }
+  if (!wanted.empty()) {
+    return Failure{fmt::format("'{}' has no component '{}'", shader.name, *wanted.begin())};
+  }
+  return selected;
+}
+
+std::string rewrittenText(const SourceManager& sources, const ast::ComponentDecl& decl, const Rewrite& rewrite,
+                          const std::string& variation) {
+  const uint32_t base = decl.range.begin;
+  std::string text(sources.text(decl.range));
+  text.replace(rewrite.range.begin - base, rewrite.range.end - rewrite.range.begin, rewrite.replacement);
+  // The name comes before the definition, so its offsets still hold.
+  if (decl.variation.empty()) {
+    text.insert(decl.nameRange.end - base, ":" + variation);
+  } else {
+    text.replace(decl.variationRange.begin - base, decl.variationRange.end - decl.variationRange.begin, variation);
+  }
+  return text;
+}
+
+size_t replacementOffset(const ast::ComponentDecl& decl, const Rewrite& rewrite, const std::string& variation) {
+  const size_t before = rewrite.range.begin - decl.range.begin;
+  if (decl.variation.empty()) return before + 1 + variation.size();
+  return before + variation.size() - (decl.variationRange.end - decl.variationRange.begin);
+}
+
+}  // namespace spire::simplify

@@ -1,0 +1,37 @@
+// What a rewrite works on and what it makes, shared by spire-simplify's one
+// step from the author's source (simplification.h) and the greedy search,
+// which rewrites the definition its previous level wrote (engine-demo/search):
+// the components a run may rewrite, and a definition's text with one rewrite
+// applied under a new variation name.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sema/semantic_model.h"
+#include "simplify/rewrite_rules.h"
+#include "support/expected.h"
+#include "support/source_manager.h"
+#include "syntax/ast.h"
+
+namespace spire::simplify {
+
+// Whether the component is marked [Immutable] (no rule may touch it).
+bool immutable(const sem::Component& component);
+
+// The components of `shader` to rewrite, in the shader's order: `wanted`, or
+// every one when it is empty, never the pipeline's or [Immutable] ones.
+// Naming one of those, or a component the shader lacks, is an error.
+Expected<std::vector<const sem::Component*>, Failure> selectComponents(const sem::Shader& shader,
+                                                                       const std::vector<std::string>& wanted);
+
+// `decl`'s source with `rewrite` applied, named `variation` (which replaces
+// the variation it had, if any).
+std::string rewrittenText(const SourceManager& sources, const ast::ComponentDecl& decl, const Rewrite& rewrite,
+                          const std::string& variation);
+
+// Where rewrittenText puts `rewrite`'s replacement in its result: after the
+// name, whose variation part grew or shrank.
+size_t replacementOffset(const ast::ComponentDecl& decl, const Rewrite& rewrite, const std::string& variation);
+
+}  // namespace spire::simplify

@@ -1,0 +1,57 @@
+// A search step's candidates (He et al. 2015, propose_xforms): each rule's
+// first K1 rewrites of every selected component's current definition, the
+// one the current level places, read from the compiled module of that level.
+// So level k's candidates rewrite level k-1's definitions, and rewrites
+// accumulate. The rules are spire-simplify's (compiler/simplify), which order
+// their rewrites by the source they remove, most first.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "driver/shader_library.h"
+#include "search/chain.h"
+#include "support/expected.h"
+
+namespace spire::search {
+
+// How the search compiles its modules: as the renderer compiles the
+// instance's source (the scene's include folders, its pipeline).
+struct ModuleCompile {
+  FrontEndOptions frontEnd;
+  std::optional<std::string> pipelineSource;
+};
+
+// `text`, as if read from `path`, compiled with its sources; the compiler's
+// first error when it or the derived shader does not compile.
+Expected<std::unique_ptr<ShaderLibrary>, Failure> compileModule(const ModuleCompile& compile, const std::string& path,
+                                                                const std::string& text, const std::string& derived);
+
+struct Candidate {
+  Rewriting rewriting;  // as measured: variation `candidateJ`
+  Rewriting level;      // the same rewrite named as the level it would make
+  std::string key;      // the rewrite's identity across steps, for the error cache: the definition it makes
+};
+
+struct StepRequest {
+  const ShaderLibrary* current = nullptr;  // the compiled module of the current level
+  std::string derived;
+  Placement placement;  // the current level's
+  Placement original;   // level 0's: the variation names grow from its
+  std::vector<std::string> components;
+  size_t k1 = 1;
+  size_t level = 1;  // the level the candidates would make
+};
+
+// Every candidate of the step, component by component in `components`
+// order, each rule's first K1 per component.
+Expected<std::vector<Candidate>, Failure> proposeCandidates(const StepRequest& request);
+
+// The variation name of a search's definition: `kind` and `number` after the
+// author's variation, if the original placement had one (`ggx_level2`).
+std::string searchVariation(const std::string& originalVariation, const std::string& kind, size_t number);
+
+}  // namespace spire::search

@@ -1,0 +1,69 @@
+// The level-of-detail chain a greedy search builds (He et al. 2015): level 0
+// is the author's shader, and level k is level k-1 with one more rewrite, so
+// rewrites accumulate. Each level is a placement of the derived shader's
+// components, whose rewritten ones are named variations of it
+// (`albedo:level2`), so a decision file selects a level like any variation
+// a person wrote.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace spire::search {
+
+// One rewrite of a component's current definition under a variation name:
+// an accepted step (`albedo:level2`) or a candidate for one.
+struct Rewriting {
+  std::string component;  // "albedo"
+  std::string from;       // the definition it rewrites: "albedo", "albedo:level1"
+  std::string variation;  // its own name: "level2"
+  std::string rule;       // "constant-operand", ...
+  std::string before;     // the source it replaced
+  std::string after;
+  std::string text;  // the whole definition, named component:variation
+};
+
+// component -> "World" or "World:variation", every live component: a
+// variant as a decision file states it.
+using Placement = std::vector<std::pair<std::string, std::string>>;
+
+// `placement` with `component` computed in the same world, as `variation`.
+Placement withVariation(Placement placement, const std::string& component, const std::string& variation);
+// The variation a placement names ("ggx" of "Fragment:ggx"), or "".
+std::string variationOf(const std::string& placement);
+// The world a placement names ("Fragment" of "Fragment:ggx").
+std::string worldOf(const std::string& placement);
+
+struct Level {
+  double error = 0.0;      // RMSE against level 0 over every camera view and parameter sample
+  double timeRatio = 1.0;  // frame time over level 0's, frame for frame
+  double frameMs = 0.0;    // timeRatio times level 0's median frame time
+  std::string kernels;     // its kernels' hashes: equal ones are the same program
+  Placement placement;
+};
+
+// What a level costs, lower is cheaper: the one function a search ranks and
+// orders its levels by. Today the frame time measured against level 0 (the
+// time ratio); a static cost model of the program can take its place.
+double costOf(const Level& level);
+
+struct Chain {
+  std::vector<Level> levels;     // levels[0] is the author's shader
+  std::vector<Rewriting> steps;  // steps[k - 1] made levels[k]
+  std::string stopReason;        // why there is no further level
+  std::vector<std::string> log;  // what each step measured and chose, for the report
+};
+
+struct ModuleHeader {
+  std::string usingPath;  // the shader's source, relative to the module's folder
+  std::string base;       // "Terrain"
+  std::string derived;    // "TerrainSearch"
+};
+
+// The derived shader holding `definitions` (each with a comment naming the
+// rewrite it adds to the definition it comes from), as Spire source.
+std::string chainModuleText(const ModuleHeader& header, const std::vector<const Rewriting*>& definitions);
+
+}  // namespace spire::search

@@ -1,0 +1,247 @@
+#include "search/greedy_search.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+#include <optional>
+
+#include "search/candidate_ranking.h"
+#include "support/file_io.h"
+
+namespace spire::search {
+
+namespace {
+
+struct Trial {
+  Candidate candidate;
+  Measure measure;
+  bool fromCache = false;
+  tune::VariantResult result;  // when measured in this step
+};
+
+struct Accepted {
+  Rewriting step;
+  Level level;
+};
+
+// What a step ended with: a level, a stale cache (choose again), or nothing.
+struct Choice {
+  std::optional<Accepted> accepted;
+  bool stale = false;
+};
+
+class GreedySearch {
+ public:
+  GreedySearch(const SearchSetup& setup, const SearchOptions& options, std::ostream& progress)
+      : setup_(setup), options_(options), progress_(progress) {}
+
+  Expected<Chain, Failure> run();
+
+ private:
+  Expected<std::optional<Accepted>, Failure> step(size_t level);
+  Expected<std::vector<Candidate>, Failure> propose(size_t level);
+  Expected<void, Failure> writeStepModule(size_t level, int attempt, std::vector<Candidate>& candidates);
+  std::vector<Trial> measureCandidates(const std::vector<Candidate>& candidates);
+  Choice choose(const std::vector<size_t>& order, std::vector<Trial>& trials);
+  tune::VariantResult measure(const Placement& placement);
+  Placement live(const Placement& placement);
+  Level levelOf(const tune::VariantResult& result, Placement placement) const;
+  std::vector<const Rewriting*> accepted() const;
+  void note(const std::string& line);
+
+  const SearchSetup& setup_;
+  const SearchOptions& options_;
+  std::ostream& progress_;
+  Chain chain_;
+  std::map<std::string, Measure> cache_;  // the error cache, by rewrite
+  uint64_t points_ = 0;
+};
+
+Measure measureOf(const Level& level) { return {level.error, costOf(level)}; }
+
+void GreedySearch::note(const std::string& line) {
+  progress_ << line << "\n";
+  chain_.log.push_back(line);
+}
+
+tune::VariantResult GreedySearch::measure(const Placement& placement) {
+  tune::TunePoint point;
+  point.index = points_++;
+  point.decisions = {placement.begin(), placement.end()};
+  return setup_.tuner->measure(point);
+}
+
+// The components `placement` computes: a rewrite can leave another
+// component unread (`max(a, b)` -> `a` drops b), and rewriting that one
+// would change nothing.
+Placement GreedySearch::live(const Placement& placement) {
+  tune::TunePoint point;
+  point.decisions = {placement.begin(), placement.end()};
+  auto program = setup_.tuner->program(point);
+  return program ? program->placement : placement;
+}
+
+Level GreedySearch::levelOf(const tune::VariantResult& result, Placement placement) const {
+  return {result.rmse, result.time.median, result.frameMs, result.kernels, std::move(placement)};
+}
+
+std::vector<const Rewriting*> GreedySearch::accepted() const {
+  std::vector<const Rewriting*> steps;
+  for (const Rewriting& r : chain_.steps) steps.push_back(&r);
+  return steps;
+}
+
+Expected<Chain, Failure> GreedySearch::run() {
+  const tune::VariantResult original = measure(setup_.original);
+  if (!original.ok()) return Failure{fmt::format("the original shader cannot be measured: {}", original.status)};
+  chain_.levels.push_back(levelOf(original, setup_.original));
+  note(fmt::format("level 0: the original, RMSE {:.6f}, time ratio {:.3f}", original.rmse, original.time.median));
+  for (size_t level = 1; level <= options_.maxLevels; ++level) {
+    auto next = step(level);
+    if (!next) return next.error();
+    if (!*next) return std::move(chain_);
+    chain_.steps.push_back((*next)->step);
+    chain_.levels.push_back((*next)->level);
+  }
+  chain_.stopReason = fmt::format("the chain has {} levels after the original (--max-levels)", options_.maxLevels);
+  return std::move(chain_);
+}
+
+Expected<std::vector<Candidate>, Failure> GreedySearch::propose(size_t level) {
+  const std::string path = (setup_.workDir / fmt::format("level{}.spire", level - 1)).string();
+  auto current = compileModule(setup_.compile, path, chainModuleText(setup_.header, accepted()), setup_.header.derived);
+  if (!current) return Failure{fmt::format("level {} does not compile: {}", level - 1, current.error().message)};
+  StepRequest request{current->get(),
+                      setup_.header.derived,
+                      chain_.levels.back().placement,
+                      setup_.original,
+                      setup_.components,
+                      options_.k1,
+                      level};
+  return proposeCandidates(request);
+}
+
+// The step's module: the chain so far and every candidate. A candidate that
+// does not compile with the others is tried alone, and dropped if it fails.
+Expected<void, Failure> GreedySearch::writeStepModule(size_t level, int attempt, std::vector<Candidate>& candidates) {
+  const std::string path = (setup_.workDir / fmt::format("step{}-{}.spire", level, attempt)).string();
+  const auto textWith = [&](const std::vector<const Candidate*>& some) {
+    std::vector<const Rewriting*> definitions = accepted();
+    for (const Candidate* c : some) definitions.push_back(&c->rewriting);
+    return chainModuleText(setup_.header, definitions);
+  };
+  std::vector<const Candidate*> all;
+  for (const Candidate& c : candidates) all.push_back(&c);
+  if (!compileModule(setup_.compile, path, textWith(all), setup_.header.derived)) {
+    std::vector<Candidate> kept;
+    for (Candidate& c : candidates) {
+      auto alone = compileModule(setup_.compile, path, textWith({&c}), setup_.header.derived);
+      if (alone) kept.push_back(std::move(c));
+      if (!alone) note(fmt::format("  dropped {} ({}): {}", c.rewriting.from, c.rewriting.rule, alone.error().message));
+    }
+    candidates = std::move(kept);
+    all.clear();
+    for (const Candidate& c : candidates) all.push_back(&c);
+  }
+  if (auto written = writeFileAtomically(path, textWith(all)); !written) return written.error();
+  setup_.scene->instances.at(setup_.instance).source = path;
+  setup_.scene->instances.at(setup_.instance).shader = setup_.header.derived;
+  return {};
+}
+
+// Each candidate's error: from the cache, or rendered. Candidates that fail
+// or whose program is the current level's (the rewrite changed nothing the
+// compiler kept) are left out.
+std::vector<Trial> GreedySearch::measureCandidates(const std::vector<Candidate>& candidates) {
+  const Level& current = chain_.levels.back();
+  std::vector<Trial> trials;
+  for (const Candidate& c : candidates) {
+    if (const auto hit = cache_.find(c.key); hit != cache_.end()) {
+      trials.push_back({c, hit->second, true, {}});
+      continue;
+    }
+    tune::VariantResult result =
+        measure(withVariation(current.placement, c.rewriting.component, c.rewriting.variation));
+    if (!result.ok()) {
+      note(fmt::format("  skipped {} ({}): {}", c.rewriting.from, c.rewriting.rule, result.status));
+      continue;
+    }
+    if (result.kernels == current.kernels) continue;
+    const Measure measured{result.rmse, costOf(levelOf(result, {}))};
+    cache_[c.key] = measured;
+    trials.push_back({c, measured, false, std::move(result)});
+  }
+  return trials;
+}
+
+Choice GreedySearch::choose(const std::vector<size_t>& order, std::vector<Trial>& trials) {
+  const Level& current = chain_.levels.back();
+  for (const size_t i : order) {
+    Trial& t = trials[i];
+    const Rewriting& r = t.candidate.level;
+    tune::VariantResult fresh =
+        t.fromCache ? measure(withVariation(current.placement, r.component, t.candidate.rewriting.variation))
+                    : t.result;
+    if (!fresh.ok() || fresh.kernels == current.kernels) continue;
+    if (t.fromCache && std::abs(fresh.rmse - t.measure.error) > options_.k3 * t.measure.error) {
+      note(fmt::format("  stale: {} ({}) cached RMSE {:.6f}, now {:.6f}; the cache is emptied", r.from, r.rule,
+                       t.measure.error, fresh.rmse));
+      return {std::nullopt, true};
+    }
+    // Liveness from the step's module, which names the rewrite as the candidate.
+    const Placement measured = live(withVariation(current.placement, r.component, t.candidate.rewriting.variation));
+    Level level = levelOf(fresh, withVariation(measured, r.component, r.variation));
+    if (level.error > options_.errorBudget || !keepsChainMonotone(measureOf(current), measureOf(level))) {
+      note(fmt::format(
+          "  not taken: {} ({}) RMSE {:.6f}, time ratio {:.3f} is over the budget or breaks the monotone chain", r.from,
+          r.rule, level.error, level.timeRatio));
+      continue;
+    }
+    return {Accepted{r, std::move(level)}, false};
+  }
+  return {};
+}
+
+Expected<std::optional<Accepted>, Failure> GreedySearch::step(size_t level) {
+  for (int attempt = 0;; ++attempt) {
+    auto candidates = propose(level);
+    if (!candidates) return candidates.error();
+    if (candidates->empty()) {
+      chain_.stopReason = "no rewrite is left";
+      return std::optional<Accepted>{};
+    }
+    if (auto written = writeStepModule(level, attempt, *candidates); !written) return written.error();
+    std::vector<Trial> trials = measureCandidates(*candidates);
+    std::vector<Measure> measures;
+    for (const Trial& t : trials) measures.push_back(t.measure);
+    const std::vector<size_t> order =
+        rankCandidates(measureOf(chain_.levels.back()), measures, {options_.k2, options_.errorBudget});
+    Choice choice = choose(order, trials);
+    if (choice.stale) {
+      cache_.clear();
+      continue;
+    }
+    if (!choice.accepted) {
+      chain_.stopReason = trials.empty() ? "no rewrite changes the program"
+                                         : "no candidate is within the error budget and keeps the chain monotone";
+      note(fmt::format("level {}: {} candidate(s); stop: {}", level, candidates->size(), chain_.stopReason));
+      return std::optional<Accepted>{};
+    }
+    const Accepted& a = *choice.accepted;
+    note(
+        fmt::format("level {}: {} candidate(s), {} ranked; {}:{} = {} with {}: '{}' -> '{}', RMSE {:.6f}, time ratio "
+                    "{:.3f}",
+                    level, candidates->size(), order.size(), a.step.component, a.step.variation, a.step.from,
+                    a.step.rule, a.step.before, a.step.after, a.level.error, a.level.timeRatio));
+    return std::move(choice.accepted);
+  }
+}
+
+}  // namespace
+
+Expected<Chain, Failure> greedySearch(const SearchSetup& setup, const SearchOptions& options, std::ostream& progress) {
+  return GreedySearch(setup, options, progress).run();
+}
+
+}  // namespace spire::search

@@ -1,0 +1,68 @@
+#include "search/search_options.h"
+
+#include <CLI/CLI.hpp>
+
+#include "driver/tool_arguments.h"
+
+namespace spire::search {
+
+namespace {
+
+void defineMeasurement(CLI::App& app, SearchOptions& options) {
+  app.add_option("--frames", options.frames, "Pairs of frames (candidate, reference) timed per candidate (default 5)")
+      ->check(CLI::Range(3U, 1000U))
+      ->type_name("N");
+  app.add_option("--warmup", options.warmup,
+                 "Unmeasured frames before the measured ones (the captures of the camera views count)")
+      ->check(CLI::Range(1U, 100U))
+      ->type_name("N");
+  app.add_option("--bake-size", options.bakeSize, "PrebakeTex size without a TextureSize hint")
+      ->check(CLI::Range(1U, 8192U))
+      ->type_name("N");
+  app.add_option("--param", options.params,
+                 "Measure error over samples of a material parameter's range (repeatable), as spire-tune does")
+      ->type_name("NAME=MIN:MAX");
+  app.add_option("--param-samples", options.paramSamples, "Random samples besides the minimum and maximum")
+      ->check(CLI::Range(0U, 100U))
+      ->type_name("N");
+  app.add_option("--seed", options.seed, "Seed of the parameter samples")->type_name("N");
+  app.add_option("--device", options.device, "Vulkan device whose name contains TEXT")->type_name("TEXT");
+  app.add_flag("--validation", options.validation, "Enable VK_LAYER_KHRONOS_validation; any message fails the run");
+}
+
+}  // namespace
+
+void defineSearchOptions(CLI::App& app, SearchOptions& options) {
+  addVersionFlag(app);
+  app.add_flag("--search")->description("Search: He et al. 2015's greedy search on a scene (this command line)");
+  app.add_option("--scene", options.scenePath, "Scene file (docs/scene.md)")->required()->type_name("SCENE.json");
+  app.add_option("--shader", options.shader, "The shader to simplify (an instance of the scene must use it)")
+      ->required()
+      ->type_name("NAME");
+  app.add_option("--component", options.components,
+                 "Simplify only this component (repeatable; default: every one the shader defines)")
+      ->type_name("NAME");
+  app.add_option("--k1", options.k1, "Rewrites each rule proposes per component and step (default 2)")
+      ->check(CLI::Range(size_t{1}, size_t{100}))
+      ->type_name("N");
+  app.add_option("--k2", options.k2, "Keep candidates whose error is at most K2 x the median error (default 1)")
+      ->check(CLI::PositiveNumber)
+      ->type_name("X");
+  app.add_option("--k3", options.k3,
+                 "A cached error off the fresh one by more than K3 x itself empties the cache and the step is "
+                 "chosen again (default 0.15)")
+      ->check(CLI::NonNegativeNumber)
+      ->type_name("X");
+  app.add_option("--max-levels", options.maxLevels, "Levels after the original (default 6)")
+      ->check(CLI::Range(size_t{1}, size_t{1000}))
+      ->type_name("N");
+  app.add_option("--error-budget", options.errorBudget, "Stop before a level whose RMSE exceeds E")
+      ->check(CLI::NonNegativeNumber)
+      ->type_name("E");
+  app.add_option("--name", options.derivedName, "The derived shader's name (default: SHADER + Search)")
+      ->type_name("NAME");
+  addOutputDirectory(app, options.outputDir, "Write the chain (module, decision files, report) to DIR")->required();
+  defineMeasurement(app, options);
+}
+
+}  // namespace spire::search

@@ -1,0 +1,43 @@
+// What `spire-simplify --search` is asked to do (docs/simplification.md,
+// "Search"): He et al. 2015's greedy search over a scene's shader, with the
+// paper's K1, K2 and K3, and how its candidates are rendered and measured.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace spire::search {
+
+struct SearchOptions {
+  std::string scenePath;
+  std::string shader;                   // the shader of the scene's instance to simplify
+  std::vector<std::string> components;  // empty: every one spire-simplify may rewrite
+  size_t k1 = 2;                        // rewrites each rule proposes per component and step
+  double k2 = 1.0;                      // candidates kept: error <= K2 x the median candidate error
+  double k3 = 0.15;                     // a cached error off the fresh one by more than K3 x itself is stale
+  size_t maxLevels = 6;                 // levels after the original
+  double errorBudget = std::numeric_limits<double>::infinity();  // RMSE no level may exceed
+  std::string outputDir;
+  std::string derivedName;  // default: the shader's name + "Search"
+  // Measurement, as spire-tune's options of the same names.
+  uint32_t frames = 5;  // pairs of frames timed per candidate
+  uint32_t warmup = 1;
+  uint32_t bakeSize = 512;
+  std::vector<std::string> params;  // NAME=MIN:MAX parameter ranges
+  uint32_t paramSamples = 1;
+  uint64_t seed = 1;
+  std::string device;
+  bool validation = false;
+};
+
+// Declares the options on `app`, spire-simplify's command line with --search.
+void defineSearchOptions(CLI::App& app, SearchOptions& options);
+
+}  // namespace spire::search

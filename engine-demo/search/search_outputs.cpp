@@ -1,0 +1,113 @@
+#include "search/search_outputs.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "graph/decision_file.h"
+#include "scene/texture.h"
+#include "tune/error_plot.h"
+#include "tune/results_csv.h"
+
+namespace spire::search {
+
+namespace {
+
+std::string decisionFile(const Chain& chain, size_t k, const ModuleHeader& header) {
+  const Level& level = chain.levels[k];
+  const std::string what = k == 0 ? "the original" : fmt::format("{} rewrite(s) of the original", k);
+  graph::DecisionFile decisions;
+  for (const auto& [component, placement] : level.placement) {
+    decisions.lines.push_back(graph::makeDecision(header.derived, component, placement));
+  }
+  return graph::writeDecisionFile(
+      decisions, fmt::format("spire-simplify --search: level {} of {}'s chain, {}.\nMeasured: RMSE {:.6f}, time "
+                             "ratio {:.3f} against level 0.",
+                             k, header.base, what, level.error, level.timeRatio));
+}
+
+std::string chainCsv(const Chain& chain) {
+  std::string text = "level,rmse,time_ratio,frame_ms,component,variation,from,rule,before,after\n";
+  for (size_t k = 0; k < chain.levels.size(); ++k) {
+    const Level& level = chain.levels[k];
+    text += fmt::format("{},{:.6f},{:.4f},{:.4f}", k, level.error, level.timeRatio, level.frameMs);
+    if (k == 0) {
+      text += ",,,,,,\n";
+      continue;
+    }
+    const Rewriting& r = chain.steps[k - 1];
+    text +=
+        fmt::format(",{},{},{},{},{},{}\n", tune::quoteCsv(r.component), tune::quoteCsv(r.variation),
+                    tune::quoteCsv(r.from), tune::quoteCsv(r.rule), tune::quoteCsv(r.before), tune::quoteCsv(r.after));
+  }
+  return text;
+}
+
+// Markdown table cells: a `|` would end the cell, a backtick the code span.
+std::string cell(const std::string& text) {
+  std::string escaped;
+  for (const char c : text) escaped += c == '|' ? std::string("\\|") : std::string(1, c == '`' ? '\'' : c);
+  return escaped;
+}
+
+std::string report(const Chain& chain, const OutputRequest& request) {
+  const SearchOptions& o = *request.options;
+  std::string text = fmt::format(
+      "# Greedy simplification of {}\n\n"
+      "He et al. 2015's search on `{}`: K1 = {}, K2 = {}, K3 = {}, at most {} level(s), error budget {}. "
+      "Error is the RMSE against level 0 over every camera view and parameter sample; time is the frame time "
+      "over level 0's, frame for frame (level 0: {:.3f} ms).\n\n"
+      "Stopped: {}.\n\n![error against time](error_time.png)\n\n"
+      "| level | RMSE | time ratio | frame ms | rewrite |\n|---|---|---|---|---|\n",
+      request.header.base, o.scenePath, o.k1, o.k2, o.k3, o.maxLevels, o.errorBudget, request.referenceMs,
+      chain.stopReason);
+  for (size_t k = 0; k < chain.levels.size(); ++k) {
+    const Level& level = chain.levels[k];
+    std::string rewrite = "the original";
+    if (k > 0) {
+      const Rewriting& r = chain.steps[k - 1];
+      rewrite = fmt::format("`{}:{}` = `{}` with {}: `{}` → `{}`", r.component, r.variation, r.from, r.rule,
+                            cell(r.before), cell(r.after));
+    }
+    text += fmt::format("| {} | {:.6f} | {:.3f} | {:.3f} | {} |\n", k, level.error, level.timeRatio, level.frameMs,
+                        rewrite);
+  }
+  text += "\n## Steps\n\n```\n";
+  for (const std::string& line : chain.log) text += line + "\n";
+  return text + "```\n";
+}
+
+Expected<std::string, Failure> plot(const Chain& chain) {
+  std::vector<tune::Measured> points;
+  for (const Level& level : chain.levels) points.push_back({level.frameMs, level.error, true});
+  std::vector<size_t> order(points.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return points[a].frameMs < points[b].frameMs; });
+  auto png = scene::encodePng(tune::plotErrorAgainstTime(points, order));
+  if (!png) return Failure{fmt::format("cannot encode the plot: {}", png.error().message)};
+  return std::move(png).value();
+}
+
+}  // namespace
+
+std::string moduleFileName(const ModuleHeader& header) { return header.derived + ".spire"; }
+
+Expected<FileSet, Failure> searchOutputs(const Chain& chain, const OutputRequest& request) {
+  FileSet files;
+  std::vector<const Rewriting*> steps;
+  for (const Rewriting& r : chain.steps) steps.push_back(&r);
+  files.emplace_back(moduleFileName(request.header), chainModuleText(request.header, steps));
+  for (size_t k = 0; k < chain.levels.size(); ++k) {
+    files.emplace_back(fmt::format("level{}.decisions", k), decisionFile(chain, k, request.header));
+  }
+  files.emplace_back("chain.csv", chainCsv(chain));
+  files.emplace_back("report.md", report(chain, request));
+  auto png = plot(chain);
+  if (!png) return png.error();
+  files.emplace_back("error_time.png", std::move(png).value());
+  return files;
+}
+
+}  // namespace spire::search

@@ -1,0 +1,188 @@
+#include "search/search_tool.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <optional>
+#include <ostream>
+
+#include "driver/exit_codes.h"
+#include "driver/tool_arguments.h"
+#include "search/greedy_search.h"
+#include "search/search_outputs.h"
+#include "simplify/rewrite_target.h"
+#include "tool/tool_run.h"
+#include "tune/parameter_range.h"
+
+namespace spire::search {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kTool = "spire-simplify";
+
+// The folder the step modules are written to, for the renderer to read;
+// removed with everything in it when the run ends.
+class WorkDir {
+ public:
+  WorkDir() : path_(fs::temp_directory_path() / fmt::format("spire-search-{}-{}", ::getpid(), counter_++)) {
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~WorkDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  WorkDir(const WorkDir&) = delete;
+  WorkDir& operator=(const WorkDir&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  static inline int counter_ = 0;
+  fs::path path_;
+};
+
+// The output folder is replaced as a whole: refuse one that holds anything
+// but an earlier search's output.
+std::optional<std::string> outputProblem(const std::string& dir) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) return std::nullopt;
+  if (!fs::is_directory(dir, ec)) return fmt::format("'{}' is not a directory", dir);
+  if (fs::is_empty(dir, ec) || fs::exists(fs::path(dir) / "chain.csv", ec)) return std::nullopt;
+  return fmt::format("'{}' is not empty and holds no earlier search (no chain.csv); it would be replaced", dir);
+}
+
+std::optional<size_t> findInstance(const scene::SceneFile& scene, const std::string& shader) {
+  const auto& instances = scene.instances;
+  const auto it = std::find_if(instances.begin(), instances.end(),
+                               [&](const scene::InstanceDesc& i) { return i.shader == shader && !i.kernels; });
+  if (it == instances.end()) return std::nullopt;
+  return static_cast<size_t>(it - instances.begin());
+}
+
+Expected<tune::TunerOptions, Failure> tunerOptions(const SearchOptions& options, const scene::SceneFile& scene,
+                                                   size_t instance) {
+  tune::TunerOptions tuner;
+  tuner.timing.minPairs = options.frames;
+  tuner.timing.maxPairs = options.frames;
+  tuner.warmupFrames = options.warmup;
+  std::vector<tune::ParameterRange> ranges;
+  for (const std::string& text : options.params) {
+    auto range = tune::parseParameter(text, scene.instances.at(instance), scene);
+    if (!range) return range.error();
+    ranges.push_back(*range);
+  }
+  tuner.parameterSamples = tune::parameterSamples(ranges, options.paramSamples, options.seed);
+  return tuner;
+}
+
+ModuleHeader headerIn(const fs::path& folder, const scene::InstanceDesc& instance, const SearchOptions& options) {
+  const fs::path source = fs::absolute(instance.source);
+  return {fs::relative(source, fs::absolute(folder)).generic_string(), options.shader,
+          options.derivedName.empty() ? options.shader + "Search" : options.derivedName};
+}
+
+// The components to rewrite and level 0's placement, from the original
+// shader as the scene compiles it, before the search points the instance
+// elsewhere.
+Expected<SearchSetup, Failure> makeSetup(engine::SceneRenderer& renderer, scene::SceneFile& scene, size_t instance,
+                                         const SearchOptions& options) {
+  auto library = renderer.library(instance);
+  if (!library) return Failure{library.error().message + library.error().details};
+  const sem::Shader* shader = (*library)->model().findShader(options.shader);
+  if (!shader) return Failure{fmt::format("no shader named '{}'", options.shader)};
+  if (shader->derivedFrom || !shader->decl) {
+    return Failure{fmt::format("'{}' is a member of a group; simplify the shader it is declared as", shader->name)};
+  }
+  auto components = simplify::selectComponents(*shader, options.components);
+  if (!components) return components.error();
+  auto programs = renderer.compile(std::nullopt);
+  if (!programs) return Failure{programs.error().message + programs.error().details};
+  const scene::InstanceDesc& desc = scene.instances.at(instance);
+  SearchSetup setup;
+  setup.scene = &scene;
+  setup.instance = instance;
+  for (const sem::Component* c : *components) setup.components.push_back(c->name);
+  setup.original = programs->at(instance).placement;
+  for (const fs::path& dir : scene.includePaths) setup.compile.frontEnd.includeDirs.push_back(dir.string());
+  setup.compile.frontEnd.pipeline = desc.pipeline;
+  if (desc.pipelineSource) setup.compile.pipelineSource = desc.pipelineSource->string();
+  return setup;
+}
+
+void printSummary(const Chain& chain, const SearchOptions& options, std::ostream& out) {
+  const Level& last = chain.levels.back();
+  out << fmt::format(
+      "{}: wrote a chain of {} level(s) after the original to {} (last: RMSE {:.6f}, time ratio {:.3f}); "
+      "stopped: {}\n",
+      kTool, chain.steps.size(), options.outputDir, last.error, last.timeRatio, chain.stopReason);
+}
+
+// The search on the renderer, then its outputs; the exit status.
+int search(const SearchOptions& options, engine::ToolRun& run, engine::SceneRenderer& renderer, scene::SceneFile& scene,
+           size_t instance, std::ostream& out) {
+  const auto fail = [&](const std::string& message) { return run.fail(engine::Error{message, {}, {}}); };
+  auto measurement = tunerOptions(options, scene, instance);
+  if (!measurement) return fail(measurement.error().message);
+  tune::Tuner tuner(renderer, instance, {}, std::move(measurement).value());
+  if (auto reference = tuner.renderReference(std::nullopt); !reference) return run.fail(reference.error());
+  auto setup = makeSetup(renderer, scene, instance, options);
+  if (!setup) return fail(setup.error().message);
+  const WorkDir work;
+  setup->tuner = &tuner;
+  setup->workDir = work.path();
+  setup->header = headerIn(work.path(), scene.instances.at(instance), options);
+  const ModuleHeader outputHeader = headerIn(options.outputDir, scene.instances.at(instance), options);
+  auto chain = greedySearch(*setup, options, out);
+  if (!chain) return fail(chain.error().message);
+  auto files = searchOutputs(*chain, {outputHeader, &options, tuner.referenceMs()});
+  if (!files) return fail(files.error().message);
+  if (auto written = replaceDirectoryAtomically(options.outputDir, *files); !written) {
+    return fail(written.error().message);
+  }
+  printSummary(*chain, options, out);
+  return kExitSuccess;
+}
+
+}  // namespace
+
+bool wantsSearch(const std::vector<std::string>& args) {
+  return std::find(args.begin(), args.end(), "--search") != args.end();
+}
+
+int runSearchTool(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  CLI::App app{
+      "spire-simplify --search: He et al. 2015's greedy simplification of a scene's shader, measured by "
+      "rendering, written as a level-of-detail chain",
+      kTool};
+  SearchOptions options;
+  defineSearchOptions(app, options);
+  if (const auto status = parseToolArguments(app, args, out, err)) return *status;
+  if (const auto problem = outputProblem(options.outputDir)) {
+    err << fmt::format("{}: error: {}\n", kTool, *problem);
+    return kExitUsageError;
+  }
+  engine::ToolRun run(kTool, err);
+  if (const auto status = run.loadScene(options.scenePath)) return *status;
+  const auto instance = findInstance(run.scene(), options.shader);
+  if (!instance) {
+    return run.fail(engine::Error{
+        fmt::format("no instance of '{}' compiles shader '{}' from source", options.scenePath, options.shader),
+        {},
+        {}});
+  }
+  if (const auto status = run.openDevice({options.device, options.validation, {}, {}})) return *status;
+  // A copy of the scene the search can point its instance at each step's
+  // module; the renderer keeps its meshes, textures and bakes throughout.
+  scene::SceneFile scene = run.scene();
+  engine::TextureBakeOptions bakeOptions;
+  bakeOptions.defaultSize = options.bakeSize;
+  engine::SceneRenderer renderer(run.context(), scene, run.diagnostics(), bakeOptions);
+  return run.finish(search(options, run, renderer, scene, *instance, out));
+}
+
+}  // namespace spire::search

@@ -1,0 +1,210 @@
+// spire-simplify --search on a scene the test writes: a shader whose `color`
+// is the max of three blurs (24 texture reads each, the third a quarter as
+// bright), so that every rewrite the rules propose drops a blur and saves a
+// third or more of the frame. The search runs in process with validation on,
+// as a user runs it; the chain it writes is checked with spirec.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "driver/exit_codes.h"
+#include "engine/device_fixture.h"
+#include "search/search_tool.h"
+
+namespace spire::search {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kShader = R"(using "pipelines/engine.spire";
+
+shader Blurred using EnginePipeline {
+    @MaterialUniform sampler2D colorMap;
+    @FrameUniform mat4 matMVP;
+
+    @Fragment vec4 wide {
+        vec4 sum = vec4(0.0);
+        for (int i = 0; i < 24; i++) { sum += texture(colorMap, vert_uv + vec2(float(i) * 0.004, 0.0)); }
+        return sum / 24.0;
+    }
+    @Fragment vec4 tall {
+        vec4 sum = vec4(0.0);
+        for (int i = 0; i < 24; i++) { sum += texture(colorMap, vert_uv + vec2(0.0, float(i) * 0.004)); }
+        return sum / 24.0;
+    }
+    @Fragment vec4 faint {
+        vec4 sum = vec4(0.0);
+        for (int i = 0; i < 24; i++) { sum += texture(colorMap, vert_uv + vec2(float(i) * 0.003)); }
+        return sum / 96.0;
+    }
+    @Fragment vec4 color = max(max(wide, tall), faint);
+
+    vec4 projPos = matMVP * vec4(vert_pos, 1.0);
+    vec4 output = color;
+}
+)";
+
+std::string sceneJson() {
+  return fmt::format(R"({{"resolution": [160, 120], "frames": 2, "warmupFrames": 1, "clearColor": [0, 0, 0, 1],
+  "includePaths": ["{}"],
+  "camera": {{"fovY": 60, "views": [{{"position": [0, 1.2, 0.01], "target": [0, 0, 0]}}]}},
+  "meshes": {{"plane": {{"type": "plane", "size": 2, "resolution": 4}}}},
+  "textures": {{"noise": {{"type": "noise", "size": 64, "seed": 9, "octaves": 3}}}},
+  "instances": [{{"mesh": "plane", "source": "blurred.spire", "shader": "Blurred",
+                  "material": {{"colorMap": "noise"}}}}]}}
+)",
+                     SPIRE_SOURCE_DIR);
+}
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::vector<std::vector<std::string>> csvRows(const fs::path& path) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream lines(readText(path));
+  std::string line;
+  std::getline(lines, line);  // the header
+  while (std::getline(lines, line)) {
+    std::vector<std::string> fields;
+    std::istringstream cells(line);
+    // The fields this test reads come before any quoted one.
+    for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
+class SearchRun : public vk::testing::DeviceTest {
+ protected:
+  void SetUp() override {
+    DeviceTest::SetUp();
+    dir_ = fs::temp_directory_path() / fmt::format("spire_search_{}_{}", ::getpid(),
+                                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    std::ofstream(dir_ / "blurred.spire") << kShader;
+    std::ofstream(dir_ / "scene.json") << sceneJson();
+  }
+  void TearDown() override {
+    DeviceTest::TearDown();
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  // The search of `color` on the test's scene into out/, with validation,
+  // and `extra` options. Nine pairs of frames per candidate: a median the
+  // timing noise of a busy machine does not move.
+  std::vector<std::string> searchArgs(const std::vector<std::string>& extra) const {
+    std::vector<std::string> args{"--search",
+                                  "--scene",
+                                  (dir_ / "scene.json").string(),
+                                  "--shader",
+                                  "Blurred",
+                                  "--component",
+                                  "color",
+                                  "--k1",
+                                  "4",
+                                  "--frames",
+                                  "9",
+                                  "--validation",
+                                  "-o",
+                                  (dir_ / "out").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  }
+  // spirec on the written module with level K's decisions: the placement it dumps.
+  std::string compileLevel(size_t k) {
+    const fs::path err = dir_ / "spirec.err";
+    const fs::path placement = dir_ / "placement.txt";
+    const std::string command =
+        fmt::format("{} '{}' -I '{}' --shader BlurredSearch --decisions '{}' --dump-placement > '{}' 2> '{}'",
+                    SPIRE_SPIREC_EXE, (dir_ / "out/BlurredSearch.spire").string(), SPIRE_SOURCE_DIR,
+                    (dir_ / fmt::format("out/level{}.decisions", k)).string(), placement.string(), err.string());
+    EXPECT_EQ(std::system(command.c_str()), 0) << command << "\n" << readText(err);
+    EXPECT_EQ(readText(err), "") << command;
+    return readText(placement);
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(SearchRun, WritesAMonotoneChainOfAccumulatingRewrites) {
+  std::ostringstream out, err;
+  const std::vector<std::string> args = searchArgs({"--max-levels", "3"});
+  ASSERT_EQ(runSearchTool(args, out, err), kExitSuccess) << err.str() << out.str();
+  const auto rows = csvRows(dir_ / "out/chain.csv");
+  // Every rewrite drops a blur, so there are two levels at least (then only
+  // one blur may be left, which no rule rewrites).
+  ASSERT_GE(rows.size(), 3U) << out.str();
+  EXPECT_EQ(std::stod(rows[0][1]), 0.0);
+  for (size_t k = 1; k < rows.size(); ++k) {
+    EXPECT_GE(std::stod(rows[k][1]), std::stod(rows[k - 1][1])) << "error falls at level " << k;
+    EXPECT_LE(std::stod(rows[k][2]), std::stod(rows[k - 1][2])) << "time rises at level " << k;
+    EXPECT_EQ(rows[k][4], "color");
+    EXPECT_EQ(rows[k][5], fmt::format("level{}", k));
+    // Level k rewrites level k-1's definition: the rewrites accumulate.
+    EXPECT_EQ(rows[k][6], k == 1 ? "color" : fmt::format("color:level{}", k - 1));
+  }
+  EXPECT_GT(std::stod(rows.back()[1]), 0.0);
+  const std::string module = readText(dir_ / "out/BlurredSearch.spire");
+  EXPECT_NE(module.find("using \"../blurred.spire\";"), std::string::npos) << module;
+  EXPECT_NE(module.find("shader BlurredSearch : Blurred {"), std::string::npos) << module;
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const std::string placement = compileLevel(k);
+    const std::string expected = k == 0 ? "color = Fragment\n" : fmt::format("color = Fragment:level{}\n", k);
+    EXPECT_NE(placement.find(expected), std::string::npos) << placement;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out" / fmt::format("level{}.decisions", rows.size())));
+  EXPECT_TRUE(fs::exists(dir_ / "out/report.md"));
+  EXPECT_GT(fs::file_size(dir_ / "out/error_time.png"), 0U);
+}
+
+// Dropping the faint blur changes no pixel; dropping either of the others
+// costs an RMSE near 0.09 (see the test above), over the budget: the chain
+// ends after one level and says why.
+TEST_F(SearchRun, StopsAtTheErrorBudget) {
+  std::ostringstream out, err;
+  const std::vector<std::string> args = searchArgs({"--error-budget", "0.05"});
+  ASSERT_EQ(runSearchTool(args, out, err), kExitSuccess) << err.str() << out.str();
+  const auto rows = csvRows(dir_ / "out/chain.csv");
+  ASSERT_EQ(rows.size(), 2U) << out.str();
+  EXPECT_EQ(rows[1][7], "call-to-argument");
+  EXPECT_LE(std::stod(rows[1][1]), 0.05);
+  EXPECT_NE(readText(dir_ / "out/report.md").find("Stopped: no candidate is within the error budget"),
+            std::string::npos)
+      << readText(dir_ / "out/report.md");
+}
+
+TEST(SearchCommandLine, RefusesWhatItCannotRun) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("spire_search_cli_{}", ::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir / "busy");
+  std::ofstream(dir / "busy/keep.txt") << "a user's file";
+  const std::vector<std::vector<std::string>> usage{
+      {"--search", "--shader", "Terrain", "-o", (dir / "out").string()},
+      {"--search", "--scene", "examples/scenes/terrain.json", "--shader", "Terrain", "--k2", "0", "-o",
+       (dir / "out").string()},
+      {"--search", "--scene", "examples/scenes/terrain.json", "--shader", "Terrain", "-o", (dir / "busy").string()}};
+  for (const auto& args : usage) {
+    std::ostringstream out, err;
+    EXPECT_EQ(runSearchTool(args, out, err), kExitUsageError) << err.str();
+  }
+  EXPECT_TRUE(fs::exists(dir / "busy/keep.txt"));
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  EXPECT_TRUE(wantsSearch({"x.spire", "--search"}));
+  EXPECT_FALSE(wantsSearch({"x.spire", "--shader", "S"}));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace spire::search
