@@ -50,7 +50,7 @@ std::vector<size_t> rankCandidates(const Measure& current, const std::vector<Mea
 }
 
 bool keepsChainMonotone(const Measure& current, const Measure& next) {
-  return next.error >= current.error && next.cost <= current.cost;
+  return next.error >= current.error && next.cost < current.cost;
 }
 
 }  // namespace spire::search

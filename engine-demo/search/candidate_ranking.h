@@ -29,8 +29,10 @@ struct RankOptions {
 std::vector<size_t> rankCandidates(const Measure& current, const std::vector<Measure>& candidates,
                                    const RankOptions& options);
 
-// Whether `next` may follow `current` in a chain: error never falls and cost
-// never rises, so each level is a step along the error-against-cost curve.
+// Whether `next` may follow `current` in a chain: error never falls and
+// cost always falls, so each level is a step along the error-against-cost
+// curve, and a rewrite that saves nothing (of code the level no longer
+// reads) makes no level.
 bool keepsChainMonotone(const Measure& current, const Measure& next);
 
 }  // namespace spire::search

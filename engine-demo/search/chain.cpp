@@ -18,7 +18,7 @@ Placement withVariation(Placement placement, const std::string& component, const
   return placement;
 }
 
-double costOf(const Level& level) { return level.timeRatio; }
+double costOf(const Level& level, CostKind kind) { return kind == CostKind::Model ? level.modelCost : level.timeRatio; }
 
 std::string chainModuleText(const ModuleHeader& header, const std::vector<const Rewriting*>& definitions) {
   std::string text = fmt::format(

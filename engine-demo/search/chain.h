@@ -42,12 +42,18 @@ struct Level {
   double frameMs = 0.0;    // timeRatio times level 0's median frame time
   std::string kernels;     // its kernels' hashes: equal ones are the same program
   Placement placement;
+  double modelCost = 0.0;  // He et al. 2015's C of its program (search/model_cost.h)
+};
+
+// What a search ranks its candidates and orders its chain by.
+enum class CostKind {
+  Model,  // He et al.'s static C = 0.3·C_v + 0.7·C_f + 10·N_var (the default)
+  Time,   // the frame time measured against level 0 (the time ratio)
 };
 
 // What a level costs, lower is cheaper: the one function a search ranks and
-// orders its levels by. Today the frame time measured against level 0 (the
-// time ratio); a static cost model of the program can take its place.
-double costOf(const Level& level);
+// orders its levels by.
+double costOf(const Level& level, CostKind kind);
 
 struct Chain {
   std::vector<Level> levels;     // levels[0] is the author's shader

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "search/candidate_ranking.h"
+#include "search/model_cost.h"
 #include "support/file_io.h"
 
 namespace spire::search {
@@ -47,6 +48,10 @@ class GreedySearch {
   tune::VariantResult measure(const Placement& placement);
   Placement live(const Placement& placement);
   Level levelOf(const tune::VariantResult& result, Placement placement) const;
+  Measure measureOf(const Level& level) const { return {level.error, costOf(level, options_.cost)}; }
+  // C of `placement` in the step's module (search/model_cost.h), 0 when it
+  // is not a variant of it.
+  double stepModelCost(const Placement& placement) const;
   std::vector<const Rewriting*> accepted() const;
   void note(const std::string& line);
 
@@ -54,11 +59,10 @@ class GreedySearch {
   const SearchOptions& options_;
   std::ostream& progress_;
   Chain chain_;
-  std::map<std::string, Measure> cache_;  // the error cache, by rewrite
+  std::map<std::string, Measure> cache_;        // the error cache, by rewrite
+  std::unique_ptr<ShaderLibrary> stepLibrary_;  // the step's module compiled: the chain and its candidates
   uint64_t points_ = 0;
 };
-
-Measure measureOf(const Level& level) { return {level.error, costOf(level)}; }
 
 void GreedySearch::note(const std::string& line) {
   progress_ << line << "\n";
@@ -84,6 +88,11 @@ Placement GreedySearch::live(const Placement& placement) {
 
 Level GreedySearch::levelOf(const tune::VariantResult& result, Placement placement) const {
   return {result.rmse, result.time.median, result.frameMs, result.kernels, std::move(placement)};
+}
+
+double GreedySearch::stepModelCost(const Placement& placement) const {
+  if (!stepLibrary_) return 0.0;
+  return modelCost(*stepLibrary_, setup_.header.derived, placement).value_or(0.0);
 }
 
 std::vector<const Rewriting*> GreedySearch::accepted() const {
@@ -112,6 +121,10 @@ Expected<std::vector<Candidate>, Failure> GreedySearch::propose(size_t level) {
   const std::string path = (setup_.workDir / fmt::format("level{}.spire", level - 1)).string();
   auto current = compileModule(setup_.compile, path, chainModuleText(setup_.header, accepted()), setup_.header.derived);
   if (!current) return Failure{fmt::format("level {} does not compile: {}", level - 1, current.error().message)};
+  // The level's C, on the module that names its definitions as the level does.
+  if (const auto c = modelCost(**current, setup_.header.derived, chain_.levels.back().placement)) {
+    chain_.levels.back().modelCost = *c;
+  }
   StepRequest request{current->get(),
                       setup_.header.derived,
                       chain_.levels.back().placement,
@@ -133,7 +146,8 @@ Expected<void, Failure> GreedySearch::writeStepModule(size_t level, int attempt,
   };
   std::vector<const Candidate*> all;
   for (const Candidate& c : candidates) all.push_back(&c);
-  if (!compileModule(setup_.compile, path, textWith(all), setup_.header.derived)) {
+  auto compiled = compileModule(setup_.compile, path, textWith(all), setup_.header.derived);
+  if (!compiled) {
     std::vector<Candidate> kept;
     for (Candidate& c : candidates) {
       auto alone = compileModule(setup_.compile, path, textWith({&c}), setup_.header.derived);
@@ -143,7 +157,11 @@ Expected<void, Failure> GreedySearch::writeStepModule(size_t level, int attempt,
     candidates = std::move(kept);
     all.clear();
     for (const Candidate& c : candidates) all.push_back(&c);
+    compiled = compileModule(setup_.compile, path, textWith(all), setup_.header.derived);
+    if (!compiled)
+      return Failure{fmt::format("level {}'s candidates do not compile together: {}", level, compiled.error().message)};
   }
+  stepLibrary_ = std::move(*compiled);
   if (auto written = writeFileAtomically(path, textWith(all)); !written) return written.error();
   setup_.scene->instances.at(setup_.instance).source = path;
   setup_.scene->instances.at(setup_.instance).shader = setup_.header.derived;
@@ -157,18 +175,24 @@ std::vector<Trial> GreedySearch::measureCandidates(const std::vector<Candidate>&
   const Level& current = chain_.levels.back();
   std::vector<Trial> trials;
   for (const Candidate& c : candidates) {
+    const Placement placement = withVariation(current.placement, c.rewriting.component, c.rewriting.variation);
     if (const auto hit = cache_.find(c.key); hit != cache_.end()) {
-      trials.push_back({c, hit->second, true, {}});
+      // The error is cached; C is not, since it depends on what the other
+      // components are now.
+      Measure cached = hit->second;
+      if (options_.cost == CostKind::Model) cached.cost = stepModelCost(placement);
+      trials.push_back({c, cached, true, {}});
       continue;
     }
-    tune::VariantResult result =
-        measure(withVariation(current.placement, c.rewriting.component, c.rewriting.variation));
+    tune::VariantResult result = measure(placement);
     if (!result.ok()) {
       note(fmt::format("  skipped {} ({}): {}", c.rewriting.from, c.rewriting.rule, result.status));
       continue;
     }
     if (result.kernels == current.kernels) continue;
-    const Measure measured{result.rmse, costOf(levelOf(result, {}))};
+    Level level = levelOf(result, {});
+    level.modelCost = stepModelCost(placement);
+    const Measure measured = measureOf(level);
     cache_[c.key] = measured;
     trials.push_back({c, measured, false, std::move(result)});
   }
@@ -192,6 +216,7 @@ Choice GreedySearch::choose(const std::vector<size_t>& order, std::vector<Trial>
     // Liveness from the step's module, which names the rewrite as the candidate.
     const Placement measured = live(withVariation(current.placement, r.component, t.candidate.rewriting.variation));
     Level level = levelOf(fresh, withVariation(measured, r.component, r.variation));
+    level.modelCost = stepModelCost(measured);
     if (level.error > options_.errorBudget || !keepsChainMonotone(measureOf(current), measureOf(level))) {
       note(fmt::format(
           "  not taken: {} ({}) RMSE {:.6f}, time ratio {:.3f} is over the budget or breaks the monotone chain", r.from,
@@ -231,9 +256,9 @@ Expected<std::optional<Accepted>, Failure> GreedySearch::step(size_t level) {
     const Accepted& a = *choice.accepted;
     note(
         fmt::format("level {}: {} candidate(s), {} ranked; {}:{} = {} with {}: '{}' -> '{}', RMSE {:.6f}, time ratio "
-                    "{:.3f}",
+                    "{:.3f}, C {:.1f}",
                     level, candidates->size(), order.size(), a.step.component, a.step.variation, a.step.from,
-                    a.step.rule, a.step.before, a.step.after, a.level.error, a.level.timeRatio));
+                    a.step.rule, a.step.before, a.step.after, a.level.error, a.level.timeRatio, a.level.modelCost));
     return std::move(choice.accepted);
   }
 }

@@ -2,6 +2,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <map>
+#include <string>
+
 #include "driver/tool_arguments.h"
 
 namespace spire::search {
@@ -59,6 +62,12 @@ void defineSearchOptions(CLI::App& app, SearchOptions& options) {
   app.add_option("--error-budget", options.errorBudget, "Stop before a level whose RMSE exceeds E")
       ->check(CLI::NonNegativeNumber)
       ->type_name("E");
+  app.add_option("--cost", options.cost,
+                 "What candidates are ranked and the chain ordered by: 'model', He et al.'s C = 0.3 C_v + 0.7 C_f + "
+                 "10 N_var of the program (default), or 'time', the measured frame time")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, CostKind>{{"model", CostKind::Model}, {"time", CostKind::Time}}))
+      ->type_name("model|time");
   app.add_option("--name", options.derivedName, "The derived shader's name (default: SHADER + Search)")
       ->type_name("NAME");
   addOutputDirectory(app, options.outputDir, "Write the chain (module, decision files, report) to DIR")->required();

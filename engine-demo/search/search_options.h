@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "search/chain.h"
+
 namespace CLI {
 class App;
 }
@@ -24,6 +26,7 @@ struct SearchOptions {
   double k3 = 0.15;                     // a cached error off the fresh one by more than K3 x itself is stale
   size_t maxLevels = 6;                 // levels after the original
   double errorBudget = std::numeric_limits<double>::infinity();  // RMSE no level may exceed
+  CostKind cost = CostKind::Model;                               // what candidates are ranked and the chain ordered by
   std::string outputDir;
   std::string derivedName;  // default: the shader's name + "Search"
   // Measurement, as spire-tune's options of the same names.

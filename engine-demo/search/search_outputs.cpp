@@ -23,15 +23,16 @@ std::string decisionFile(const Chain& chain, size_t k, const ModuleHeader& heade
   }
   return graph::writeDecisionFile(
       decisions, fmt::format("spire-simplify --search: level {} of {}'s chain, {}.\nMeasured: RMSE {:.6f}, time "
-                             "ratio {:.3f} against level 0.",
-                             k, header.base, what, level.error, level.timeRatio));
+                             "ratio {:.3f} against level 0; cost C = {:.1f}.",
+                             k, header.base, what, level.error, level.timeRatio, level.modelCost));
 }
 
 std::string chainCsv(const Chain& chain) {
-  std::string text = "level,rmse,time_ratio,frame_ms,component,variation,from,rule,before,after\n";
+  std::string text = "level,rmse,time_ratio,frame_ms,cost,component,variation,from,rule,before,after\n";
   for (size_t k = 0; k < chain.levels.size(); ++k) {
     const Level& level = chain.levels[k];
-    text += fmt::format("{},{:.6f},{:.4f},{:.4f}", k, level.error, level.timeRatio, level.frameMs);
+    text +=
+        fmt::format("{},{:.6f},{:.4f},{:.4f},{:.1f}", k, level.error, level.timeRatio, level.frameMs, level.modelCost);
     if (k == 0) {
       text += ",,,,,,\n";
       continue;
@@ -57,11 +58,12 @@ std::string report(const Chain& chain, const OutputRequest& request) {
       "# Greedy simplification of {}\n\n"
       "He et al. 2015's search on `{}`: K1 = {}, K2 = {}, K3 = {}, at most {} level(s), error budget {}. "
       "Error is the RMSE against level 0 over every camera view and parameter sample; time is the frame time "
-      "over level 0's, frame for frame (level 0: {:.3f} ms).\n\n"
+      "over level 0's, frame for frame (level 0: {:.3f} ms). C is He et al.'s cost model of the level's program, "
+      "0.3·C_v + 0.7·C_f + 10·N_var; candidates were ranked and the chain ordered by {}.\n\n"
       "Stopped: {}.\n\n![error against time](error_time.png)\n\n"
-      "| level | RMSE | time ratio | frame ms | rewrite |\n|---|---|---|---|---|\n",
+      "| level | RMSE | time ratio | frame ms | C | rewrite |\n|---|---|---|---|---|---|\n",
       request.header.base, o.scenePath, o.k1, o.k2, o.k3, o.maxLevels, o.errorBudget, request.referenceMs,
-      chain.stopReason);
+      o.cost == CostKind::Model ? "C" : "the measured time", chain.stopReason);
   for (size_t k = 0; k < chain.levels.size(); ++k) {
     const Level& level = chain.levels[k];
     std::string rewrite = "the original";
@@ -70,8 +72,8 @@ std::string report(const Chain& chain, const OutputRequest& request) {
       rewrite = fmt::format("`{}:{}` = `{}` with {}: `{}` → `{}`", r.component, r.variation, r.from, r.rule,
                             cell(r.before), cell(r.after));
     }
-    text += fmt::format("| {} | {:.6f} | {:.3f} | {:.3f} | {} |\n", k, level.error, level.timeRatio, level.frameMs,
-                        rewrite);
+    text += fmt::format("| {} | {:.6f} | {:.3f} | {:.3f} | {:.1f} | {} |\n", k, level.error, level.timeRatio,
+                        level.frameMs, level.modelCost, rewrite);
   }
   text += "\n## Steps\n\n```\n";
   for (const std::string& line : chain.log) text += line + "\n";

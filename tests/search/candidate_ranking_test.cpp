@@ -48,7 +48,9 @@ TEST(CandidateRanking, LeavesOutWhatExceedsTheErrorBudget) {
 
 TEST(CandidateRanking, AChainNeverLosesErrorOrGainsCost) {
   const Measure current{0.1, 0.8};
-  EXPECT_TRUE(keepsChainMonotone(current, {0.1, 0.8}));
+  EXPECT_FALSE(keepsChainMonotone(current, {0.1, 0.8})) << "saves nothing";
+  EXPECT_FALSE(keepsChainMonotone(current, {0.3, 0.8})) << "saves nothing";
+  EXPECT_TRUE(keepsChainMonotone(current, {0.1, 0.79}));
   EXPECT_TRUE(keepsChainMonotone(current, {0.2, 0.5}));
   EXPECT_FALSE(keepsChainMonotone(current, {0.05, 0.5}));
   EXPECT_FALSE(keepsChainMonotone(current, {0.2, 0.81}));

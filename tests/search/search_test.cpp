@@ -149,11 +149,12 @@ TEST_F(SearchRun, WritesAMonotoneChainOfAccumulatingRewrites) {
   EXPECT_EQ(std::stod(rows[0][1]), 0.0);
   for (size_t k = 1; k < rows.size(); ++k) {
     EXPECT_GE(std::stod(rows[k][1]), std::stod(rows[k - 1][1])) << "error falls at level " << k;
-    EXPECT_LE(std::stod(rows[k][2]), std::stod(rows[k - 1][2])) << "time rises at level " << k;
-    EXPECT_EQ(rows[k][4], "color");
-    EXPECT_EQ(rows[k][5], fmt::format("level{}", k));
+    // He et al.'s cost model C orders the chain: every level is cheaper.
+    EXPECT_LT(std::stod(rows[k][4]), std::stod(rows[k - 1][4])) << "C does not fall at level " << k;
+    EXPECT_EQ(rows[k][5], "color");
+    EXPECT_EQ(rows[k][6], fmt::format("level{}", k));
     // Level k rewrites level k-1's definition: the rewrites accumulate.
-    EXPECT_EQ(rows[k][6], k == 1 ? "color" : fmt::format("color:level{}", k - 1));
+    EXPECT_EQ(rows[k][7], k == 1 ? "color" : fmt::format("color:level{}", k - 1));
   }
   EXPECT_GT(std::stod(rows.back()[1]), 0.0);
   const std::string module = readText(dir_ / "out/BlurredSearch.spire");
@@ -178,11 +179,25 @@ TEST_F(SearchRun, StopsAtTheErrorBudget) {
   ASSERT_EQ(runSearchTool(args, out, err), kExitSuccess) << err.str() << out.str();
   const auto rows = csvRows(dir_ / "out/chain.csv");
   ASSERT_EQ(rows.size(), 2U) << out.str();
-  EXPECT_EQ(rows[1][7], "call-to-argument");
+  EXPECT_EQ(rows[1][8], "call-to-argument");
   EXPECT_LE(std::stod(rows[1][1]), 0.05);
   EXPECT_NE(readText(dir_ / "out/report.md").find("Stopped: no candidate is within the error budget"),
             std::string::npos)
       << readText(dir_ / "out/report.md");
+}
+
+// Ordered by measured frame time instead, the chain's time never rises.
+TEST_F(SearchRun, OrdersByMeasuredTimeWhenAsked) {
+  std::ostringstream out, err;
+  const std::vector<std::string> args = searchArgs({"--max-levels", "2", "--cost", "time"});
+  ASSERT_EQ(runSearchTool(args, out, err), kExitSuccess) << err.str() << out.str();
+  const auto rows = csvRows(dir_ / "out/chain.csv");
+  ASSERT_GE(rows.size(), 2U) << out.str();
+  for (size_t k = 1; k < rows.size(); ++k) {
+    EXPECT_GE(std::stod(rows[k][1]), std::stod(rows[k - 1][1])) << "error falls at level " << k;
+    EXPECT_LT(std::stod(rows[k][2]), std::stod(rows[k - 1][2])) << "time does not fall at level " << k;
+  }
+  EXPECT_NE(readText(dir_ / "out/report.md").find("the chain ordered by the measured time"), std::string::npos);
 }
 
 TEST(SearchCommandLine, RefusesWhatItCannotRun) {
@@ -193,6 +208,8 @@ TEST(SearchCommandLine, RefusesWhatItCannotRun) {
   const std::vector<std::vector<std::string>> usage{
       {"--search", "--shader", "Terrain", "-o", (dir / "out").string()},
       {"--search", "--scene", "examples/scenes/terrain.json", "--shader", "Terrain", "--k2", "0", "-o",
+       (dir / "out").string()},
+      {"--search", "--scene", "examples/scenes/terrain.json", "--shader", "Terrain", "--cost", "speed", "-o",
        (dir / "out").string()},
       {"--search", "--scene", "examples/scenes/terrain.json", "--shader", "Terrain", "-o", (dir / "busy").string()}};
   for (const auto& args : usage) {
