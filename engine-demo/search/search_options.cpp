@@ -6,6 +6,7 @@
 #include <string>
 
 #include "driver/tool_arguments.h"
+#include "tune/tune_options.h"
 
 namespace spire::search {
 
@@ -15,13 +16,7 @@ void defineMeasurement(CLI::App& app, SearchOptions& options) {
   app.add_option("--frames", options.frames, "Pairs of frames (candidate, reference) timed per candidate (default 5)")
       ->check(CLI::Range(3U, 1000U))
       ->type_name("N");
-  app.add_option("--warmup", options.warmup,
-                 "Unmeasured frames before the measured ones (the captures of the camera views count)")
-      ->check(CLI::Range(1U, 100U))
-      ->type_name("N");
-  app.add_option("--bake-size", options.bakeSize, "PrebakeTex size without a TextureSize hint")
-      ->check(CLI::Range(1U, 8192U))
-      ->type_name("N");
+  tune::addWarmupAndBakeSizeOptions(app, options.warmup, options.bakeSize);
   app.add_option("--param", options.params,
                  "Measure error over samples of a material parameter's range (repeatable), as spire-tune does")
       ->type_name("NAME=MIN:MAX");

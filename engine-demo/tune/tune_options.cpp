@@ -58,15 +58,9 @@ void defineTuneOptions(CLI::App& app, TuneOptions& options) {
                  "is wider than 6%, up to N")
       ->check(CLI::Range(3U, 1000U))
       ->type_name("N");
-  app.add_option("--warmup", options.warmup,
-                 "Unmeasured frames before the measured ones (the captures of the camera views count)")
-      ->check(CLI::Range(1U, 100U))
-      ->type_name("N");
+  addWarmupAndBakeSizeOptions(app, options.warmup, options.bakeSize);
   app.add_option("-j,--jobs", options.jobs, "Worker processes (default: one per core)")
       ->check(CLI::Range(1U, 64U))
-      ->type_name("N");
-  app.add_option("--bake-size", options.bakeSize, "PrebakeTex size without a TextureSize hint")
-      ->check(CLI::Range(1U, 8192U))
       ->type_name("N");
   addOutputDirectory(app, options.outputDir, "Output directory (an interrupted run resumes from it)");
   app.add_option("--time-budget", options.timeBudgetMs, "Write the most accurate variant within MS per frame")
@@ -101,6 +95,16 @@ void defineTuneOptions(CLI::App& app, TuneOptions& options) {
       ->type_name("MODE");
   defineLodPolicyOptions(app, options, shader);
   app.add_option("--worker", options.worker, "Internal: measure shard K")->group("");
+}
+
+void addWarmupAndBakeSizeOptions(CLI::App& app, uint32_t& warmup, uint32_t& bakeSize) {
+  app.add_option("--warmup", warmup,
+                 "Unmeasured frames before the measured ones (the captures of the camera views count)")
+      ->check(CLI::Range(1U, 100U))
+      ->type_name("N");
+  app.add_option("--bake-size", bakeSize, "PrebakeTex size without a TextureSize hint")
+      ->check(CLI::Range(1U, 8192U))
+      ->type_name("N");
 }
 
 }  // namespace spire::tune

@@ -47,4 +47,8 @@ struct TuneOptions {
 // Adds every option of spire-tune to `app`, read into `options`.
 void defineTuneOptions(CLI::App& app, TuneOptions& options);
 
+// --warmup and --bake-size, as every tool that measures through the tuner
+// (spire-tune, spire-simplify --search) offers them.
+void addWarmupAndBakeSizeOptions(CLI::App& app, uint32_t& warmup, uint32_t& bakeSize);
+
 }  // namespace spire::tune
