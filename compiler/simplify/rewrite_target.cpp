@@ -53,4 +53,15 @@ size_t replacementOffset(const ast::ComponentDecl& decl, const Rewrite& rewrite,
   return before + variation.size() - (decl.variationRange.end - decl.variationRange.begin);
 }
 
+std::optional<std::string> replacementTypeError(const sem::Model& model, const ast::ComponentDecl& decl,
+                                                size_t replacementAt, const std::string& replacement,
+                                                const std::string& type) {
+  const auto begin = static_cast<uint32_t>(decl.range.begin + replacementAt);
+  const SourceRange range{decl.range.file, begin, static_cast<uint32_t>(begin + replacement.size())};
+  const ast::Expr* e = widestExprWithin(decl, range);
+  const sem::Type* found = e ? model.typeOf(*e) : nullptr;
+  if (found && found->name() == type) return std::nullopt;
+  return fmt::format("'{}' has type '{}', not '{}'", replacement, found ? found->name() : "?", type);
+}
+
 }  // namespace spire::simplify

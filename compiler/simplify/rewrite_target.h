@@ -5,6 +5,7 @@
 // applied under a new variation name.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,5 +34,14 @@ std::string rewrittenText(const SourceManager& sources, const ast::ComponentDecl
 // Where rewrittenText puts `rewrite`'s replacement in its result: after the
 // name, whose variation part grew or shrank.
 size_t replacementOffset(const ast::ComponentDecl& decl, const Rewrite& rewrite, const std::string& variation);
+
+// Why a rewrite that must keep `type` (Rewrite::type: a user rule's, which
+// can compile to another type, `vec3 * float` for `vec3 * vec3`, and mean
+// something else) does not, found in `model` where the rewritten definition
+// compiled as `decl`, its replacement `replacement` at `replacementAt` of
+// its text; nullopt when the type is kept.
+std::optional<std::string> replacementTypeError(const sem::Model& model, const ast::ComponentDecl& decl,
+                                                size_t replacementAt, const std::string& replacement,
+                                                const std::string& type);
 
 }  // namespace spire::simplify

@@ -126,12 +126,9 @@ std::optional<std::string> typeError(const ShaderLibrary& library, const std::st
   for (const Candidate* c : candidates) {
     const ast::ComponentDecl* decl = c->type.empty() ? nullptr : compiledDefinition(*shader, *c);
     if (!decl) continue;
-    const auto begin = static_cast<uint32_t>(decl->range.begin + c->replacementAt);
-    const SourceRange range{decl->range.file, begin, static_cast<uint32_t>(begin + c->variation.after.size())};
-    const ast::Expr* e = widestExprWithin(*decl, range);
-    const sem::Type* type = e ? library.model().typeOf(*e) : nullptr;
-    if (type && type->name() == c->type) continue;
-    return fmt::format("'{}' has type '{}', not '{}'", c->variation.after, type ? type->name() : "?", c->type);
+    if (auto error = replacementTypeError(library.model(), *decl, c->replacementAt, c->variation.after, c->type)) {
+      return error;
+    }
   }
   return std::nullopt;
 }

@@ -111,21 +111,6 @@ void printSummary(const Simplified& result, const std::string& path, std::ostrea
   for (const std::string& dropped : result.dropped) out << "  " << dropped << "\n";
 }
 
-// Reads every rule file into `rules`; false after printing why not.
-bool readRules(const std::vector<std::string>& files, UserRules& rules, std::ostream& err) {
-  for (const std::string& file : files) {
-    auto text = readFileBytes(file);
-    if (!text) {
-      err << fmt::format("{}: error: cannot read rule file '{}': {}\n", kTool, file, text.error().message());
-      return false;
-    }
-    rules.add(file, std::move(*text));
-  }
-  if (!rules.diagnostics().hasErrors()) return true;
-  err << renderDiagnostics(rules.sources(), rules.diagnostics(), DiagnosticFormat::Text);
-  return false;
-}
-
 }  // namespace
 
 int runSimplifyTool(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
@@ -138,7 +123,7 @@ int runSimplifyTool(const std::vector<std::string>& args, std::ostream& out, std
     return usageError(kTool, "-o,--output is required (unless --costs)", err);
   }
   UserRules rules;
-  if (!readRules(options.ruleFiles, rules, err)) return kExitInputError;
+  if (!readRuleFiles(options.ruleFiles, rules, kTool, err)) return kExitInputError;
   options.simplify.userRules = &rules;
   options.simplify.frontEnd.includeDirs = options.includeDirs;
   if (!libraryDir.empty()) options.simplify.frontEnd.includeDirs.push_back(libraryDir);

@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <functional>
+#include <ostream>
 #include <set>
 
+#include "support/diagnostic_renderer.h"
+#include "support/file_io.h"
 #include "syntax/parser.h"
 
 namespace spire::simplify {
@@ -234,6 +237,20 @@ bool UserRules::bindMetavariables(const Line& line, Parsed& out) {
     return false;
   }
   return true;
+}
+
+bool readRuleFiles(const std::vector<std::string>& files, UserRules& rules, std::string_view tool, std::ostream& err) {
+  for (const std::string& file : files) {
+    auto text = readFileBytes(file);
+    if (!text) {
+      err << fmt::format("{}: error: cannot read rule file '{}': {}\n", tool, file, text.error().message());
+      return false;
+    }
+    rules.add(file, std::move(*text));
+  }
+  if (!rules.diagnostics().hasErrors()) return true;
+  err << renderDiagnostics(rules.sources(), rules.diagnostics(), DiagnosticFormat::Text);
+  return false;
 }
 
 }  // namespace spire::simplify

@@ -12,8 +12,10 @@
 // the parser's own E2xxx) at the rule's file:line:col.
 #pragma once
 
+#include <iosfwd>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "support/diagnostic.h"
@@ -68,5 +70,10 @@ class UserRules {
   DiagnosticList diags_;
   std::vector<UserRule> rules_;
 };
+
+// Reads every rule file of a command line (`--rules FILE`, repeatable) into
+// `rules`; false after printing why not to `err`, as `tool` (an unreadable
+// file, or the rules' diagnostics).
+bool readRuleFiles(const std::vector<std::string>& files, UserRules& rules, std::string_view tool, std::ostream& err);
 
 }  // namespace spire::simplify

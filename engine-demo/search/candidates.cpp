@@ -73,7 +73,10 @@ Expected<std::vector<Candidate>, Failure> proposeCandidates(const StepRequest& r
     if (!decl) return Failure{fmt::format("'{}' has no definition '{}'", name, fromName(name, placement))};
     const std::string original = variationOf(placementFor(request.original, name));
     std::map<std::string, size_t> perRule;
-    for (const simplify::Rewrite& rewrite : simplify::proposeRewrites(library.model(), library.sources(), *decl)) {
+    const std::vector<simplify::UserRule> none;
+    const std::vector<simplify::UserRule>& userRules = request.userRules ? *request.userRules : none;
+    for (const simplify::Rewrite& rewrite :
+         simplify::proposeRewrites(library.model(), library.sources(), *decl, userRules)) {
       if (++perRule[rewrite.rule] > request.k1) continue;
       Candidate c;
       c.rewriting = {name,
@@ -84,6 +87,8 @@ Expected<std::vector<Candidate>, Failure> proposeCandidates(const StepRequest& r
                      rewrite.replacement,
                      ""};
       c.rewriting.text = simplify::rewrittenText(library.sources(), *decl, rewrite, c.rewriting.variation);
+      c.type = rewrite.type;
+      c.replacementAt = simplify::replacementOffset(*decl, rewrite, c.rewriting.variation);
       c.level = c.rewriting;
       c.level.variation = searchVariation(original, "level", request.level);
       c.level.text = simplify::rewrittenText(library.sources(), *decl, rewrite, c.level.variation);

@@ -14,6 +14,7 @@
 
 #include "driver/shader_library.h"
 #include "search/chain.h"
+#include "simplify/user_rules.h"
 #include "support/expected.h"
 
 namespace spire::search {
@@ -32,8 +33,12 @@ Expected<std::unique_ptr<ShaderLibrary>, Failure> compileModule(const ModuleComp
 
 struct Candidate {
   Rewriting rewriting;  // as measured: variation `candidateJ`
-  Rewriting level;      // the same rewrite named as the level it would make
-  std::string key;      // the rewrite's identity across steps, for the error cache: the definition it makes
+  // A user rule's rewrite must keep this type (simplify::Rewrite::type),
+  // checked on the compiled step module; empty for the built-in rules.
+  std::string type;
+  size_t replacementAt = 0;  // where the replacement starts in rewriting.text
+  Rewriting level;           // the same rewrite named as the level it would make
+  std::string key;           // the rewrite's identity across steps, for the error cache: the definition it makes
 };
 
 struct StepRequest {
@@ -43,7 +48,8 @@ struct StepRequest {
   Placement original;   // level 0's: the variation names grow from its
   std::vector<std::string> components;
   size_t k1 = 1;
-  size_t level = 1;  // the level the candidates would make
+  size_t level = 1;                                            // the level the candidates would make
+  const std::vector<simplify::UserRule>* userRules = nullptr;  // beside the built-in rules
 };
 
 // Every candidate of the step, component by component in `components`

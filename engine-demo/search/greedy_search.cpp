@@ -8,6 +8,7 @@
 
 #include "search/candidate_ranking.h"
 #include "search/model_cost.h"
+#include "simplify/rewrite_target.h"
 #include "support/file_io.h"
 
 namespace spire::search {
@@ -20,6 +21,16 @@ struct Trial {
   bool fromCache = false;
   tune::VariantResult result;  // when measured in this step
 };
+
+// The definition `r` made, in the compiled derived shader.
+const ast::ComponentDecl* definitionIn(const sem::Shader& shader, const Rewriting& r) {
+  const sem::Component* component = shader.findComponent(r.component);
+  if (!component) return nullptr;
+  for (const sem::Definition& d : component->definitions) {
+    if (d.decl && d.variation == r.variation) return d.decl;
+  }
+  return nullptr;
+}
 
 struct Accepted {
   Rewriting step;
@@ -43,6 +54,10 @@ class GreedySearch {
   Expected<std::optional<Accepted>, Failure> step(size_t level);
   Expected<std::vector<Candidate>, Failure> propose(size_t level);
   Expected<void, Failure> writeStepModule(size_t level, int attempt, std::vector<Candidate>& candidates);
+  // The chain so far and `candidates`, or `only` of them, as a module.
+  std::string stepText(const std::vector<Candidate>& candidates, const Candidate* only = nullptr) const;
+  void dropUncompilable(const std::string& path, std::vector<Candidate>& candidates);
+  bool dropRetyped(const ShaderLibrary& compiled, std::vector<Candidate>& candidates);
   std::vector<Trial> measureCandidates(const std::vector<Candidate>& candidates);
   Choice choose(const std::vector<size_t>& order, std::vector<Trial>& trials);
   tune::VariantResult measure(const Placement& placement);
@@ -125,44 +140,66 @@ Expected<std::vector<Candidate>, Failure> GreedySearch::propose(size_t level) {
   if (const auto c = modelCost(**current, setup_.header.derived, chain_.levels.back().placement)) {
     chain_.levels.back().modelCost = *c;
   }
-  StepRequest request{current->get(),
-                      setup_.header.derived,
-                      chain_.levels.back().placement,
-                      setup_.original,
-                      setup_.components,
-                      options_.k1,
-                      level};
+  StepRequest request{current->get(),  setup_.header.derived, chain_.levels.back().placement,
+                      setup_.original, setup_.components,     options_.k1,
+                      level,           setup_.userRules};
   return proposeCandidates(request);
 }
 
+std::string GreedySearch::stepText(const std::vector<Candidate>& candidates, const Candidate* only) const {
+  std::vector<const Rewriting*> definitions = accepted();
+  if (only) definitions.push_back(&only->rewriting);
+  for (const Candidate& c : candidates) {
+    if (!only) definitions.push_back(&c.rewriting);
+  }
+  return chainModuleText(setup_.header, definitions);
+}
+
+// Keeps the candidates that compile with the chain, each alone; says why
+// the others were dropped.
+void GreedySearch::dropUncompilable(const std::string& path, std::vector<Candidate>& candidates) {
+  std::vector<Candidate> kept;
+  for (Candidate& c : candidates) {
+    auto alone = compileModule(setup_.compile, path, stepText(candidates, &c), setup_.header.derived);
+    if (alone) kept.push_back(std::move(c));
+    if (!alone) note(fmt::format("  dropped {} ({}): {}", c.rewriting.from, c.rewriting.rule, alone.error().message));
+  }
+  candidates = std::move(kept);
+}
+
+// Drops the user rules' candidates whose replacement compiled to another
+// type than the one it replaced (it compiles, and means something else);
+// true when one was.
+bool GreedySearch::dropRetyped(const ShaderLibrary& compiled, std::vector<Candidate>& candidates) {
+  const sem::Shader* shader = compiled.model().findShader(setup_.header.derived);
+  std::vector<Candidate> kept;
+  for (Candidate& c : candidates) {
+    const ast::ComponentDecl* decl = c.type.empty() || !shader ? nullptr : definitionIn(*shader, c.rewriting);
+    const auto error =
+        decl ? simplify::replacementTypeError(compiled.model(), *decl, c.replacementAt, c.rewriting.after, c.type)
+             : std::nullopt;
+    if (error) note(fmt::format("  dropped {} ({}): {}", c.rewriting.from, c.rewriting.rule, *error));
+    if (!error) kept.push_back(std::move(c));
+  }
+  const bool dropped = kept.size() != candidates.size();
+  candidates = std::move(kept);
+  return dropped;
+}
+
 // The step's module: the chain so far and every candidate. A candidate that
-// does not compile with the others is tried alone, and dropped if it fails.
+// does not compile with the others is tried alone, and dropped if it fails;
+// so is a user rule's that changes the type it replaces.
 Expected<void, Failure> GreedySearch::writeStepModule(size_t level, int attempt, std::vector<Candidate>& candidates) {
   const std::string path = (setup_.workDir / fmt::format("step{}-{}.spire", level, attempt)).string();
-  const auto textWith = [&](const std::vector<const Candidate*>& some) {
-    std::vector<const Rewriting*> definitions = accepted();
-    for (const Candidate* c : some) definitions.push_back(&c->rewriting);
-    return chainModuleText(setup_.header, definitions);
-  };
-  std::vector<const Candidate*> all;
-  for (const Candidate& c : candidates) all.push_back(&c);
-  auto compiled = compileModule(setup_.compile, path, textWith(all), setup_.header.derived);
+  auto compiled = compileModule(setup_.compile, path, stepText(candidates), setup_.header.derived);
+  if (!compiled) dropUncompilable(path, candidates);
+  const bool retyped = compiled && dropRetyped(**compiled, candidates);
+  if (!compiled || retyped) compiled = compileModule(setup_.compile, path, stepText(candidates), setup_.header.derived);
   if (!compiled) {
-    std::vector<Candidate> kept;
-    for (Candidate& c : candidates) {
-      auto alone = compileModule(setup_.compile, path, textWith({&c}), setup_.header.derived);
-      if (alone) kept.push_back(std::move(c));
-      if (!alone) note(fmt::format("  dropped {} ({}): {}", c.rewriting.from, c.rewriting.rule, alone.error().message));
-    }
-    candidates = std::move(kept);
-    all.clear();
-    for (const Candidate& c : candidates) all.push_back(&c);
-    compiled = compileModule(setup_.compile, path, textWith(all), setup_.header.derived);
-    if (!compiled)
-      return Failure{fmt::format("level {}'s candidates do not compile together: {}", level, compiled.error().message)};
+    return Failure{fmt::format("level {}'s candidates do not compile together: {}", level, compiled.error().message)};
   }
   stepLibrary_ = std::move(*compiled);
-  if (auto written = writeFileAtomically(path, textWith(all)); !written) return written.error();
+  if (auto written = writeFileAtomically(path, stepText(candidates)); !written) return written.error();
   setup_.scene->instances.at(setup_.instance).source = path;
   setup_.scene->instances.at(setup_.instance).shader = setup_.header.derived;
   return {};

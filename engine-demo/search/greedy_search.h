@@ -22,6 +22,7 @@
 #include "search/candidates.h"
 #include "search/chain.h"
 #include "search/search_options.h"
+#include "simplify/user_rules.h"
 #include "support/expected.h"
 #include "tune/tuner.h"
 
@@ -37,6 +38,7 @@ struct SearchSetup {
   ModuleHeader header;  // of modules in workDir
   Placement original;   // level 0's placement
   std::vector<std::string> components;
+  const std::vector<simplify::UserRule>* userRules = nullptr;  // beside the built-in rules; null: none
 };
 
 // The chain, level 0 (the original, measured like the others) first.

@@ -40,6 +40,10 @@ void defineSearchOptions(CLI::App& app, SearchOptions& options) {
   app.add_option("--component", options.components,
                  "Simplify only this component (repeatable; default: every one the shader defines)")
       ->type_name("NAME");
+  app.add_option("--rules", options.ruleFiles,
+                 "Also propose the rewrites of the user rules of FILE (repeatable; docs/simplification.md, \"User "
+                 "rules\")")
+      ->type_name("FILE");
   app.add_option("--k1", options.k1, "Rewrites each rule proposes per component and step (default 2)")
       ->check(CLI::Range(size_t{1}, size_t{100}))
       ->type_name("N");

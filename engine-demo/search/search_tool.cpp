@@ -123,8 +123,8 @@ void printSummary(const Chain& chain, const SearchOptions& options, std::ostream
 }
 
 // The search on the renderer, then its outputs; the exit status.
-int search(const SearchOptions& options, engine::ToolRun& run, engine::SceneRenderer& renderer, scene::SceneFile& scene,
-           size_t instance, std::ostream& out) {
+int search(const SearchOptions& options, const simplify::UserRules& rules, engine::ToolRun& run,
+           engine::SceneRenderer& renderer, scene::SceneFile& scene, size_t instance, std::ostream& out) {
   const auto fail = [&](const std::string& message) { return run.fail(engine::Error{message, {}, {}}); };
   auto measurement = tunerOptions(options, scene, instance);
   if (!measurement) return fail(measurement.error().message);
@@ -134,6 +134,7 @@ int search(const SearchOptions& options, engine::ToolRun& run, engine::SceneRend
   if (!setup) return fail(setup.error().message);
   const WorkDir work;
   setup->tuner = &tuner;
+  setup->userRules = &rules.rules();
   setup->workDir = work.path();
   setup->header = headerIn(work.path(), scene.instances.at(instance), options);
   const ModuleHeader outputHeader = headerIn(options.outputDir, scene.instances.at(instance), options);
@@ -166,6 +167,8 @@ int runSearchTool(const std::vector<std::string>& args, std::ostream& out, std::
     err << fmt::format("{}: error: {}\n", kTool, *problem);
     return kExitUsageError;
   }
+  simplify::UserRules rules;
+  if (!simplify::readRuleFiles(options.ruleFiles, rules, kTool, err)) return kExitInputError;
   engine::ToolRun run(kTool, err);
   if (const auto status = run.loadScene(options.scenePath)) return *status;
   const auto instance = findInstance(run.scene(), options.shader);
@@ -182,7 +185,7 @@ int runSearchTool(const std::vector<std::string>& args, std::ostream& out, std::
   engine::TextureBakeOptions bakeOptions;
   bakeOptions.defaultSize = options.bakeSize;
   engine::SceneRenderer renderer(run.context(), scene, run.diagnostics(), bakeOptions);
-  return run.finish(search(options, run, renderer, scene, *instance, out));
+  return run.finish(search(options, rules, run, renderer, scene, *instance, out));
 }
 
 }  // namespace spire::search

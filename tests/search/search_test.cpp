@@ -186,6 +186,42 @@ TEST_F(SearchRun, StopsAtTheErrorBudget) {
       << readText(dir_ / "out/report.md");
 }
 
+// User rules propose beside the built-in ones, and one whose replacement
+// compiles to another type (`sum += <float>` is legal where a vec4 was
+// added) is dropped with the reason, as spire-simplify drops it.
+TEST_F(SearchRun, OffersUserRulesAndDropsThoseThatChangeTheType) {
+  std::ofstream(dir_ / "taps.rules") << "# a texel's coordinate for its colour: not a vec4\n"
+                                        "rule tap-u: texture($m, $uv) -> $uv.x\n";
+  std::ostringstream out, err;
+  const std::vector<std::string> args =
+      searchArgs({"--component", "wide", "--rules", (dir_ / "taps.rules").string(), "--max-levels", "1"});
+  ASSERT_EQ(runSearchTool(args, out, err), kExitSuccess) << err.str() << out.str();
+  const std::string report = readText(dir_ / "out/report.md");
+  EXPECT_NE(report.find("dropped wide (tap-u): '((vert_uv + vec2(float(i) * 0.004, 0.0)).x)' has type 'float', "
+                        "not 'vec4'"),
+            std::string::npos)
+      << report;
+  EXPECT_EQ(csvRows(dir_ / "out/chain.csv").size(), 2U) << out.str();
+}
+
+// A rule file with an error stops the search before it opens a device.
+TEST(SearchCommandLine, ReportsRuleFileErrors) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("spire_search_rules_{}", ::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "bad.rules") << "rule oops: pow($x, 2.0) -> $y\n";
+  std::ostringstream out, err;
+  EXPECT_EQ(runSearchTool({"--search", "--scene", "examples/scenes/terrain.json", "--shader", "Terrain", "--rules",
+                           (dir / "bad.rules").string(), "-o", (dir / "out").string()},
+                          out, err),
+            kExitInputError);
+  EXPECT_NE(err.str().find("bad.rules:1:28: error[E8001]: '$y' is not a metavariable of the pattern"),
+            std::string::npos)
+      << err.str();
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+}
+
 // Ordered by measured frame time instead, the chain's time never rises.
 TEST_F(SearchRun, OrdersByMeasuredTimeWhenAsked) {
   std::ostringstream out, err;
