@@ -3,11 +3,12 @@
 // definition gets K1 rewrites per rule; each candidate's error is measured
 // by spire-tune's Tuner (RMSE against the original over every camera view
 // and parameter sample) or taken from the error cache; the candidates within
-// K2 x the median error are ranked by cost saved per error added; the chosen
-// one is measured fresh, and when its cached error was off by more than K3 x
-// itself the cache is emptied and the step chosen again. The accepted level
-// must keep the chain monotone (error never falls, cost never rises);
-// otherwise the next candidate is tried. The search stops after the
+// K2 x the median error are ranked by cost (search::costOf: He et al.'s
+// model C by default) saved per error added; the chosen one is measured
+// fresh, and when its cached error was off by more than K3 x itself the
+// cache is emptied and the step chosen again. The accepted level must keep
+// the chain monotone (error never falls, cost always falls); otherwise the
+// next candidate is tried. The search stops after the
 // maximum number of levels, when no candidate is within the error budget, or
 // when no rewrite is left.
 #pragma once
