@@ -53,6 +53,16 @@ size_t replacementOffset(const ast::ComponentDecl& decl, const Rewrite& rewrite,
   return before + variation.size() - (decl.variationRange.end - decl.variationRange.begin);
 }
 
+const ast::ComponentDecl* definitionNamed(const sem::Shader& shader, const std::string& component,
+                                          const std::string& variation) {
+  const sem::Component* found = shader.findComponent(component);
+  if (!found) return nullptr;
+  for (const sem::Definition& d : found->definitions) {
+    if (d.decl && d.variation == variation) return d.decl;
+  }
+  return nullptr;
+}
+
 std::optional<std::string> replacementTypeError(const sem::Model& model, const ast::ComponentDecl& decl,
                                                 size_t replacementAt, const std::string& replacement,
                                                 const std::string& type) {

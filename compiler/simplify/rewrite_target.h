@@ -35,6 +35,12 @@ std::string rewrittenText(const SourceManager& sources, const ast::ComponentDecl
 // name, whose variation part grew or shrank.
 size_t replacementOffset(const ast::ComponentDecl& decl, const Rewrite& rewrite, const std::string& variation);
 
+// The definition of `component` named `variation` in a compiled shader (a
+// rewrite's, found again in the module it was compiled in); null when the
+// shader has none.
+const ast::ComponentDecl* definitionNamed(const sem::Shader& shader, const std::string& component,
+                                          const std::string& variation);
+
 // Why a rewrite that must keep `type` (Rewrite::type: a user rule's, which
 // can compile to another type, `vec3 * float` for `vec3 * vec3`, and mean
 // something else) does not, found in `model` where the rewritten definition

@@ -110,11 +110,7 @@ std::string moduleText(const ModuleHeader& header, const std::vector<const Candi
 
 // The definition `c` became in the compiled module's derived shader.
 const ast::ComponentDecl* compiledDefinition(const sem::Shader& derived, const Candidate& c) {
-  const sem::Component& component = derived.components[derived.componentByName.at(c.variation.component)];
-  for (const sem::Definition& d : component.definitions) {
-    if (d.decl && component.name + ":" + d.variation == c.variation.name) return d.decl;
-  }
-  return nullptr;
+  return definitionNamed(derived, c.variation.component, c.variation.name.substr(c.variation.component.size() + 1));
 }
 
 // A replacement whose type is not the one it must have (Candidate::type),

@@ -4,6 +4,14 @@
 
 namespace spire::search {
 
+graph::DecisionFile placementDecisions(const std::string& shader, const Placement& placement) {
+  graph::DecisionFile decisions;
+  for (const auto& [component, where] : placement) {
+    decisions.lines.push_back(graph::makeDecision(shader, component, where));
+  }
+  return decisions;
+}
+
 std::string variationOf(const std::string& placement) {
   const size_t colon = placement.find(':');
   return colon == std::string::npos ? std::string() : placement.substr(colon + 1);

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "graph/decision_file.h"
+
 namespace spire::search {
 
 // One rewrite of a component's current definition under a variation name:
@@ -31,6 +33,10 @@ using Placement = std::vector<std::pair<std::string, std::string>>;
 
 // `placement` with `component` computed in the same world, as `variation`.
 Placement withVariation(Placement placement, const std::string& component, const std::string& variation);
+// `placement` as the decision lines of `shader`: what a level's decision
+// file says, and what its cost is computed for.
+graph::DecisionFile placementDecisions(const std::string& shader, const Placement& placement);
+
 // The variation a placement names ("ggx" of "Fragment:ggx"), or "".
 std::string variationOf(const std::string& placement);
 // The world a placement names ("Fragment" of "Fragment:ggx").

@@ -22,16 +22,6 @@ struct Trial {
   tune::VariantResult result;  // when measured in this step
 };
 
-// The definition `r` made, in the compiled derived shader.
-const ast::ComponentDecl* definitionIn(const sem::Shader& shader, const Rewriting& r) {
-  const sem::Component* component = shader.findComponent(r.component);
-  if (!component) return nullptr;
-  for (const sem::Definition& d : component->definitions) {
-    if (d.decl && d.variation == r.variation) return d.decl;
-  }
-  return nullptr;
-}
-
 struct Accepted {
   Rewriting step;
   Level level;
@@ -148,9 +138,10 @@ Expected<std::vector<Candidate>, Failure> GreedySearch::propose(size_t level) {
 
 std::string GreedySearch::stepText(const std::vector<Candidate>& candidates, const Candidate* only) const {
   std::vector<const Rewriting*> definitions = accepted();
-  if (only) definitions.push_back(&only->rewriting);
-  for (const Candidate& c : candidates) {
-    if (!only) definitions.push_back(&c.rewriting);
+  if (only) {
+    definitions.push_back(&only->rewriting);
+  } else {
+    for (const Candidate& c : candidates) definitions.push_back(&c.rewriting);
   }
   return chainModuleText(setup_.header, definitions);
 }
@@ -174,7 +165,9 @@ bool GreedySearch::dropRetyped(const ShaderLibrary& compiled, std::vector<Candid
   const sem::Shader* shader = compiled.model().findShader(setup_.header.derived);
   std::vector<Candidate> kept;
   for (Candidate& c : candidates) {
-    const ast::ComponentDecl* decl = c.type.empty() || !shader ? nullptr : definitionIn(*shader, c.rewriting);
+    const ast::ComponentDecl* decl =
+        c.type.empty() || !shader ? nullptr
+                                  : simplify::definitionNamed(*shader, c.rewriting.component, c.rewriting.variation);
     const auto error =
         decl ? simplify::replacementTypeError(compiled.model(), *decl, c.replacementAt, c.rewriting.after, c.type)
              : std::nullopt;

@@ -8,12 +8,9 @@ namespace spire::search {
 std::optional<double> modelCost(const ShaderLibrary& library, const std::string& shader, const Placement& placement) {
   const graph::ChoiceSpace* space = library.choiceSpace(shader);
   if (!space) return std::nullopt;
-  graph::DecisionFile decisions;
-  for (const auto& [component, where] : placement) {
-    decisions.lines.push_back(graph::makeDecision(shader, component, where));
-  }
   DiagnosticList diags;
-  const std::optional<graph::Variant> variant = graph::applyDecisions(decisions, *space, diags);
+  const std::optional<graph::Variant> variant =
+      graph::applyDecisions(placementDecisions(shader, placement), *space, diags);
   if (!variant || diags.hasErrors()) return std::nullopt;
   return static_cast<double>(simplify::variantCost(library.model(), *variant).totalTenths()) / 10.0;
 }

@@ -17,14 +17,11 @@ namespace {
 std::string decisionFile(const Chain& chain, size_t k, const ModuleHeader& header) {
   const Level& level = chain.levels[k];
   const std::string what = k == 0 ? "the original" : fmt::format("{} rewrite(s) of the original", k);
-  graph::DecisionFile decisions;
-  for (const auto& [component, placement] : level.placement) {
-    decisions.lines.push_back(graph::makeDecision(header.derived, component, placement));
-  }
   return graph::writeDecisionFile(
-      decisions, fmt::format("spire-simplify --search: level {} of {}'s chain, {}.\nMeasured: RMSE {:.6f}, time "
-                             "ratio {:.3f} against level 0; cost C = {:.1f}.",
-                             k, header.base, what, level.error, level.timeRatio, level.modelCost));
+      placementDecisions(header.derived, level.placement),
+      fmt::format("spire-simplify --search: level {} of {}'s chain, {}.\nMeasured: RMSE {:.6f}, time "
+                  "ratio {:.3f} against level 0; cost C = {:.1f}.",
+                  k, header.base, what, level.error, level.timeRatio, level.modelCost));
 }
 
 std::string chainCsv(const Chain& chain) {

@@ -70,13 +70,9 @@ Expected<tune::TunerOptions, Failure> tunerOptions(const SearchOptions& options,
   tuner.timing.minPairs = options.frames;
   tuner.timing.maxPairs = options.frames;
   tuner.warmupFrames = options.warmup;
-  std::vector<tune::ParameterRange> ranges;
-  for (const std::string& text : options.params) {
-    auto range = tune::parseParameter(text, scene.instances.at(instance), scene);
-    if (!range) return range.error();
-    ranges.push_back(*range);
-  }
-  tuner.parameterSamples = tune::parameterSamples(ranges, options.paramSamples, options.seed);
+  auto ranges = tune::parseParameters(options.params, scene.instances.at(instance), scene);
+  if (!ranges) return ranges.error();
+  tuner.parameterSamples = tune::parameterSamples(*ranges, options.paramSamples, options.seed);
   return tuner;
 }
 

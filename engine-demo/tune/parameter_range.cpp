@@ -108,4 +108,16 @@ Expected<ParameterRange, Failure> parseParameter(const std::string& text, const 
                         {}};
 }
 
+Expected<std::vector<ParameterRange>, Failure> parseParameters(const std::vector<std::string>& texts,
+                                                               const scene::InstanceDesc& instance,
+                                                               const scene::SceneFile& scene) {
+  std::vector<ParameterRange> ranges;
+  for (const std::string& text : texts) {
+    auto range = parseParameter(text, instance, scene);
+    if (!range) return range.error();
+    ranges.push_back(std::move(*range));
+  }
+  return ranges;
+}
+
 }  // namespace spire::tune

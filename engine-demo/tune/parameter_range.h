@@ -51,6 +51,11 @@ std::vector<ParameterSample> randomSamples(const std::vector<ParameterRange>& ra
 Expected<ParameterRange, Failure> parseParameter(const std::string& text, const scene::InstanceDesc& instance,
                                                  const scene::SceneFile& scene);
 
+// parseParameter of every text of a command line's --param options.
+Expected<std::vector<ParameterRange>, Failure> parseParameters(const std::vector<std::string>& texts,
+                                                               const scene::InstanceDesc& instance,
+                                                               const scene::SceneFile& scene);
+
 // The texture bound to `binding`'s range, per channel from its smallest to
 // its largest texel.
 Expected<ParameterRange, Failure> textureRange(const std::string& text, const scene::MaterialBinding& binding,

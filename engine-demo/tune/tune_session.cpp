@@ -49,15 +49,12 @@ std::optional<int> startTuner(const TuneOptions& options, engine::ToolRun& run, 
     session.reference = options.reference;
   else if (!run.scene().variants.empty())
     session.reference = run.scene().variants.front().decisions;
-  std::vector<ParameterRange> ranges;
-  for (const std::string& text : options.params) {
-    auto range = parseParameter(text, *session.instance, run.scene());
-    if (!range) {
-      err << fmt::format("spire-tune: error: {}\n", range.error().message);
-      return kExitUsageError;
-    }
-    ranges.push_back(*range);
+  auto parsed = parseParameters(options.params, *session.instance, run.scene());
+  if (!parsed) {
+    err << fmt::format("spire-tune: error: {}\n", parsed.error().message);
+    return kExitUsageError;
   }
+  const std::vector<ParameterRange>& ranges = *parsed;
   TunerOptions tunerOptions;
   // Every variant gets `frames` pairs; only candidates for the front get
   // more, when racing.
