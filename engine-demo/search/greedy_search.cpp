@@ -54,9 +54,10 @@ class GreedySearch {
   Placement live(const Placement& placement);
   Level levelOf(const tune::VariantResult& result, Placement placement) const;
   Measure measureOf(const Level& level) const { return {level.error, costOf(level, options_.cost)}; }
-  // C of `placement` in the step's module (search/model_cost.h), 0 when it
-  // is not a variant of it.
-  double stepModelCost(const Placement& placement) const;
+  // C of `placement` in the step's module (search/model_cost.h); nullopt
+  // when it is not a variant of it, and so no candidate (a cost of 0 would
+  // look like the greatest saving).
+  std::optional<double> stepModelCost(const Placement& placement) const;
   std::vector<const Rewriting*> accepted() const;
   void note(const std::string& line);
 
@@ -95,9 +96,9 @@ Level GreedySearch::levelOf(const tune::VariantResult& result, Placement placeme
   return {result.rmse, result.time.median, result.frameMs, result.kernels, std::move(placement)};
 }
 
-double GreedySearch::stepModelCost(const Placement& placement) const {
-  if (!stepLibrary_) return 0.0;
-  return modelCost(*stepLibrary_, setup_.header.derived, placement).value_or(0.0);
+std::optional<double> GreedySearch::stepModelCost(const Placement& placement) const {
+  if (!stepLibrary_) return std::nullopt;
+  return modelCost(*stepLibrary_, setup_.header.derived, placement);
 }
 
 std::vector<const Rewriting*> GreedySearch::accepted() const {
@@ -206,11 +207,16 @@ std::vector<Trial> GreedySearch::measureCandidates(const std::vector<Candidate>&
   std::vector<Trial> trials;
   for (const Candidate& c : candidates) {
     const Placement placement = withVariation(current.placement, c.rewriting.component, c.rewriting.variation);
+    const std::optional<double> cost = stepModelCost(placement);
+    if (!cost) {
+      note(fmt::format("  skipped {} ({}): its cost C cannot be computed", c.rewriting.from, c.rewriting.rule));
+      continue;
+    }
     if (const auto hit = cache_.find(c.key); hit != cache_.end()) {
       // The error is cached; C is not, since it depends on what the other
       // components are now.
       Measure cached = hit->second;
-      if (options_.cost == CostKind::Model) cached.cost = stepModelCost(placement);
+      if (options_.cost == CostKind::Model) cached.cost = *cost;
       trials.push_back({c, cached, true, {}});
       continue;
     }
@@ -221,7 +227,7 @@ std::vector<Trial> GreedySearch::measureCandidates(const std::vector<Candidate>&
     }
     if (result.kernels == current.kernels) continue;
     Level level = levelOf(result, {});
-    level.modelCost = stepModelCost(placement);
+    level.modelCost = *cost;
     const Measure measured = measureOf(level);
     cache_[c.key] = measured;
     trials.push_back({c, measured, false, std::move(result)});
@@ -246,7 +252,9 @@ Choice GreedySearch::choose(const std::vector<size_t>& order, std::vector<Trial>
     // Liveness from the step's module, which names the rewrite as the candidate.
     const Placement measured = live(withVariation(current.placement, r.component, t.candidate.rewriting.variation));
     Level level = levelOf(fresh, withVariation(measured, r.component, r.variation));
-    level.modelCost = stepModelCost(measured);
+    const std::optional<double> cost = stepModelCost(measured);
+    if (!cost) continue;
+    level.modelCost = *cost;
     if (level.error > options_.errorBudget || !keepsChainMonotone(measureOf(current), measureOf(level))) {
       note(fmt::format(
           "  not taken: {} ({}) RMSE {:.6f}, time ratio {:.3f} is over the budget or breaks the monotone chain", r.from,
