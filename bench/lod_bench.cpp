@@ -79,7 +79,8 @@ DrawGroups makeGroups() {
 
 LodPolicy makePolicy() {
   LodPolicy policy;
-  policy.levels = {{"HQ", 12.0F, {}}, {"MQ", 35.0F, {}}, {"LQ", std::numeric_limits<float>::infinity(), {}}};
+  policy.levels = {
+      {"HQ", 12.0F, {}, {}}, {"MQ", 35.0F, {}, {}}, {"LQ", std::numeric_limits<float>::infinity(), {}, {}}};
   policy.hysteresis = 0.1F;
   policy.transitionFrames = 8;
   return policy;

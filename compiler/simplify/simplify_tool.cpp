@@ -44,7 +44,7 @@ void defineOptions(CLI::App& app, CliOptions& options) {
       ->type_name("N");
   app.add_option("--rules", options.ruleFiles,
                  "Also apply the rules of FILE: one a line, 'rule NAME: PATTERN -> REPLACEMENT' with $metavariables "
-                 "(repeatable; docs/simplification.md, \"User rules\")")
+                 "(repeatable; docs/simplify.md, \"User rules\")")
       ->type_name("FILE");
   app.add_option("--name", options.simplify.derivedName, "The derived shader's name (default: SHADER + Simplified)")
       ->type_name("NAME");
@@ -92,9 +92,9 @@ int printCosts(ShaderLibrary& library, const CliOptions& options, std::ostream& 
   const std::string decisions = options.decisionsPath.empty()
                                     ? "its default decisions"
                                     : fmt::format("the decisions of {}", options.decisionsPath);
-  out << formatVariantCost(variantCost(library.model(), *variant),
-                           fmt::format("{} under {} (He et al. 2015's cost model, docs/simplification.md):",
-                                       options.simplify.shader, decisions));
+  out << formatVariantCost(
+      variantCost(library.model(), *variant),
+      fmt::format("{} under {} (He et al. 2015's cost model, docs/simplify.md):", options.simplify.shader, decisions));
   return kExitSuccess;
 }
 

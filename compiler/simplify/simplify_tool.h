@@ -1,4 +1,4 @@
-// spire-simplify's command line (docs/simplification.md).
+// spire-simplify's command line (docs/simplify.md).
 #pragma once
 
 #include <iosfwd>

@@ -1,4 +1,4 @@
-// User-written simplification rules (docs/simplification.md, "User rules"):
+// User-written simplification rules (docs/simplify.md, "User rules"):
 // the rule files `spire-simplify --rules FILE` reads, one rule a line,
 //
 //   # comments run to the end of the line

@@ -41,6 +41,17 @@ std::optional<LevelCompiler::Outcome> LevelCompiler::poll() {
   return std::nullopt;
 }
 
+namespace {
+
+// What a level compiles an instance from: its member and decision files.
+std::string drawnAs(const lod::LodLevel& level) {
+  std::string key = level.member;
+  for (const auto& [shader, path] : level.decisions) key += fmt::format("|{}={}", shader, path.generic_string());
+  return key;
+}
+
+}  // namespace
+
 LevelCompiler::CompileFunction compileLevelsIn(const engine::SceneRenderer& renderer,
                                                std::vector<ShaderLibrary*> libraries) {
   // Only the worker uses the cache, one request at a time.
@@ -51,15 +62,15 @@ LevelCompiler::CompileFunction compileLevelsIn(const engine::SceneRenderer& rend
     for (const lod::LodLevel& level : policy.levels) {
       std::vector<engine::VariantProgram>& row = programs.emplace_back();
       for (size_t p = 0; p < libraries.size(); ++p) {
-        auto it = cache->find({p, level.member});
+        const std::pair<size_t, std::string> key{p, drawnAs(level)};
+        auto it = cache->find(key);
         if (it == cache->end()) {
-          const std::string shader = fmt::format("{}<{}>", renderer.scene().instances[p].shader, level.member);
           // The members' warnings were the compiler's to give when the scene
           // started; a member new to the session is checked by its errors.
           std::string warnings;
-          auto program = renderer.compileShaderIn(*libraries[p], p, shader, warnings);
+          auto program = renderer.compileLevelIn(*libraries[p], p, level, warnings);
           if (!program) return program.error();
-          it = cache->emplace(std::pair{p, level.member}, std::move(program).value()).first;
+          it = cache->emplace(key, std::move(program).value()).first;
         }
         row.push_back(it->second);
       }

@@ -180,7 +180,8 @@ std::optional<int> LodExplorer::start() {
 engine::Expected<bool> LodExplorer::applyPolicy() {
   const lod::LodPolicy& policy = editor_.valid();
   for (const lod::LodLevel& level : policy.levels) {
-    if (std::find(members_.begin(), members_.end(), level.member) == members_.end()) {
+    // A level of decision files only draws the instances' own shaders.
+    if (!level.member.empty() && std::find(members_.begin(), members_.end(), level.member) == members_.end()) {
       return engine::Error{fmt::format("'{}' is not a member that every instance's group offers ({})", level.member,
                                        fmt::join(members_, ", "))};
     }

@@ -56,7 +56,7 @@ void PolicyEditor::addLevel(std::string member, float until) {
   std::vector<lod::LodLevel>& levels = edited_.levels;
   const auto last = levels.empty() ? levels.end() : levels.end() - 1;
   const auto at = std::find_if(levels.begin(), last, [until](const lod::LodLevel& l) { return l.until > until; });
-  levels.insert(at, lod::LodLevel{std::move(member), until, {}});
+  levels.insert(at, lod::LodLevel{std::move(member), until, {}, {}});
   check();
 }
 

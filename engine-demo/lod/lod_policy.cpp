@@ -1,6 +1,8 @@
 #include "lod/lod_policy.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <limits>
@@ -17,11 +19,14 @@ using scene::JsonMember;
 using scene::JsonValue;
 
 const scene::KeyList kPolicyKeys = {"levels", "hysteresis", "transitionFrames"};
-const scene::KeyList kLevelKeys = {"member", "until"};
+const scene::KeyList kLevelKeys = {"member", "decisions", "until"};
 
 class PolicyReader {
  public:
-  PolicyReader(const SourceManager& sources, DiagnosticList& diags) : check_(sources, diags), diags_(diags) {}
+  // `folder`: where the policy file is, which its decision files' paths are
+  // relative to.
+  PolicyReader(const SourceManager& sources, DiagnosticList& diags, std::filesystem::path folder)
+      : check_(sources, diags), diags_(diags), folder_(std::move(folder)) {}
 
   void read(const JsonValue& root, LodPolicy& policy) {
     policy.range = root.openingRange();
@@ -66,6 +71,8 @@ class PolicyReader {
     for (const JsonMember& member : value.members) {
       if (member.key == "member") {
         if (auto name = check_.text(member.value, "'member'")) level.member = *name;
+      } else if (member.key == "decisions") {
+        readDecisions(member.value, level);
       } else if (member.key == "until") {
         if (last) {
           diags_.report(DiagCode::E7002, member.keyRange,
@@ -77,14 +84,38 @@ class PolicyReader {
         check_.unknownKey(member, kLevelKeys, "a level");
       }
     }
-    if (!value.find("member")) check_.missing(value, "a level has no 'member' (the group member it draws with)");
+    if (!value.find("member") && !value.find("decisions")) {
+      check_.missing(value, "a level has neither a 'member' (the group member it draws with) nor 'decisions'");
+    }
     if (!last && !value.find("until")) check_.missing(value, "a level before the last has no 'until'");
     return level;
   }
 
+  // {"Shader": "file.decisions", ...}: each file must be there now, so that
+  // a missing one is reported here and not when a level is first drawn.
+  void readDecisions(const JsonValue& value, LodLevel& level) {
+    if (!check_.expectKind(value, JsonKind::Object, "'decisions'")) return;
+    if (value.members.empty()) check_.missing(value, "'decisions' names no shader");
+    for (const JsonMember& member : value.members) {
+      auto file = check_.text(member.value, fmt::format("the decisions of '{}'", member.key));
+      if (!file) continue;
+      const std::filesystem::path path = folder_ / *file;
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(path, ec)) {
+        diags_.report(DiagCode::E1101, member.value.range,
+                      fmt::format("cannot open decision file '{}'", path.generic_string()));
+        continue;
+      }
+      level.decisions.emplace(member.key, path);
+    }
+  }
+
   scene::JsonValueChecker check_;
   DiagnosticList& diags_;
+  std::filesystem::path folder_;
 };
+
+std::string jsonString(const std::string& text) { return nlohmann::json(text).dump(); }
 
 }  // namespace
 
@@ -95,7 +126,8 @@ std::optional<LodPolicy> parseLodPolicy(std::string displayPath, std::string tex
   const std::optional<JsonValue> root = scene::parseJson(sources, file, diags);
   if (!root) return std::nullopt;
   LodPolicy policy;
-  PolicyReader(sources, diags).read(*root, policy);
+  const std::filesystem::path folder = std::filesystem::path(sources.file(file).path).parent_path();
+  PolicyReader(sources, diags, folder).read(*root, policy);
   if (diags.errorCount() > errorsBefore || diags.limitReached()) return std::nullopt;
   return policy;
 }
@@ -110,11 +142,40 @@ std::optional<LodPolicy> loadLodPolicy(const std::filesystem::path& path, Source
   return parseLodPolicy(path.string(), std::move(*text), sources, diags);
 }
 
-std::string formatLodPolicy(const LodPolicy& policy) {
+scene::InstanceDesc levelInstance(const scene::InstanceDesc& instance, const LodLevel& level) {
+  scene::InstanceDesc drawn = instance;
+  if (const auto it = level.decisions.find(instance.shader); it != level.decisions.end()) drawn.decisions = it->second;
+  if (!level.member.empty()) drawn.shader = fmt::format("{}<{}>", instance.shader, level.member);
+  return drawn;
+}
+
+std::string levelName(const LodLevel& level) {
+  std::string name = level.member;
+  for (const auto& [shader, path] : level.decisions) {
+    const std::string stem = path.stem().string();
+    if (name.find(stem) == std::string::npos) name += (name.empty() ? "" : " ") + stem;
+  }
+  return name;
+}
+
+std::string formatLodPolicy(const LodPolicy& policy, const std::filesystem::path& folder) {
   std::string text = "{\n  \"levels\": [\n";
   for (size_t i = 0; i < policy.levels.size(); ++i) {
     const LodLevel& level = policy.levels[i];
-    text += fmt::format("    {{\"member\": \"{}\"", level.member);
+    std::vector<std::string> fields;
+    if (!level.member.empty()) fields.push_back(fmt::format("\"member\": {}", jsonString(level.member)));
+    if (!level.decisions.empty()) {
+      std::vector<std::string> files;
+      for (const auto& [shader, path] : level.decisions) {
+        const std::filesystem::path written =
+            folder.empty() ? path
+                           : std::filesystem::absolute(path).lexically_normal().lexically_relative(
+                                 std::filesystem::absolute(folder).lexically_normal());
+        files.push_back(fmt::format("{}: {}", jsonString(shader), jsonString(written.generic_string())));
+      }
+      fields.push_back(fmt::format("\"decisions\": {{{}}}", fmt::join(files, ", ")));
+    }
+    text += fmt::format("    {{{}", fmt::join(fields, ", "));
     if (std::isfinite(level.until)) text += fmt::format(", \"until\": {}", level.until);
     text += i + 1 < policy.levels.size() ? "},\n" : "}\n";
   }

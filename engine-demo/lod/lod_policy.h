@@ -11,23 +11,48 @@
 // Levels go from nearest to farthest; each but the last ends at `until`
 // (world units from the camera to the nearest point of the object's
 // bounding sphere), the last has no end.
+//
+// A level draws an instance with a group member (`shader<member>`), with
+// decision files of its own for some shaders, or both:
+//   {"decisions": {"TerrainSearch": "level2.decisions"}, "until": 30}
+// draws the instances of TerrainSearch with level2.decisions (a path
+// relative to the policy file) and every other instance as the scene gives
+// it. That is how a chain of decision files over one shader, such as
+// spire-simplify --search writes, becomes a policy.
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "scene/scene_file.h"
 #include "support/diagnostic.h"
 #include "support/source_manager.h"
 
 namespace spire::lod {
 
 struct LodLevel {
-  std::string member;  // the group member whose shader draws this band, e.g. "LodMQ"
+  std::string member;  // the group member whose shader draws this band, e.g. "LodMQ"; empty: the instance's shader
   float until = 0.0F;  // the band's far edge; +infinity for the last level
   SourceRange range;
+  // By the instance's shader name (before `member` applies): the decision
+  // file its instances draw with in this band instead of their own.
+  std::map<std::string, std::filesystem::path> decisions;
+
+  // Whether two levels draw every instance alike (their bands aside).
+  bool drawsAs(const LodLevel& other) const { return member == other.member && decisions == other.decisions; }
 };
+
+// `instance` as `level` draws it: compiled as `shader<member>` when the
+// level names a member, with the level's decision file for the instance's
+// shader in place of its own decisions when the level has one.
+scene::InstanceDesc levelInstance(const scene::InstanceDesc& instance, const LodLevel& level);
+
+// A level's name for people: its member, its decision files' stems, or both
+// ("LodMQ", "level2", "LodMQ level2").
+std::string levelName(const LodLevel& level);
 
 struct LodPolicy {
   std::vector<LodLevel> levels;  // nearest first, `until` strictly increasing
@@ -49,7 +74,9 @@ std::optional<LodPolicy> parseLodPolicy(std::string displayPath, std::string tex
                                         DiagnosticList& diags);
 
 // The policy file's JSON text, as loadLodPolicy reads it back: what a tool
-// that derives a policy from measurements writes.
-std::string formatLodPolicy(const LodPolicy& policy);
+// that derives a policy from measurements writes. Decision files are
+// written relative to `folder`, the folder the file is written to (as
+// they are: when empty).
+std::string formatLodPolicy(const LodPolicy& policy, const std::filesystem::path& folder = {});
 
 }  // namespace spire::lod

@@ -55,7 +55,7 @@ std::vector<uint32_t> chooseLevels(const LevelMeasurements& m, const ChoiceRule&
   return chosen;
 }
 
-LodPolicy policyFromChoice(const std::vector<std::string>& members, const std::vector<float>& distances,
+LodPolicy policyFromChoice(const std::vector<LodLevel>& measured, const std::vector<float>& distances,
                            const std::vector<uint32_t>& levels, float hysteresis, uint32_t transitionFrames) {
   LodPolicy policy;
   policy.hysteresis = hysteresis;
@@ -68,7 +68,10 @@ LodPolicy policyFromChoice(const std::vector<std::string>& members, const std::v
       const float until = distances[s] / std::max(1.0F - hysteresis, 1e-3F);
       policy.levels.back().until = std::ceil(until * 100.0F) / 100.0F;
     }
-    policy.levels.push_back({members[levels[s]], std::numeric_limits<float>::infinity(), {}});
+    LodLevel level = measured[levels[s]];
+    level.until = std::numeric_limits<float>::infinity();
+    level.range = {};
+    policy.levels.push_back(std::move(level));
   }
   return policy;
 }

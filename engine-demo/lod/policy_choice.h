@@ -42,12 +42,12 @@ double toleratedError(const std::vector<float>& distances, size_t index, const C
 // at least one level, every error row as long as `distances`.
 std::vector<uint32_t> chooseLevels(const LevelMeasurements& m, const ChoiceRule& rule);
 
-// `levels` per sample as a policy on `members` (the measured levels' names,
-// nearest first): levels never chosen are left out, and a band ends where the
+// `levels` per sample as a policy on the `measured` levels (nearest first;
+// their bands are not used): levels never chosen are left out, and a band ends where the
 // next level was chosen, moved out by the hysteresis so that a camera coming
 // back does not return to the coarser level nearer than where it was measured
 // to be within tolerance.
-LodPolicy policyFromChoice(const std::vector<std::string>& members, const std::vector<float>& distances,
+LodPolicy policyFromChoice(const std::vector<LodLevel>& measured, const std::vector<float>& distances,
                            const std::vector<uint32_t>& levels, float hysteresis, uint32_t transitionFrames);
 
 }  // namespace spire::lod

@@ -15,7 +15,7 @@ namespace {
 // One level of every prototype: the programs and what preparing them made
 // (materials, bakes, and a draw item per prototype that validated them).
 struct Level {
-  std::string member;
+  lod::LodLevel drawnAs;                 // the policy level it was compiled for (its band aside)
   std::vector<VariantProgram> programs;  // per prototype
   PreparedScene prepared;
 };
@@ -116,11 +116,10 @@ Expected<void> LodScene::Impl::compileLevels(LevelPrograms* compiled) {
   for (size_t l = 0; l < policy.levels.size(); ++l) {
     const lod::LodLevel& policyLevel = policy.levels[l];
     Level level;
-    level.member = policyLevel.member;
+    level.drawnAs = policyLevel;
     if (compiled) level.programs = std::move((*compiled)[l]);
     for (size_t p = level.programs.size(); p < prototypes; ++p) {
-      const std::string shader = fmt::format("{}<{}>", renderer.scene().instances[p].shader, policyLevel.member);
-      auto program = renderer.compileShader(p, shader);
+      auto program = renderer.compileLevel(p, policyLevel);
       if (!program) return program.error();
       level.programs.push_back(std::move(program).value());
     }
@@ -379,9 +378,14 @@ Expected<void> LodScene::setBands(const lod::LodPolicy& policy, const scene::Cam
   if (!applied) return applied.error();
   const std::vector<Level>& levels = impl_->levels;
   const bool same = std::equal(levels.begin(), levels.end(), applied->levels.begin(), applied->levels.end(),
-                               [](const Level& a, const lod::LodLevel& b) { return a.member == b.member; });
-  if (!same)
-    return Error{"the policy's members differ from the compiled levels': the scene must be made again", {}, {}};
+                               [](const Level& a, const lod::LodLevel& b) { return a.drawnAs.drawsAs(b); });
+  if (!same) {
+    return Error{
+        "the policy's levels draw with other members or decisions than the compiled levels: the scene must be made "
+        "again",
+        {},
+        {}};
+  }
   impl_->policy = std::move(applied).value();
   impl_->selector.emplace(impl_->policy, impl_->instances.size());
   resetLevels(view);

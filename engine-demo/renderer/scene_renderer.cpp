@@ -204,19 +204,17 @@ Expected<VariantProgram> SceneRenderer::compileVariantIn(ShaderLibrary& lib, siz
   return program;
 }
 
-Expected<VariantProgram> SceneRenderer::compileShader(size_t index, const std::string& shader) {
-  scene::InstanceDesc instance = scene_.instances.at(index);
-  instance.shader = shader;
-  return compileInstance(instance, std::nullopt);
+Expected<VariantProgram> SceneRenderer::compileLevel(size_t index, const lod::LodLevel& level) {
+  return compileInstance(levelInstance(scene_.instances.at(index), level), std::nullopt);
 }
 
-Expected<VariantProgram> SceneRenderer::compileShaderIn(ShaderLibrary& library, size_t index, const std::string& shader,
-                                                        std::string& warnings) const {
-  scene::InstanceDesc instance = scene_.instances.at(index);
-  instance.shader = shader;
-  // The instance's own decisions only: no scene variant, so no other source's names.
+Expected<VariantProgram> SceneRenderer::compileLevelIn(ShaderLibrary& library, size_t index, const lod::LodLevel& level,
+                                                       std::string& warnings) const {
+  // The instance's own decisions or the level's: no scene variant, so no
+  // other source's names.
   return compileIn(
-      library, instance, std::nullopt, [](std::string_view) { return false; }, warnings);
+      library, levelInstance(scene_.instances.at(index), level), std::nullopt, [](std::string_view) { return false; },
+      warnings);
 }
 
 Expected<std::vector<VariantProgram>> SceneRenderer::compile(const std::optional<std::filesystem::path>& decisions) {

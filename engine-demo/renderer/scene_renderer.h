@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "driver/shader_library.h"
+#include "lod/lod_policy.h"
 #include "renderer/bake_cache.h"
 #include "renderer/hazard_records.h"
 #include "renderer/pipeline_cache.h"
@@ -88,16 +89,17 @@ class SceneRenderer {
   Expected<std::unique_ptr<ShaderLibrary>> loadLibrary(size_t index) const {
     return loadLibrary(scene_.instances.at(index));
   }
-  // Instance `index`'s source compiled as another of its shaders, e.g. a
-  // member of a group (`Rock<LodMQ>`), with the instance's own decisions.
-  Expected<VariantProgram> compileShader(size_t index, const std::string& shader);
-  // As compileShader, in `library` (such as library(index) gave, or
+  // Instance `index` compiled as a level of detail draws it
+  // (levelInstance): as a member of its group (`Rock<LodMQ>`), with the
+  // level's decision file for its shader or else its own decisions.
+  Expected<VariantProgram> compileLevel(size_t index, const lod::LodLevel& level);
+  // As compileLevel, in `library` (such as library(index) gave, or
   // loadLibrary made), without the renderer's cache: touches nothing else
   // of the renderer, so a tool may call it on a thread of its own while
   // this renderer draws, as long as nothing else uses `library` meanwhile.
   // The compiler's warnings are added to `warnings`.
-  Expected<VariantProgram> compileShaderIn(ShaderLibrary& library, size_t index, const std::string& shader,
-                                           std::string& warnings) const;
+  Expected<VariantProgram> compileLevelIn(ShaderLibrary& library, size_t index, const lod::LodLevel& level,
+                                          std::string& warnings) const;
   // The library compiled for instance `index` (compiling it on first use).
   Expected<ShaderLibrary*> library(size_t index) { return libraryFor(scene_.instances.at(index)); }
 

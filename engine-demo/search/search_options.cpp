@@ -41,7 +41,7 @@ void defineSearchOptions(CLI::App& app, SearchOptions& options) {
                  "Simplify only this component (repeatable; default: every one the shader defines)")
       ->type_name("NAME");
   app.add_option("--rules", options.ruleFiles,
-                 "Also propose the rewrites of the user rules of FILE (repeatable; docs/simplification.md, \"User "
+                 "Also propose the rewrites of the user rules of FILE (repeatable; docs/simplify.md, \"User "
                  "rules\")")
       ->type_name("FILE");
   app.add_option("--k1", options.k1, "Rewrites each rule proposes per component and step (default 2)")
@@ -71,6 +71,7 @@ void defineSearchOptions(CLI::App& app, SearchOptions& options) {
       ->type_name("NAME");
   addOutputDirectory(app, options.outputDir, "Write the chain (module, decision files, report) to DIR")->required();
   defineMeasurement(app, options);
+  tune::addPolicyChoiceOptions(app, options.policyChoice, "The chain's policy");
 }
 
 }  // namespace spire::search

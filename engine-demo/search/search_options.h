@@ -1,4 +1,4 @@
-// What `spire-simplify --search` is asked to do (docs/simplification.md,
+// What `spire-simplify --search` is asked to do (docs/simplify.md,
 // "Search"): He et al. 2015's greedy search over a scene's shader, with the
 // paper's K1, K2 and K3, and how its candidates are rendered and measured.
 #pragma once
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "search/chain.h"
+#include "tune/tune_options.h"
 
 namespace CLI {
 class App;
@@ -39,6 +40,7 @@ struct SearchOptions {
   uint64_t seed = 1;
   std::string device;
   bool validation = false;
+  tune::PolicyChoiceOptions policyChoice;  // the chain's level-of-detail policy
 };
 
 // Declares the options on `app`, spire-simplify's command line with --search.

@@ -12,9 +12,9 @@
 
 namespace spire::search {
 
-namespace {
+std::string levelFileName(size_t k) { return fmt::format("level{}.decisions", k); }
 
-std::string decisionFile(const Chain& chain, size_t k, const ModuleHeader& header) {
+std::string levelDecisionText(const Chain& chain, size_t k, const ModuleHeader& header) {
   const Level& level = chain.levels[k];
   const std::string what = k == 0 ? "the original" : fmt::format("{} rewrite(s) of the original", k);
   return graph::writeDecisionFile(
@@ -23,6 +23,8 @@ std::string decisionFile(const Chain& chain, size_t k, const ModuleHeader& heade
                   "ratio {:.3f} against level 0; cost C = {:.1f}.",
                   k, header.base, what, level.error, level.timeRatio, level.modelCost));
 }
+
+namespace {
 
 std::string chainCsv(const Chain& chain) {
   std::string text = "level,rmse,time_ratio,frame_ms,cost,component,variation,from,rule,before,after\n";
@@ -72,6 +74,21 @@ std::string report(const Chain& chain, const OutputRequest& request) {
     text += fmt::format("| {} | {:.6f} | {:.3f} | {:.3f} | {:.1f} | {} |\n", k, level.error, level.timeRatio,
                         level.frameMs, level.modelCost, rewrite);
   }
+  if (!request.levelImages.empty()) {
+    text += "\n## Levels\n\nEach level from the scene's first camera view:\n\n";
+    for (size_t k = 0; k < request.levelImages.size(); ++k) {
+      text += fmt::format("![level {0}: RMSE {1:.4f}, C {2:.1f}](level{0}.png)\n", k, chain.levels[k].error,
+                          chain.levels[k].modelCost);
+    }
+  }
+  if (request.policy) {
+    text += fmt::format(
+        "\n## Level-of-detail policy\n\n`lod_policy.json`: each level's error at each camera distance (the largest "
+        "over the scene's materials) and its frame time with every object at it, then He et al.'s choice: the "
+        "cheapest level within tolerated_err(d) = ((d - d_near) / (d_far - d_near))^{} x {}, with a penalty of {} "
+        "per switch.\n\n{}",
+        o.policyChoice.errorExponent, o.policyChoice.maxError, o.policyChoice.switchPenalty, request.policy->table);
+  }
   text += "\n## Steps\n\n```\n";
   for (const std::string& line : chain.log) text += line + "\n";
   return text + "```\n";
@@ -99,9 +116,15 @@ Expected<FileSet, Failure> searchOutputs(const Chain& chain, const OutputRequest
   for (const Rewriting& r : chain.steps) steps.push_back(&r);
   files.emplace_back(moduleFileName(request.header), chainModuleText(request.header, steps));
   for (size_t k = 0; k < chain.levels.size(); ++k) {
-    files.emplace_back(fmt::format("level{}.decisions", k), decisionFile(chain, k, request.header));
+    files.emplace_back(levelFileName(k), levelDecisionText(chain, k, request.header));
+  }
+  for (size_t k = 0; k < request.levelImages.size(); ++k) {
+    files.emplace_back(fmt::format("level{}.png", k), request.levelImages[k]);
   }
   files.emplace_back("chain.csv", chainCsv(chain));
+  if (request.policy) {
+    files.emplace_back("lod_policy.json", lod::formatLodPolicy(request.policy->policy, request.options->outputDir));
+  }
   files.emplace_back("report.md", report(chain, request));
   auto png = plot(chain);
   if (!png) return png.error();

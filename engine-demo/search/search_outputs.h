@@ -1,12 +1,15 @@
 // What `spire-simplify --search` writes, as one set (replaced atomically):
-// the module of the chain's definitions, one decision file per level
-// (level0.decisions is the original), chain.csv, report.md and the chain's
-// error-against-time plot, error_time.png.
+// the module of the chain's definitions, one decision file and one image
+// per level (level0.* is the original), chain.csv, the chain's
+// level-of-detail policy, report.md and the chain's error-against-time
+// plot, error_time.png.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "search/chain.h"
+#include "search/chain_policy.h"
 #include "search/search_options.h"
 #include "support/atomic_directory.h"
 #include "support/expected.h"
@@ -17,10 +20,19 @@ struct OutputRequest {
   ModuleHeader header;  // with the `using` path relative to the output folder
   const SearchOptions* options = nullptr;
   double referenceMs = 0.0;  // level 0's median frame time in this run
+  // The chain as a level-of-detail policy (lod_policy.json and a section
+  // of report.md); none when the chain has no level after the original.
+  const ChainPolicy* policy = nullptr;
+  // Each level's image from the scene's first camera view, PNG; none when
+  // empty.
+  std::vector<std::string> levelImages;
 };
 
 // The module's file name: the derived shader's name + ".spire".
 std::string moduleFileName(const ModuleHeader& header);
+// Level `k`'s decision file: its name and its text.
+std::string levelFileName(size_t k);
+std::string levelDecisionText(const Chain& chain, size_t k, const ModuleHeader& header);
 
 Expected<FileSet, Failure> searchOutputs(const Chain& chain, const OutputRequest& request);
 

@@ -11,6 +11,9 @@
 
 #include "driver/exit_codes.h"
 #include "driver/tool_arguments.h"
+#include "measure/image_metrics.h"
+#include "scene/texture.h"
+#include "search/chain_policy.h"
 #include "search/greedy_search.h"
 #include "search/search_outputs.h"
 #include "simplify/rewrite_target.h"
@@ -118,6 +121,22 @@ void printSummary(const Chain& chain, const SearchOptions& options, std::ostream
       kTool, chain.steps.size(), options.outputDir, last.error, last.timeRatio, chain.stopReason);
 }
 
+// Each level of `chain` from the first camera view, as PNG: the instance
+// must point at a module that holds every level's definitions.
+Expected<std::vector<std::string>, Failure> levelImages(tune::Tuner& tuner, const Chain& chain) {
+  std::vector<std::string> images;
+  for (size_t k = 0; k < chain.levels.size(); ++k) {
+    tune::TunePoint point;
+    point.decisions = {chain.levels[k].placement.begin(), chain.levels[k].placement.end()};
+    auto capture = tuner.capture(point);
+    if (!capture) return Failure{fmt::format("level {} cannot be drawn: {}", k, capture.error().message)};
+    auto png = scene::encodePng(measure::toRgba8(capture->color));
+    if (!png) return Failure{fmt::format("level {}'s image cannot be encoded: {}", k, png.error().message)};
+    images.push_back(std::move(png).value());
+  }
+  return images;
+}
+
 // The search on the renderer, then its outputs; the exit status.
 int search(const SearchOptions& options, const simplify::UserRules& rules, engine::ToolRun& run,
            engine::SceneRenderer& renderer, scene::SceneFile& scene, size_t instance, std::ostream& out) {
@@ -136,7 +155,17 @@ int search(const SearchOptions& options, const simplify::UserRules& rules, engin
   const ModuleHeader outputHeader = headerIn(options.outputDir, scene.instances.at(instance), options);
   auto chain = greedySearch(*setup, options, out);
   if (!chain) return fail(chain.error().message);
-  auto files = searchOutputs(*chain, {outputHeader, &options, tuner.referenceMs()});
+  std::optional<ChainPolicy> policy;
+  if (!chain->steps.empty()) {
+    auto chosen = chainPolicy(*chain, *setup, renderer, options, options.outputDir);
+    if (!chosen) return fail(chosen.error().message);
+    policy = std::move(chosen).value();
+    out << "level-of-detail policy of the chain:\n" << policy->table;
+  }
+  auto images = levelImages(tuner, *chain);
+  if (!images) return fail(images.error().message);
+  auto files = searchOutputs(
+      *chain, {outputHeader, &options, tuner.referenceMs(), policy ? &*policy : nullptr, std::move(images).value()});
   if (!files) return fail(files.error().message);
   if (auto written = replaceDirectoryAtomically(options.outputDir, *files); !written) {
     return fail(written.error().message);
@@ -159,6 +188,9 @@ int runSearchTool(const std::vector<std::string>& args, std::ostream& out, std::
   SearchOptions options;
   defineSearchOptions(app, options);
   if (const auto status = parseToolArguments(app, args, out, err)) return *status;
+  if (const auto problem = tune::distancesProblem(options.policyChoice.distances)) {
+    return usageError(kTool, *problem, err);
+  }
   if (const auto problem = outputProblem(options.outputDir)) {
     err << fmt::format("{}: error: {}\n", kTool, *problem);
     return kExitUsageError;

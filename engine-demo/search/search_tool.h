@@ -1,4 +1,4 @@
-// `spire-simplify --search` (docs/simplification.md, "Search"): He et al.
+// `spire-simplify --search` (docs/simplify.md, "Search"): He et al.
 // 2015's greedy simplification of a scene's shader, measured by rendering
 // the scene as spire-tune does, written as a level-of-detail chain.
 #pragma once

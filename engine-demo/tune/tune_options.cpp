@@ -12,23 +12,7 @@ void defineLodPolicyOptions(CLI::App& app, TuneOptions& options, CLI::Option* sh
                  "policy chosen from the measurements to PATH (docs/lod.md)")
       ->excludes(shader)
       ->type_name("PATH");
-  app.add_option("--distances", options.distances,
-                 "--lod-policy: camera distances to measure at, increasing (default: 1, 2, 4, ... up to half the "
-                 "camera's far plane)")
-      ->delimiter(',')
-      ->check(CLI::PositiveNumber)
-      ->type_name("D,D,...");
-  app.add_option("--max-error", options.maxError, "--lod-policy: RMSE tolerated at the farthest distance")
-      ->check(CLI::PositiveNumber)
-      ->type_name("E");
-  app.add_option("--error-exponent", options.errorExponent,
-                 "--lod-policy: tolerance curve ((d - nearest) / (farthest - nearest))^Q * max error")
-      ->check(CLI::PositiveNumber)
-      ->type_name("Q");
-  app.add_option("--switch-penalty", options.switchPenalty,
-                 "--lod-policy: cost of a level switch, as a share of a full-quality frame")
-      ->check(CLI::NonNegativeNumber)
-      ->type_name("P");
+  addPolicyChoiceOptions(app, options.policyChoice, "--lod-policy");
 }
 
 }  // namespace
@@ -95,6 +79,27 @@ void defineTuneOptions(CLI::App& app, TuneOptions& options) {
       ->type_name("MODE");
   defineLodPolicyOptions(app, options, shader);
   app.add_option("--worker", options.worker, "Internal: measure shard K")->group("");
+}
+
+void addPolicyChoiceOptions(CLI::App& app, PolicyChoiceOptions& options, const std::string& what) {
+  app.add_option("--distances", options.distances,
+                 what +
+                     ": camera distances to measure at, increasing (default: 1, 2, 4, ... up to half the camera's far "
+                     "plane)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber)
+      ->type_name("D,D,...");
+  app.add_option("--max-error", options.maxError, what + ": RMSE tolerated at the farthest distance (default 0.25)")
+      ->check(CLI::PositiveNumber)
+      ->type_name("E");
+  app.add_option("--error-exponent", options.errorExponent,
+                 what + ": tolerance curve ((d - nearest) / (farthest - nearest))^Q * max error (default 0.5)")
+      ->check(CLI::PositiveNumber)
+      ->type_name("Q");
+  app.add_option("--switch-penalty", options.switchPenalty,
+                 what + ": cost of a level switch, as a share of a full-quality frame (default 0.05)")
+      ->check(CLI::NonNegativeNumber)
+      ->type_name("P");
 }
 
 void addWarmupAndBakeSizeOptions(CLI::App& app, uint32_t& warmup, uint32_t& bakeSize) {

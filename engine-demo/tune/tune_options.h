@@ -13,6 +13,16 @@
 
 namespace spire::tune {
 
+// How a level-of-detail policy is chosen from measurements (docs/lod.md,
+// "Policies from measurements"): spire-tune --lod-policy and
+// spire-simplify --search take the same options.
+struct PolicyChoiceOptions {
+  std::vector<float> distances;  // empty: doubling from 1 to half the camera's far plane
+  double maxError = 0.25;
+  double errorExponent = 0.5;
+  double switchPenalty = 0.05;
+};
+
 struct TuneOptions {
   std::string scenePath;
   std::string shader;
@@ -38,10 +48,7 @@ struct TuneOptions {
   bool extremes = false;  // a range for every material input, and per-input corners (tune/extremes.h)
   // --lod-policy: derive a level-of-detail policy instead of tuning a shader.
   std::string lodPolicyPath;
-  std::vector<float> distances;  // empty: doubling from 1 to half the camera's far plane
-  double maxError = 0.25;
-  double errorExponent = 0.5;
-  double switchPenalty = 0.05;
+  PolicyChoiceOptions policyChoice;
 };
 
 // Adds every option of spire-tune to `app`, read into `options`.
@@ -50,5 +57,9 @@ void defineTuneOptions(CLI::App& app, TuneOptions& options);
 // --warmup and --bake-size, as every tool that measures through the tuner
 // (spire-tune, spire-simplify --search) offers them.
 void addWarmupAndBakeSizeOptions(CLI::App& app, uint32_t& warmup, uint32_t& bakeSize);
+
+// --distances, --max-error, --error-exponent and --switch-penalty; `what`
+// says in their help what they apply to ("--lod-policy").
+void addPolicyChoiceOptions(CLI::App& app, PolicyChoiceOptions& options, const std::string& what);
 
 }  // namespace spire::tune

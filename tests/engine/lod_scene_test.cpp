@@ -21,7 +21,8 @@ namespace {
 
 lod::LodPolicy policy(uint32_t transitionFrames = 0) {
   lod::LodPolicy p;
-  p.levels = {{"LodHQ", 6.0F, {}}, {"LodMQ", 14.0F, {}}, {"LodLQ", std::numeric_limits<float>::infinity(), {}}};
+  p.levels = {
+      {"LodHQ", 6.0F, {}, {}}, {"LodMQ", 14.0F, {}, {}}, {"LodLQ", std::numeric_limits<float>::infinity(), {}, {}}};
   p.hysteresis = 0.1F;
   p.transitionFrames = transitionFrames;
   return p;
@@ -157,8 +158,7 @@ TEST_F(LodSceneTest, LevelsCompiledOnAnotherThreadDrawAsTheSceneCompilesThem) {
                     for (const lod::LodLevel& level : policy().levels) {
                       std::vector<VariantProgram>& row = levels.emplace_back();
                       for (size_t p = 0; p < libraries.size(); ++p) {
-                        const std::string shader = fmt::format("{}<{}>", scene_->instances[p].shader, level.member);
-                        auto program = renderer_->compileShaderIn(*libraries[p], p, shader, warnings);
+                        auto program = renderer_->compileLevelIn(*libraries[p], p, level, warnings);
                         if (!program) return program.error();
                         row.push_back(std::move(program).value());
                       }

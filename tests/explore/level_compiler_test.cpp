@@ -18,7 +18,7 @@ namespace {
 
 lod::LodPolicy policyOf(const std::string& member) {
   lod::LodPolicy policy;
-  policy.levels = {{member, INFINITY, {}}};
+  policy.levels = {{member, INFINITY, {}, {}}};
   return policy;
 }
 

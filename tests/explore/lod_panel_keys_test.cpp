@@ -31,8 +31,8 @@ class LodPanelKeysTest : public ::testing::Test {
     int width = 0;
     int height = 0;
     io.Fonts->GetTexDataAsRGBA32(&pixels, &width, &height);
-    policy_.levels.push_back({"LodHQ", 10.0F, {}});
-    policy_.levels.push_back({"LodLQ", std::numeric_limits<float>::infinity(), {}});
+    policy_.levels.push_back({"LodHQ", 10.0F, {}, {}});
+    policy_.levels.push_back({"LodLQ", std::numeric_limits<float>::infinity(), {}, {}});
     state_.edited = &policy_;
     state_.drawn = &policy_;
     state_.members = &members_;

@@ -14,7 +14,7 @@ namespace {
 
 lod::LodPolicy threeLevels() {
   lod::LodPolicy policy;
-  policy.levels = {{"LodHQ", 12.0F, {}}, {"LodMQ", 35.0F, {}}, {"LodLQ", INFINITY, {}}};
+  policy.levels = {{"LodHQ", 12.0F, {}, {}}, {"LodMQ", 35.0F, {}, {}}, {"LodLQ", INFINITY, {}, {}}};
   return policy;
 }
 

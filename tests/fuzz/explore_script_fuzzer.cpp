@@ -99,7 +99,8 @@ void edit(spire::explore::PolicyEditor& editor, const ScriptAction& action) {
 
 spire::lod::LodPolicy startPolicy() {
   spire::lod::LodPolicy policy;
-  policy.levels = {{"LodHQ", 12.0F, {}}, {"LodMQ", 35.0F, {}}, {"LodLQ", std::numeric_limits<float>::infinity(), {}}};
+  policy.levels = {
+      {"LodHQ", 12.0F, {}, {}}, {"LodMQ", 35.0F, {}, {}}, {"LodLQ", std::numeric_limits<float>::infinity(), {}, {}}};
   return policy;
 }
 

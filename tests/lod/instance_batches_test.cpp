@@ -13,7 +13,7 @@ namespace {
 
 LodPolicy twoLevels() {
   LodPolicy policy;
-  policy.levels = {{"HQ", 10.0F, {}}, {"LQ", std::numeric_limits<float>::infinity(), {}}};
+  policy.levels = {{"HQ", 10.0F, {}, {}}, {"LQ", std::numeric_limits<float>::infinity(), {}, {}}};
   policy.hysteresis = 0.0F;
   policy.transitionFrames = 0;
   return policy;

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "support/diagnostic_renderer.h"
 
@@ -54,7 +56,12 @@ TEST(LodPolicyTest, BadPoliciesAreReportedAtTheirValues) {
        "policy.json:1:43: error[E7004]: level 1 ends at 10, not beyond level 0 (20)"},
       {R"({"levels": [{"member": "A"}, {"member": "B"}]})", "a level before the last has no 'until'"},
       {R"({"levels": [{"member": "A", "until": 3}]})", "the last level has no 'until'"},
-      {R"({"levels": [{"until": 3}, {"member": "B"}]})", "a level has no 'member'"},
+      {R"({"levels": [{"until": 3}, {"member": "B"}]})", "a level has neither a 'member'"},
+      {R"({"levels": [{"decisions": {}}]})", "'decisions' names no shader"},
+      {R"({"levels": [{"decisions": ["a.decisions"]}]})", "'decisions'"},
+      {R"({"levels": [{"decisions": {"Rock": 3}}]})", "the decisions of 'Rock'"},
+      {R"({"levels": [{"decisions": {"Rock": "no/such.decisions"}}]})",
+       "policy.json:1:36: error[E1101]: cannot open decision file 'no/such.decisions'"},
       {R"({"levels": [{"member": "A"}], "hysterisis": 0.1})", "did you mean 'hysteresis'?"},
       {R"({"levels": [{"member": "A"}], "hysteresis": 1.5})", "'hysteresis'"},
       {R"({"levels": []})", "'levels'"},
@@ -66,6 +73,74 @@ TEST(LodPolicyTest, BadPoliciesAreReportedAtTheirValues) {
     EXPECT_FALSE(p.policy) << c.text;
     EXPECT_NE(p.diagnostics.find(c.message), std::string::npos) << c.text << "\n" << p.diagnostics;
   }
+}
+
+// A folder of decision files beside a policy file, removed at the end.
+class PolicyFolder : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("spire-policy-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_ / "chain");
+    for (const char* name : {"level0.decisions", "level2.decisions"}) std::ofstream(dir_ / "chain" / name) << "\n";
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  Parsed parseIn(std::string text) const {
+    SourceManager sources;
+    DiagnosticList diags;
+    Parsed parsed;
+    parsed.policy = parseLodPolicy((dir_ / "policy.json").string(), std::move(text), sources, diags);
+    parsed.diagnostics = renderDiagnostics(sources, diags, DiagnosticFormat::Text);
+    return parsed;
+  }
+
+  std::filesystem::path dir_;
+};
+
+TEST_F(PolicyFolder, DecisionFilesAreFoundBesideThePolicy) {
+  const Parsed p = parseIn(R"({"levels": [{"decisions": {"TerrainSearch": "chain/level0.decisions"}, "until": 5},
+                                          {"member": "LodLQ", "decisions": {"TerrainSearch": "chain/level2.decisions"}}]})");
+  ASSERT_TRUE(p.policy) << p.diagnostics;
+  const LodLevel& near = p.policy->levels[0];
+  EXPECT_TRUE(near.member.empty());
+  ASSERT_EQ(near.decisions.count("TerrainSearch"), 1U);
+  EXPECT_EQ(near.decisions.at("TerrainSearch"), dir_ / "chain/level0.decisions");
+  EXPECT_EQ(levelName(near), "level0");
+  EXPECT_EQ(levelName(p.policy->levels[1]), "LodLQ level2");
+  EXPECT_FALSE(near.drawsAs(p.policy->levels[1]));
+  EXPECT_TRUE(near.drawsAs(near));
+
+  // Written from another folder, the paths are relative to that folder, and
+  // the policy reads back the same from there.
+  const std::string moved = formatLodPolicy(*p.policy, dir_ / "chain");
+  EXPECT_NE(moved.find(R"("TerrainSearch": "level0.decisions")"), std::string::npos) << moved;
+  SourceManager sources;
+  DiagnosticList diags;
+  const auto back = parseLodPolicy((dir_ / "chain" / "moved.json").string(), moved, sources, diags);
+  ASSERT_TRUE(back) << renderDiagnostics(sources, diags, DiagnosticFormat::Text);
+  EXPECT_TRUE(back->levels[1].drawsAs(p.policy->levels[1]));
+}
+
+TEST_F(PolicyFolder, ALevelDrawsItsShadersWithItsDecisionsAndTheOthersAsTheyAre) {
+  const Parsed p = parseIn(R"({"levels": [{"member": "LodMQ", "decisions": {"Rock": "chain/level2.decisions"}}]})");
+  ASSERT_TRUE(p.policy) << p.diagnostics;
+  scene::InstanceDesc rock;
+  rock.shader = "Rock";
+  rock.decisions = "own.decisions";
+  scene::InstanceDesc barrel = rock;
+  barrel.shader = "Barrel";
+  const LodLevel& level = p.policy->levels[0];
+  const scene::InstanceDesc rockDrawn = levelInstance(rock, level);
+  EXPECT_EQ(rockDrawn.shader, "Rock<LodMQ>");
+  EXPECT_EQ(rockDrawn.decisions, dir_ / "chain/level2.decisions");
+  const scene::InstanceDesc barrelDrawn = levelInstance(barrel, level);
+  EXPECT_EQ(barrelDrawn.shader, "Barrel<LodMQ>");
+  EXPECT_EQ(barrelDrawn.decisions, std::filesystem::path("own.decisions"));
+  LodLevel plain;
+  plain.decisions = level.decisions;
+  EXPECT_EQ(levelInstance(barrel, plain).shader, "Barrel") << "no member: the instance's own shader";
 }
 
 }  // namespace

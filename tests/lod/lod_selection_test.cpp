@@ -12,7 +12,8 @@ namespace {
 
 LodPolicy threeLevels(float hysteresis = 0.1F, uint32_t transitionFrames = 0) {
   LodPolicy policy;
-  policy.levels = {{"HQ", 10.0F, {}}, {"MQ", 30.0F, {}}, {"LQ", std::numeric_limits<float>::infinity(), {}}};
+  policy.levels = {
+      {"HQ", 10.0F, {}, {}}, {"MQ", 30.0F, {}, {}}, {"LQ", std::numeric_limits<float>::infinity(), {}, {}}};
   policy.hysteresis = hysteresis;
   policy.transitionFrames = transitionFrames;
   return policy;

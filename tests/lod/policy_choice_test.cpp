@@ -108,7 +108,10 @@ TEST(PolicyChoiceTest, RandomMeasurementsGiveTheLeastCostValidSequence) {
 }
 
 TEST(PolicyChoiceTest, PolicyBandsEndWhereTheNextLevelWasChosenAndReadBack) {
-  const std::vector<std::string> members = {"LodHQ", "LodMQ", "LodLQ"};
+  std::vector<LodLevel> members(3);
+  members[0].member = "LodHQ";
+  members[1].member = "LodMQ";
+  members[2].member = "LodLQ";
   const LodPolicy policy = policyFromChoice(members, {1, 2, 4, 8, 16}, {0, 0, 2, 2, 2}, 0.2F, 6);
   ASSERT_EQ(policy.levels.size(), 2U);
   EXPECT_EQ(policy.levels[0].member, "LodHQ");

@@ -17,7 +17,9 @@
 
 #include "driver/exit_codes.h"
 #include "engine/device_fixture.h"
+#include "lod/lod_policy.h"
 #include "search/search_tool.h"
+#include "tune/tune_cli.h"
 
 namespace spire::search {
 namespace {
@@ -135,6 +137,48 @@ class SearchRun : public vk::testing::DeviceTest {
     return readText(placement);
   }
 
+  // lod_policy.json names some of the chain's levels, in the chain's order
+  // from near to far, by the decision
+  // files beside it; and it is a policy the engine draws: spire-tune
+  // --lod-policy measures every level of it on a scene that uses the module.
+  void expectAPolicyOfTheChain(size_t levels) {
+    SourceManager sources;
+    DiagnosticList diags;
+    const auto policy = lod::loadLodPolicy(dir_ / "out/lod_policy.json", sources, diags);
+    ASSERT_TRUE(policy) << readText(dir_ / "out/lod_policy.json");
+    ASSERT_GE(policy->levels.size(), 1U);
+    size_t previous = 0;
+    for (size_t i = 0; i < policy->levels.size(); ++i) {
+      const lod::LodLevel& level = policy->levels[i];
+      EXPECT_TRUE(level.member.empty());
+      ASSERT_EQ(level.decisions.count("BlurredSearch"), 1U) << readText(dir_ / "out/lod_policy.json");
+      const fs::path file = level.decisions.at("BlurredSearch");
+      EXPECT_EQ(fs::canonical(file.parent_path()), fs::canonical(dir_ / "out"));
+      const size_t k = std::stoul(file.stem().string().substr(std::string("level").size()));
+      EXPECT_LT(k, levels);
+      // The nearest band may skip level 0 where a level's error is 0 (as
+      // dropping the faint blur's is).
+      EXPECT_TRUE(i == 0 || k > previous) << "levels out of the chain's order";
+      previous = k;
+    }
+    EXPECT_NE(readText(dir_ / "out/report.md").find("## Level-of-detail policy"), std::string::npos);
+
+    std::string scene = sceneJson();
+    scene.replace(scene.find("\"blurred.spire\", \"shader\": \"Blurred\""),
+                  std::string("\"blurred.spire\", \"shader\": \"Blurred\"").size(),
+                  "\"out/BlurredSearch.spire\", \"shader\": \"BlurredSearch\"");
+    scene.insert(scene.rfind('}'), ", \"lod\": {\"policy\": \"out/lod_policy.json\"}");
+    std::ofstream(dir_ / "lod_scene.json") << scene;
+    std::ostringstream out, err;
+    ASSERT_EQ(tune::runTune({(dir_ / "lod_scene.json").string(), "--lod-policy", (dir_ / "measured.json").string(),
+                             "--distances", "1,4", "--validation"},
+                            out, err),
+              kExitSuccess)
+        << err.str() << out.str();
+    EXPECT_NE(readText(dir_ / "measured.json").find("\"BlurredSearch\": \"out/level"), std::string::npos)
+        << readText(dir_ / "measured.json");
+  }
+
   fs::path dir_;
 };
 
@@ -168,6 +212,15 @@ TEST_F(SearchRun, WritesAMonotoneChainOfAccumulatingRewrites) {
   EXPECT_FALSE(fs::exists(dir_ / "out" / fmt::format("level{}.decisions", rows.size())));
   EXPECT_TRUE(fs::exists(dir_ / "out/report.md"));
   EXPECT_GT(fs::file_size(dir_ / "out/error_time.png"), 0U);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const fs::path image = dir_ / "out" / fmt::format("level{}.png", k);
+    ASSERT_TRUE(fs::exists(image)) << image;
+    EXPECT_NE(readText(dir_ / "out/report.md").find(fmt::format("](level{}.png)", k)), std::string::npos);
+  }
+  // Level 0 is the original, the last level lost at least one blur: the
+  // images differ.
+  EXPECT_NE(readText(dir_ / "out/level0.png"), readText(dir_ / "out" / fmt::format("level{}.png", rows.size() - 1)));
+  expectAPolicyOfTheChain(rows.size());
 }
 
 // Dropping the faint blur changes no pixel; dropping either of the others
@@ -246,6 +299,8 @@ TEST(SearchCommandLine, RefusesWhatItCannotRun) {
       {"--search", "--scene", "examples/scenes/terrain.json", "--shader", "Terrain", "--k2", "0", "-o",
        (dir / "out").string()},
       {"--search", "--scene", "examples/scenes/terrain.json", "--shader", "Terrain", "--cost", "speed", "-o",
+       (dir / "out").string()},
+      {"--search", "--scene", "examples/scenes/terrain.json", "--shader", "Terrain", "--distances", "4,2", "-o",
        (dir / "out").string()},
       {"--search", "--scene", "examples/scenes/terrain.json", "--shader", "Terrain", "-o", (dir / "busy").string()}};
   for (const auto& args : usage) {

@@ -749,7 +749,9 @@ TEST_F(TuneRun, ADegenerateVariantIsListedAndKeptOffTheFront) {
 // The per-level frame times spire-tune --lod-policy printed, by member.
 std::map<std::string, double> printedCosts(const std::string& out) {
   std::map<std::string, double> costs;
-  std::istringstream line(out.substr(out.find("):") + 2, out.find('\n', out.find("):")) - out.find("):") - 2));
+  const std::string label = "with every object at one level:";
+  const size_t begin = out.find(label) + label.size();
+  std::istringstream line(out.substr(begin, out.find('\n', begin) - begin));
   std::string member, unit;
   double ms = 0.0;
   while (line >> member >> ms >> unit) costs[member] = ms;
