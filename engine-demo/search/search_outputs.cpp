@@ -96,7 +96,7 @@ std::string report(const Chain& chain, const OutputRequest& request) {
 
 Expected<std::string, Failure> plot(const Chain& chain) {
   std::vector<tune::Measured> points;
-  for (const Level& level : chain.levels) points.push_back({level.frameMs, level.error, true});
+  for (const Level& level : chain.levels) points.push_back({level.frameMs, level.error, true, 0.0, 0.0});
   std::vector<size_t> order(points.size());
   std::iota(order.begin(), order.end(), size_t{0});
   std::stable_sort(order.begin(), order.end(),

@@ -2,30 +2,39 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace spire::tune {
 
+namespace {
+
+bool qualifies(const Measured& m) { return m.valid && std::isfinite(m.error) && std::isfinite(m.frameMs); }
+double low(const Measured& m) { return m.highMs > 0.0 ? std::min(m.lowMs, m.frameMs) : m.frameMs; }
+double high(const Measured& m) { return m.highMs > 0.0 ? std::max(m.highMs, m.frameMs) : m.frameMs; }
+
+// Whether `q` leaves `p` off the front (`qi`, `pi`: their indices, which
+// order exact ties).
+bool outdoes(const Measured& q, size_t qi, const Measured& p, size_t pi) {
+  if (q.error < p.error) return low(q) <= high(p);
+  if (q.error > p.error) return false;
+  return q.frameMs < p.frameMs || (q.frameMs == p.frameMs && qi < pi);
+}
+
+}  // namespace
+
 std::vector<size_t> paretoFront(const std::vector<Measured>& points) {
-  std::vector<size_t> order;
-  for (size_t i = 0; i < points.size(); ++i) {
-    if (points[i].valid && std::isfinite(points[i].error) && std::isfinite(points[i].frameMs)) order.push_back(i);
+  std::vector<size_t> front;
+  for (size_t p = 0; p < points.size(); ++p) {
+    if (!qualifies(points[p])) continue;
+    bool kept = true;
+    for (size_t q = 0; q < points.size() && kept; ++q) {
+      kept = q == p || !qualifies(points[q]) || !outdoes(points[q], q, points[p], p);
+    }
+    if (kept) front.push_back(p);
   }
-  // Fastest first; among equally fast, most accurate first, so a sweep that
-  // keeps each strictly more accurate variant yields the front.
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+  std::sort(front.begin(), front.end(), [&](size_t a, size_t b) {
     if (points[a].frameMs != points[b].frameMs) return points[a].frameMs < points[b].frameMs;
-    if (points[a].error != points[b].error) return points[a].error < points[b].error;
     return a < b;
   });
-  std::vector<size_t> front;
-  double bestError = std::numeric_limits<double>::infinity();
-  for (size_t i : order) {
-    if (points[i].error < bestError) {
-      front.push_back(i);
-      bestError = points[i].error;
-    }
-  }
   return front;
 }
 

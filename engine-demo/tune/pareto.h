@@ -1,7 +1,14 @@
-// The speed/accuracy Pareto front of measured variants: a variant is on it
-// when no other variant is at least as fast and at least as accurate and
-// strictly better in one. Variants with non-finite error (NaN or Inf pixels)
-// or that failed never qualify.
+// The speed/accuracy Pareto front of measured variants, as far as the
+// measurements can tell: a variant is on it unless another is
+//   - more accurate and not measurably slower (its time interval does not
+//     lie wholly above this one's), or
+//   - as accurate and faster.
+// A variant that is faster than a more accurate one only within the noise
+// of the two measurements offers more error for no speed that holds up when
+// measured again, so it is left off: the front is what a second run finds
+// again, not which of two tied variants happened to measure faster. Without
+// intervals (zero width) this is the classic front. Variants with
+// non-finite error (NaN or Inf pixels) or that failed never qualify.
 #pragma once
 
 #include <cstddef>
@@ -13,6 +20,9 @@ struct Measured {
   double frameMs = 0.0;
   double error = 0.0;  // RMSE against the reference; infinite for hazards
   bool valid = true;
+  // The frame time's interval (paired_timing.h); both 0: frameMs alone.
+  double lowMs = 0.0;
+  double highMs = 0.0;
 };
 
 // Indices into `points` of the front, fastest first.

@@ -65,7 +65,10 @@ FrontSummary summarize(const std::vector<VariantResult>& results) {
     summary.infeasible += r.status == "infeasible" ? 1 : 0;
     summary.reused += r.sameAs ? 1 : 0;
     if (!r.ok()) summary.offTrade.push_back(summary.measured.size());
-    summary.measured.push_back({r.frameMs, hazard ? std::numeric_limits<double>::infinity() : r.rmse, r.ok()});
+    // The interval of the paired ratio, in milliseconds as frameMs is.
+    const double ms = r.time.median > 0.0 ? r.frameMs / r.time.median : 0.0;
+    summary.measured.push_back({r.frameMs, hazard ? std::numeric_limits<double>::infinity() : r.rmse, r.ok(),
+                                r.time.interval.low * ms, r.time.interval.high * ms});
   }
   summary.front = paretoFront(summary.measured);
   return summary;

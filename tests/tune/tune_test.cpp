@@ -159,13 +159,13 @@ TEST(ParameterRange, ATextureAloneSweepsItsOwnTexelRange) {
 TEST(Pareto, KeepsOnlyUndominatedFiniteVariants) {
   const double inf = std::numeric_limits<double>::infinity();
   const std::vector<Measured> points{
-      {10.0, 0.0, true},   // 0: reference, slowest exact
-      {5.0, 0.1, true},    // 1: front
-      {6.0, 0.2, true},    // 2: dominated by 1
-      {2.0, inf, true},    // 3: NaN pixels: never on the front
-      {3.0, 0.3, true},    // 4: front
-      {1.0, 0.05, false},  // 5: failed
-      {5.0, 0.05, true},   // 6: as fast as 1 and more accurate: replaces it
+      {10.0, 0.0, true, 0.0, 0.0},   // 0: reference, slowest exact
+      {5.0, 0.1, true, 0.0, 0.0},    // 1: front
+      {6.0, 0.2, true, 0.0, 0.0},    // 2: dominated by 1
+      {2.0, inf, true, 0.0, 0.0},    // 3: NaN pixels: never on the front
+      {3.0, 0.3, true, 0.0, 0.0},    // 4: front
+      {1.0, 0.05, false, 0.0, 0.0},  // 5: failed
+      {5.0, 0.05, true, 0.0, 0.0},   // 6: as fast as 1 and more accurate: replaces it
   };
   const std::vector<size_t> front = paretoFront(points);
   EXPECT_EQ(front, (std::vector<size_t>{4, 6, 0}));
@@ -177,6 +177,25 @@ TEST(Pareto, KeepsOnlyUndominatedFiniteVariants) {
       }
     }
   }
+}
+
+// With intervals, a variant faster than a more accurate one only within the
+// noise is left off: which of the two measured faster is chance, and a
+// second run would find the other. Measurably faster, it stays.
+TEST(Pareto, LeavesOffWhatIsFasterOnlyWithinTheNoise) {
+  const std::vector<Measured> points{
+      {10.0, 0.0, true, 9.8, 10.2},  // 0: exact
+      {9.9, 0.01, true, 9.7, 10.1},  // 1: faster than 0 by its median only: off
+      {8.0, 0.02, true, 7.9, 8.1},   // 2: measurably faster than 0: on
+      {7.9, 0.02, true, 7.8, 8.2},   // 3: as accurate as 2 and faster: replaces it
+      {6.0, 0.05, true, 5.0, 7.9},   // 4: its interval reaches 3's: not measurably faster, off
+      {4.0, 0.08, true, 3.9, 4.1},   // 5: on
+  };
+  EXPECT_EQ(paretoFront(points), (std::vector<size_t>{5, 3, 0}));
+  // The same points without intervals: the classic front.
+  std::vector<Measured> classic = points;
+  for (Measured& m : classic) m.lowMs = m.highMs = 0.0;
+  EXPECT_EQ(paretoFront(classic), (std::vector<size_t>{5, 4, 3, 1, 0}));
 }
 
 TEST(ResultsCsv, RoundTripsAndRejectsOtherRuns) {
