@@ -24,6 +24,9 @@ struct Interval {
 // [min, max].
 Interval medianInterval(std::vector<double> values);
 
+// The fewest values whose medianInterval is a 95% interval.
+inline constexpr uint32_t kPairsFor95 = 6;
+
 double medianOf(std::vector<double> values);
 
 struct StoppingRule {

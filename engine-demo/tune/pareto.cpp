@@ -11,12 +11,12 @@ bool qualifies(const Measured& m) { return m.valid && std::isfinite(m.error) && 
 double low(const Measured& m) { return m.highMs > 0.0 ? std::min(m.lowMs, m.frameMs) : m.frameMs; }
 double high(const Measured& m) { return m.highMs > 0.0 ? std::max(m.highMs, m.frameMs) : m.frameMs; }
 
-// Whether `q` leaves `p` off the front (`qi`, `pi`: their indices, which
-// order exact ties).
-bool outdoes(const Measured& q, size_t qi, const Measured& p, size_t pi) {
-  if (q.error < p.error) return low(q) <= high(p);
-  if (q.error > p.error) return false;
-  return q.frameMs < p.frameMs || (q.frameMs == p.frameMs && qi < pi);
+// Whether `q` leaves `p` off the front.
+bool outdoes(const Measured& q, const Measured& p) {
+  if (q.error < p.error - kSameError) return low(q) <= high(p);
+  if (q.error > p.error + kSameError) return false;
+  // As accurate: only measurably faster counts, so tied variants both stay.
+  return high(q) < low(p);
 }
 
 }  // namespace
@@ -27,7 +27,7 @@ std::vector<size_t> paretoFront(const std::vector<Measured>& points) {
     if (!qualifies(points[p])) continue;
     bool kept = true;
     for (size_t q = 0; q < points.size() && kept; ++q) {
-      kept = q == p || !qualifies(points[q]) || !outdoes(points[q], q, points[p], p);
+      kept = q == p || !qualifies(points[q]) || !outdoes(points[q], points[p]);
     }
     if (kept) front.push_back(p);
   }

@@ -30,7 +30,8 @@ std::vector<size_t> frontCandidates(const std::vector<VariantResult>& results) {
 }
 
 bool tight(const TimeRatio& time, double relativeWidth) {
-  return time.median > 0.0 && time.interval.high - time.interval.low <= relativeWidth * time.median;
+  return time.pairs >= kPairsFor95 && time.median > 0.0 &&
+         time.interval.high - time.interval.low <= relativeWidth * time.median;
 }
 
 }  // namespace spire::tune

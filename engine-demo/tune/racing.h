@@ -16,8 +16,10 @@ namespace spire::tune {
 // dominated.
 std::vector<size_t> frontCandidates(const std::vector<VariantResult>& results);
 
-// Whether `time` is known well enough to order (its interval within
-// `relativeWidth` of its median).
+// Whether `time` is known well enough to order: its interval is a 95% one
+// (kPairsFor95 pairs or more; the range of fewer pairs is not, and two runs
+// would then disagree about a front point's order more often than its
+// interval says) and within `relativeWidth` of its median.
 bool tight(const TimeRatio& time, double relativeWidth);
 
 }  // namespace spire::tune

@@ -160,6 +160,13 @@ TEST(Racing, CandidatesAreTheVariantsNotCertainlyDominated) {
   EXPECT_EQ(frontCandidates(results), (std::vector<size_t>{0, 1, 3, 4}));
   EXPECT_TRUE(tight(results[1].time, 0.1));
   EXPECT_FALSE(tight(results[3].time, 0.1));
+  // Three pairs give the range, not a 95% interval: never tight enough,
+  // however narrow.
+  TimeRatio few = results[1].time;
+  few.pairs = 3;
+  EXPECT_FALSE(tight(few, 0.1));
+  few.pairs = kPairsFor95;
+  EXPECT_TRUE(tight(few, 0.1));
 }
 
 }  // namespace

@@ -187,11 +187,16 @@ TEST(Pareto, LeavesOffWhatIsFasterOnlyWithinTheNoise) {
       {10.0, 0.0, true, 9.8, 10.2},  // 0: exact
       {9.9, 0.01, true, 9.7, 10.1},  // 1: faster than 0 by its median only: off
       {8.0, 0.02, true, 7.9, 8.1},   // 2: measurably faster than 0: on
-      {7.9, 0.02, true, 7.8, 8.2},   // 3: as accurate as 2 and faster: replaces it
+      {7.9, 0.02, true, 7.8, 8.2},   // 3: as accurate as 2, faster within the noise: both stay
       {6.0, 0.05, true, 5.0, 7.9},   // 4: its interval reaches 3's: not measurably faster, off
       {4.0, 0.08, true, 3.9, 4.1},   // 5: on
   };
-  EXPECT_EQ(paretoFront(points), (std::vector<size_t>{5, 3, 0}));
+  EXPECT_EQ(paretoFront(points), (std::vector<size_t>{5, 3, 2, 0}));
+  // Measurably faster at the same accuracy (closer than kSameError), 3
+  // replaces 2.
+  std::vector<Measured> apart = points;
+  apart[3] = {7.0, 0.02 + kSameError / 2, true, 6.9, 7.1};
+  EXPECT_EQ(paretoFront(apart), (std::vector<size_t>{5, 3, 0}));
   // The same points without intervals: the classic front.
   std::vector<Measured> classic = points;
   for (Measured& m : classic) m.lowMs = m.highMs = 0.0;
