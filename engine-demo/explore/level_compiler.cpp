@@ -2,8 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
-#include <map>
+#include <iterator>
 #include <memory>
 
 namespace spire::explore {
@@ -41,38 +42,35 @@ std::optional<LevelCompiler::Outcome> LevelCompiler::poll() {
   return std::nullopt;
 }
 
-namespace {
-
-// What a level compiles an instance from: its member and decision files.
-std::string drawnAs(const lod::LodLevel& level) {
-  std::string key = level.member;
-  for (const auto& [shader, path] : level.decisions) key += fmt::format("|{}={}", shader, path.generic_string());
-  return key;
-}
-
-}  // namespace
-
 LevelCompiler::CompileFunction compileLevelsIn(const engine::SceneRenderer& renderer,
                                                std::vector<ShaderLibrary*> libraries) {
-  // Only the worker uses the cache, one request at a time.
-  auto cache = std::make_shared<std::map<std::pair<size_t, std::string>, engine::VariantProgram>>();
+  // Programs by instance and by what their level draws them as
+  // (LodLevel::drawsAs); only the worker uses the cache, one request at a
+  // time.
+  struct Compiled {
+    size_t instance;
+    lod::LodLevel level;
+    engine::VariantProgram program;
+  };
+  auto cache = std::make_shared<std::vector<Compiled>>();
   return [&renderer, libraries = std::move(libraries),
           cache](const lod::LodPolicy& policy) -> engine::Expected<LevelCompiler::Programs> {
     LevelCompiler::Programs programs;
     for (const lod::LodLevel& level : policy.levels) {
       std::vector<engine::VariantProgram>& row = programs.emplace_back();
       for (size_t p = 0; p < libraries.size(); ++p) {
-        const std::pair<size_t, std::string> key{p, drawnAs(level)};
-        auto it = cache->find(key);
+        auto it = std::find_if(cache->begin(), cache->end(),
+                               [&](const Compiled& c) { return c.instance == p && c.level.drawsAs(level); });
         if (it == cache->end()) {
           // The members' warnings were the compiler's to give when the scene
           // started; a member new to the session is checked by its errors.
           std::string warnings;
           auto program = renderer.compileLevelIn(*libraries[p], p, level, warnings);
           if (!program) return program.error();
-          it = cache->emplace(key, std::move(program).value()).first;
+          cache->push_back({p, level, std::move(program).value()});
+          it = std::prev(cache->end());
         }
-        row.push_back(it->second);
+        row.push_back(it->program);
       }
     }
     return programs;

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
+#include <vector>
 
 #include "scene/json_value_checker.h"
 #include "support/file_io.h"
@@ -150,12 +152,14 @@ scene::InstanceDesc levelInstance(const scene::InstanceDesc& instance, const Lod
 }
 
 std::string levelName(const LodLevel& level) {
-  std::string name = level.member;
+  std::vector<std::string> parts;
+  if (!level.member.empty()) parts.push_back(level.member);
+  // Each file once, however many shaders draw with it.
+  std::set<std::string> stems;
   for (const auto& [shader, path] : level.decisions) {
-    const std::string stem = path.stem().string();
-    if (name.find(stem) == std::string::npos) name += (name.empty() ? "" : " ") + stem;
+    if (stems.insert(path.stem().string()).second) parts.push_back(path.stem().string());
   }
-  return name;
+  return fmt::format("{}", fmt::join(parts, " "));
 }
 
 std::string formatLodPolicy(const LodPolicy& policy, const std::filesystem::path& folder) {

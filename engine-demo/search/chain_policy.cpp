@@ -53,10 +53,13 @@ Expected<ChainPolicy, Failure> chainPolicy(const Chain& chain, const SearchSetup
                                            const fs::path& outputDir) {
   auto measured = measuredPolicy(chain, setup);
   if (!measured) return measured.error();
-  const tune::LevelSampling sampling{options.policyChoice.distances, options.warmup, options.frames};
+  // With C as the cost no frame is timed: the costs come from the chain.
+  const bool model = options.cost == CostKind::Model;
+  const tune::LevelSampling sampling{options.policyChoice.distances, model ? 0U : options.warmup,
+                                     model ? 0U : options.frames};
   auto m = tune::measureLevels(renderer, *measured, sampling);
   if (!m) return Failure{fmt::format("the chain's levels cannot be measured as a policy: {}", m.error().message)};
-  if (options.cost == CostKind::Model) {
+  if (model) {
     // The chain is ordered by C, which falls at every level; a measured
     // frame time can move more between two levels than a rewrite saves.
     m->costName = "He et al.'s cost C of each level";

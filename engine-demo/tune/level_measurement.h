@@ -27,7 +27,7 @@ namespace spire::tune {
 struct LevelSampling {
   std::vector<float> distances;  // increasing, at least two
   uint32_t warmup = 1;           // unmeasured frames before the costs' frames
-  uint32_t frames = 3;
+  uint32_t frames = 3;           // 0: no frame is timed, and every cost is 0 (a caller that has its own)
 };
 
 struct LevelMeasurement {

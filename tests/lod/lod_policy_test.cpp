@@ -138,6 +138,11 @@ TEST_F(PolicyFolder, ALevelDrawsItsShadersWithItsDecisionsAndTheOthersAsTheyAre)
   const scene::InstanceDesc barrelDrawn = levelInstance(barrel, level);
   EXPECT_EQ(barrelDrawn.shader, "Barrel<LodMQ>");
   EXPECT_EQ(barrelDrawn.decisions, std::filesystem::path("own.decisions"));
+  // A file many shaders draw with is named once; one whose name holds
+  // another's is still named.
+  LodLevel shared;
+  shared.decisions = {{"A", "x/level12.decisions"}, {"B", "x/level1.decisions"}, {"C", "y/level1.decisions"}};
+  EXPECT_EQ(levelName(shared), "level12 level1");
   LodLevel plain;
   plain.decisions = level.decisions;
   EXPECT_EQ(levelInstance(barrel, plain).shader, "Barrel") << "no member: the instance's own shader";
