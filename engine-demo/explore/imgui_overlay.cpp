@@ -88,7 +88,10 @@ vk::Expected<std::unique_ptr<ImGuiOverlay>> ImGuiOverlay::create(const vk::Conte
 }
 
 ImGuiOverlay::~ImGuiOverlay() {
-  if (ctx_->device() != VK_NULL_HANDLE) vkDeviceWaitIdle(ctx_->device());
+  if (ctx_->device() != VK_NULL_HANDLE) {
+    const auto queueLock = ctx_->lockQueue();
+    vkDeviceWaitIdle(ctx_->device());
+  }
   if (vulkanReady_) ImGui_ImplVulkan_Shutdown();
   if (glfwReady_) ImGui_ImplGlfw_Shutdown();
   if (ImGui::GetCurrentContext() != nullptr) ImGui::DestroyContext();

@@ -19,11 +19,27 @@ void LevelCompiler::submit(uint64_t request, lod::LodPolicy policy) {
 
 void LevelCompiler::launch(uint64_t request, lod::LodPolicy policy) {
   running_ = std::async(std::launch::async, [this, request, policy = std::move(policy)]() mutable {
+    using Clock = std::chrono::steady_clock;
+    const auto ms = [](Clock::time_point from) {
+      return std::chrono::duration<double, std::milli>(Clock::now() - from).count();
+    };
     Outcome outcome;
     outcome.request = request;
-    const auto start = std::chrono::steady_clock::now();
-    outcome.programs = compile_(policy);
-    outcome.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const auto start = Clock::now();
+    auto programs = compile_(policy);
+    outcome.compileMs = ms(start);
+    if (!programs) {
+      outcome.error = programs.error();
+    } else {
+      const auto prepareStart = Clock::now();
+      auto scene = prepare_(policy, std::move(programs).value());
+      outcome.prepareMs = ms(prepareStart);
+      if (scene) {
+        outcome.scene = std::move(scene).value();
+      } else {
+        outcome.error = scene.error();
+      }
+    }
     outcome.policy = std::move(policy);
     return outcome;
   });

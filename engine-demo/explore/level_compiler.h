@@ -1,10 +1,11 @@
-// spire-explore's level-of-detail mode compiles the levels of an edited
-// policy (every instance's shader as each member) on a worker thread, as
-// decision changes compile on LiveCompiler's, so the window keeps drawing
-// the previous levels while a new member compiles. Only the latest request
-// matters: one submitted while another compiles waits, replacing any that
-// waited before it. The bakes and pipelines of the new levels are made on
-// the caller's thread (LodScene::createCompiled), since they use Vulkan.
+// spire-explore's level-of-detail mode makes the scene of an edited policy
+// on a worker thread: it compiles the levels (every instance's shader as
+// each member), as decision changes compile on LiveCompiler's, then runs
+// their bakes and builds their pipelines (LodScene::createCompiled, which
+// may run beside the frame loop's draws of the previous scene). So the
+// window keeps drawing the previous levels until the new scene is ready. Only
+// the latest request matters: one submitted while another is being made
+// waits, replacing any that waited before it.
 #pragma once
 
 #include <cstdint>
@@ -24,26 +25,35 @@ namespace spire::explore {
 class LevelCompiler {
  public:
   using Programs = engine::LodScene::LevelPrograms;
-  // Runs on the worker thread, one request at a time: it must not touch
-  // Vulkan or anything the caller's thread uses meanwhile.
+  using Scene = std::unique_ptr<engine::LodScene>;
+  // Both run on the worker thread, one request at a time, and must not use
+  // anything the caller's thread uses meanwhile, except what Vulkan and the
+  // renderer allow beside draws (vk::Context::submitAndWait,
+  // SceneRenderer::prepare with TargetUse::Keep).
   using CompileFunction = std::function<engine::Expected<Programs>(const lod::LodPolicy&)>;
+  using PrepareFunction = std::function<engine::Expected<Scene>(const lod::LodPolicy&, Programs)>;
 
   struct Outcome {
     uint64_t request = 0;
     lod::LodPolicy policy;  // the one submitted
-    engine::Expected<Programs> programs = engine::Error{"not compiled"};
-    double milliseconds = 0.0;  // the compile alone, on the worker
+    // The scene, or why there is none. (Not an Expected: GCC 12 warns of a
+    // delete of an unallocated object in its destructor inlined here.)
+    Scene scene;
+    std::optional<engine::Error> error;
+    double compileMs = 0.0;  // the compile, on the worker
+    double prepareMs = 0.0;  // the bakes and pipelines, on the worker; 0 when the compile failed
   };
 
-  explicit LevelCompiler(CompileFunction compile) : compile_(std::move(compile)) {}
+  LevelCompiler(CompileFunction compile, PrepareFunction prepare)
+      : compile_(std::move(compile)), prepare_(std::move(prepare)) {}
   LevelCompiler(const LevelCompiler&) = delete;
   LevelCompiler& operator=(const LevelCompiler&) = delete;
   // Waits for a compile in progress (a queued one is dropped).
   ~LevelCompiler() = default;
 
-  // Compiles `policy`'s levels, now or once the compile in progress is done.
+  // Makes `policy`'s scene, now or once the one in progress is done.
   void submit(uint64_t request, lod::LodPolicy policy);
-  // The newest finished compile, without waiting: nullopt while one is in
+  // The newest finished scene, without waiting: nullopt while one is in
   // progress, and for one that a queued request replaced (which starts now).
   std::optional<Outcome> poll();
   // Whether a request is queued or compiling.
@@ -53,8 +63,9 @@ class LevelCompiler {
   void launch(uint64_t request, lod::LodPolicy policy);
 
   CompileFunction compile_;
+  PrepareFunction prepare_;
   std::optional<std::pair<uint64_t, lod::LodPolicy>> queued_;
-  std::future<Outcome> running_;  // last: its destructor waits for the worker, which uses compile_
+  std::future<Outcome> running_;  // last: its destructor waits for the worker, which uses compile_ and prepare_
 };
 
 // The worker's compile for `renderer`'s scene: instance p's shader as each

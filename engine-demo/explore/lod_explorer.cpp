@@ -61,7 +61,8 @@ struct EditRecord {
   std::string error;
   std::vector<uint32_t> levels;       // instances per level of the drawn policy once it was made
   double compileMs = 0.0;             // the new levels' compile on the worker, when the edit needed one
-  uint32_t framesWhileCompiling = 0;  // presented meanwhile, with the previous levels
+  double prepareMs = 0.0;             // their bakes and pipelines, on the worker after the compile
+  uint32_t framesWhileCompiling = 0;  // presented meanwhile (compile and prepare), with the previous levels
   bool scripted = false;
   uint64_t request = 0;  // of the level compile
   double startMs = 0.0;
@@ -161,7 +162,11 @@ std::optional<int> LodExplorer::start() {
   std::vector<ShaderLibrary*> libraries;
   for (size_t i = 0; i < renderer_.scene().instances.size(); ++i) libraries.push_back(*renderer_.library(i));
   // From now on only the worker compiles in the renderer's libraries.
-  levels_ = std::make_unique<LevelCompiler>(compileLevelsIn(renderer_, std::move(libraries)));
+  levels_ = std::make_unique<LevelCompiler>(
+      compileLevelsIn(renderer_, std::move(libraries)),
+      [&renderer = renderer_](const lod::LodPolicy& policy, LevelCompiler::Programs programs) {
+        return engine::LodScene::createCompiled(renderer, policy, std::move(programs));
+      });
   scene_->resetLevels(view_);
   startLevels_ = levelCounts(*scene_);
   // Every level is prepared now, as in spire-demo: an unread value is worth a warning.
@@ -219,22 +224,19 @@ void LodExplorer::dropPending() {
   finishEdit(std::move(dropped), "replaced by a later edit before its levels were ready");
 }
 
-// The new levels' bakes and pipelines use Vulkan, so they are made here, on
-// the frame loop; the compile was the worker's.
+// The worker made the new scene, bakes and pipelines included: here it only
+// replaces the one drawn.
 void LodExplorer::pollLevels() {
   std::optional<LevelCompiler::Outcome> outcome = levels_->poll();
   if (!outcome || !pending_ || outcome->request != pending_->request) return;
   EditRecord record = std::move(*pending_);
   pending_.reset();
-  record.compileMs = outcome->milliseconds;
-  if (!outcome->programs) {
-    applyError_ = errorText(outcome->programs.error());
-  } else if (auto fresh =
-                 engine::LodScene::createCompiled(renderer_, outcome->policy, std::move(outcome->programs).value());
-             !fresh) {
-    applyError_ = errorText(fresh.error());
+  record.compileMs = outcome->compileMs;
+  record.prepareMs = outcome->prepareMs;
+  if (outcome->error) {
+    applyError_ = errorText(*outcome->error);
   } else {
-    scene_ = std::move(fresh).value();
+    scene_ = std::move(outcome->scene);
     scene_->resetLevels(view_);
   }
   finishEdit(std::move(record), applyError_);
@@ -444,6 +446,7 @@ int LodExplorer::finish(int status) {
                        {"ok", edit.ok},
                        {"apply_ms", edit.applyMs},
                        {"compile_ms", edit.compileMs},
+                       {"prepare_ms", edit.prepareMs},
                        {"frames_while_compiling", edit.framesWhileCompiling},
                        {"error", edit.error},
                        {"levels", edit.levels}});

@@ -123,7 +123,12 @@ Expected<void> LodScene::Impl::compileLevels(LevelPrograms* compiled) {
       if (!program) return program.error();
       level.programs.push_back(std::move(program).value());
     }
-    auto prepared = renderer.prepare(level.programs);
+    // Every level draws into one frame. Programs compiled elsewhere are
+    // prepared while an earlier scene may still be drawing (createCompiled):
+    // its target must stay.
+    const bool keep = compiled != nullptr || l > 0;
+    auto prepared =
+        renderer.prepare(level.programs, keep ? SceneRenderer::TargetUse::Keep : SceneRenderer::TargetUse::Fit);
     if (!prepared) return prepared.error();
     level.prepared = std::move(prepared).value();
     levels.push_back(std::move(level));

@@ -44,10 +44,12 @@ class LodScene {
   // create compiles.
   using LevelPrograms = std::vector<std::vector<VariantProgram>>;
   // As create, with the programs compiled already, for a tool that compiles
-  // them on a thread of its own (SceneRenderer::compileShaderIn) while the
-  // previous scene draws: only the bakes and pipelines are made here.
-  // `programs` has one entry per level of the policy as `options` applies
-  // it.
+  // them on a thread of its own (SceneRenderer::compileLevelIn) while the
+  // previous scene draws: only the bakes and pipelines are made here. That
+  // thread may call this too, while the previous scene keeps drawing on
+  // another (SceneRenderer::prepare with TargetUse::Keep): the new levels
+  // must draw into the frame's target as it is. `programs` has one entry per
+  // level of the policy as `options` applies it.
   static Expected<std::unique_ptr<LodScene>> createCompiled(SceneRenderer& renderer, lod::LodPolicy policy,
                                                             LevelPrograms programs, const LodOptions& options = {});
   ~LodScene();

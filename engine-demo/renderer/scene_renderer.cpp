@@ -284,8 +284,15 @@ Expected<std::string> SceneRenderer::solidTexture(const std::vector<double>& rgb
   return desc.name;
 }
 
-Expected<RenderTarget*> SceneRenderer::targetFor(size_t colorTargets) {
+Expected<RenderTarget*> SceneRenderer::targetFor(size_t colorTargets, TargetUse use) {
   if (target_ && target_->formats().colors.size() == colorTargets) return &*target_;
+  if (target_ && use == TargetUse::Keep) {
+    return Error{fmt::format("these fragment kernels write {} color output(s), and the target the scene's other draws "
+                             "use has {}: they cannot draw into one frame",
+                             colorTargets, target_->formats().colors.size()),
+                 {},
+                 {}};
+  }
   target_.reset();
   auto target = RenderTarget::create(ctx_, scene_.width, scene_.height, colorTargets);
   if (!target) return target.error();
@@ -299,7 +306,7 @@ void SceneRenderer::reportUnreadBindings() {
   }
 }
 
-Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>& programs) {
+Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>& programs, TargetUse targetUse) {
   PreparedScene prepared;
   std::vector<const GpuMesh*> meshes;
   const size_t errorsBefore = diags_.errorCount();
@@ -333,7 +340,7 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
     if (!outputs) return outputs.error();
     colorTargets = std::max(colorTargets, outputs->size());
   }
-  auto target = targetFor(colorTargets);
+  auto target = targetFor(colorTargets, targetUse);
   if (!target) return target.error();
 
   const PipelineCounts before = pipelines_.counts();

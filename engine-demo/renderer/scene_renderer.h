@@ -122,9 +122,19 @@ class SceneRenderer {
     overrides_ = std::move(overrides);
   }
 
+  // What prepare may do with the frame's target when the programs write
+  // another number of color outputs than it has.
+  enum class TargetUse {
+    Fit,   // make a new one that fits (the first prepare of a tool, or a whole new scene)
+    Keep,  // keep it, and fail: draws prepared before use it (another thread may be drawing them)
+  };
   // Resolves materials (reporting problems to `diags`), runs the bakes the
   // programs need and builds their draws.
-  Expected<PreparedScene> prepare(const std::vector<VariantProgram>& programs);
+  //
+  // One thread may prepare while another draws scenes prepared before, with
+  // TargetUse::Keep: prepare then changes nothing a draw reads. Two prepares
+  // at once are not allowed.
+  Expected<PreparedScene> prepare(const std::vector<VariantProgram>& programs, TargetUse target = TargetUse::Fit);
   // W7101 for each material binding that no variant prepared so far read:
   // called once after a tool's variants are prepared, since one variant not
   // reading a value another reads is expected.
@@ -187,7 +197,7 @@ class SceneRenderer {
   // The name of a solid texture of `rgba`, made on first use, that
   // textureFor then gives.
   Expected<std::string> solidTexture(const std::vector<double>& rgba);
-  Expected<RenderTarget*> targetFor(size_t colorTargets);
+  Expected<RenderTarget*> targetFor(size_t colorTargets, TargetUse use);
   Expected<std::vector<const DrawItem*>> drawList(const PreparedScene& prepared);
 
   const vk::Context& ctx_;

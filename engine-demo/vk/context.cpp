@@ -305,7 +305,7 @@ Expected<void> Context::createDevice() {
   return {};
 }
 
-Expected<void> Context::createCommandPool() {
+Expected<CommandPool> Context::makeCommandPool() const {
   VkCommandPoolCreateInfo poolInfo{};
   poolInfo.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
   poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -314,9 +314,31 @@ Expected<void> Context::createCommandPool() {
   if (auto result = vkCreateCommandPool(device(), &poolInfo, nullptr, &pool); result != VK_SUCCESS) {
     return VkError{result, "vkCreateCommandPool", {}};
   }
-  commandPool_ = makeDeviceHandle<VkCommandPool, vkDestroyCommandPool>(device(), pool);
+  return makeDeviceHandle<VkCommandPool, vkDestroyCommandPool>(device(), pool);
+}
+
+Expected<void> Context::createCommandPool() {
+  auto pool = makeCommandPool();
+  if (!pool) return pool.error();
+  commandPool_ = std::move(pool).value();
+  shared_->owner = std::this_thread::get_id();
   return {};
 }
+
+Expected<VkCommandPool> Context::threadCommandPool() const {
+  const std::thread::id self = std::this_thread::get_id();
+  if (self == shared_->owner) return commandPool_.get();
+  std::lock_guard lock(shared_->pools);
+  for (const auto& [thread, pool] : shared_->threadPools) {
+    if (thread == self) return pool.get();
+  }
+  auto pool = makeCommandPool();
+  if (!pool) return pool.error();
+  shared_->threadPools.emplace_back(self, std::move(pool).value());
+  return shared_->threadPools.back().second.get();
+}
+
+std::unique_lock<std::mutex> Context::lockQueue() const { return std::unique_lock(shared_->queue); }
 
 Expected<uint32_t> Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags properties) const {
   for (uint32_t i = 0; i < memory_.memoryTypeCount; ++i) {
@@ -342,9 +364,11 @@ Expected<DeviceMemory> Context::allocateMemory(const VkMemoryRequirements& requi
 }
 
 Expected<void> Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
+  auto pool = threadCommandPool();
+  if (!pool) return pool.error();
   VkCommandBufferAllocateInfo allocInfo{};
   allocInfo.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-  allocInfo.commandPool = commandPool_.get();
+  allocInfo.commandPool = *pool;
   allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   allocInfo.commandBufferCount = 1;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
@@ -357,7 +381,7 @@ Expected<void> Context::submitAndWait(const std::function<void(VkCommandBuffer)>
     VkCommandPool pool;
     VkCommandBuffer cmd;
     ~Free() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
-  } freeOnExit{device(), commandPool_.get(), cmd};
+  } freeOnExit{device(), *pool, cmd};
 
   VkCommandBufferBeginInfo beginInfo{};
 
@@ -387,7 +411,10 @@ Expected<void> Context::submitAndWait(const std::function<void(VkCommandBuffer)>
   submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &cmd;
-  if (auto ok = check(vkQueueSubmit(queue_, 1, &submit, fence.get()), "vkQueueSubmit"); !ok) return ok;
+  {
+    const auto queueLock = lockQueue();
+    if (auto ok = check(vkQueueSubmit(queue_, 1, &submit, fence.get()), "vkQueueSubmit"); !ok) return ok;
+  }
   return check(vkWaitForFences(device(), 1, &rawFence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
 }
 

@@ -2,6 +2,12 @@
 // validation layer), one physical device, one graphics+compute queue, a
 // command pool and a one-shot submit helper. Headless unless the caller hands
 // it a window's surface, which it then owns and can present to.
+//
+// The one-shot helper may be called from any thread (a tool prepares the
+// next scene's bakes and pipelines on a worker while the window draws the
+// current one): each thread records into a command pool of its own, and
+// every use of the queue holds the queue lock, which Vulkan requires of
+// queue submissions and presents from more than one thread.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -14,6 +20,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 #include "vk/handle.h"
@@ -73,7 +80,12 @@ class Context {
   VkDevice device() const { return device_.get(); }
   VkQueue queue() const { return queue_; }
   uint32_t queueFamily() const { return queueFamily_; }
+  // The pool of the thread that created the context; other threads' one-shot
+  // commands come from pools of their own.
   VkCommandPool commandPool() const { return commandPool_.get(); }
+  // Held around every vkQueueSubmit, vkQueuePresentKHR and vkDeviceWaitIdle
+  // outside submitAndWait, which takes it itself.
+  [[nodiscard]] std::unique_lock<std::mutex> lockQueue() const;
   // The window's surface (see create); VK_NULL_HANDLE when headless.
   VkSurfaceKHR surface() const { return surface_.get(); }
 
@@ -102,7 +114,7 @@ class Context {
                                         VkMemoryPropertyFlags properties) const;
 
   // Records `record` into a fresh primary command buffer, submits it to the
-  // queue and blocks until it finished.
+  // queue and blocks until it finished. Any thread may call it.
   Expected<void> submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
 
   // Validation warnings and errors recorded so far (empty without validation).
@@ -128,6 +140,18 @@ class Context {
   // The device, its queue and the dynamic rendering entry points.
   Expected<void> createDevice();
   Expected<void> createCommandPool();
+  Expected<CommandPool> makeCommandPool() const;
+  // The calling thread's pool: commandPool_ on the creating thread, else one
+  // made on the thread's first call and kept until the context dies.
+  Expected<VkCommandPool> threadCommandPool() const;
+
+  // What threads share: behind a pointer so that a Context still moves.
+  struct Shared {
+    std::mutex queue;
+    std::mutex pools;
+    std::thread::id owner;
+    std::vector<std::pair<std::thread::id, CommandPool>> threadPools;
+  };
 
   // Declaration order is destruction order reversed: the log outlives the
   // messenger and instance that write to it; the pool dies before the device;
@@ -147,6 +171,7 @@ class Context {
   uint32_t queueFamily_ = 0;
   VkQueue queue_ = VK_NULL_HANDLE;
   CommandPool commandPool_;
+  std::unique_ptr<Shared> shared_ = std::make_unique<Shared>();  // its pools die before the device
 };
 
 }  // namespace spire::vk

@@ -93,7 +93,10 @@ Expected<bool> Swapchain::rebuild(VkExtent2D windowExtent) {
   const VkDevice device = ctx_->device();
   // The old swapchain's images and the per-image semaphores may still be used
   // by frames in flight.
-  if (auto ok = check(vkDeviceWaitIdle(device), "vkDeviceWaitIdle"); !ok) return ok.error();
+  {
+    const auto queueLock = ctx_->lockQueue();
+    if (auto ok = check(vkDeviceWaitIdle(device), "vkDeviceWaitIdle"); !ok) return ok.error();
+  }
   VkSurfaceCapabilitiesKHR caps;
   if (auto ok = check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(ctx_->physicalDevice(), ctx_->surface(), &caps),
                       "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
@@ -223,6 +226,8 @@ Expected<void> Swapchain::endFrame() {
   submit.pCommandBuffers = &cmd;
   submit.signalSemaphoreCount = 1;
   submit.pSignalSemaphores = &rendered;
+  // Another thread may be submitting bakes (Context::submitAndWait).
+  const auto queueLock = ctx_->lockQueue();
   if (auto ok = check(vkQueueSubmit(ctx_->queue(), 1, &submit, fence), "vkQueueSubmit"); !ok) return ok;
 
   const VkSwapchainKHR swapchain = swapchain_.get();

@@ -1,7 +1,10 @@
-// The LOD mode's level compile worker, without a window: while a policy's
-// levels compile, the caller's frames go on (poll answers at once, with
-// nothing); a request submitted meanwhile replaces any waiting one, and
-// only the newest request's levels come back.
+// The LOD mode's level worker, without a window: while a policy's levels
+// compile and are prepared (bakes and pipelines), the caller's frames go on
+// (poll answers at once, with nothing); a request submitted meanwhile
+// replaces any waiting one, and only the newest request's scene comes back.
+// The prepare runs on the worker after a compile that succeeded, with its
+// programs. (The scene here is null: a LodScene needs a renderer, which the
+// window tests give it.)
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -37,14 +40,24 @@ class LevelCompilerTest : public ::testing::Test {
   std::promise<void> release_;
   std::shared_future<void> released_ = release_.get_future().share();
   std::vector<std::string> compiled_;  // the worker's only, read once it is idle
+  std::vector<std::string> prepared_;  // likewise
+  std::thread::id caller_ = std::this_thread::get_id();
   // Each compile waits until the test releases them all. Last: its
   // destructor waits for the worker, which uses the members above.
-  LevelCompiler compiler_{[this](const lod::LodPolicy& policy) -> engine::Expected<LevelCompiler::Programs> {
-    compiled_.push_back(policy.levels.front().member);
-    released_.wait();
-    if (policy.levels.front().member == "LodBroken") return engine::Error{"cannot compile LodBroken"};
-    return LevelCompiler::Programs(policy.levels.size());
-  }};
+  LevelCompiler compiler_{
+      [this](const lod::LodPolicy& policy) -> engine::Expected<LevelCompiler::Programs> {
+        compiled_.push_back(policy.levels.front().member);
+        released_.wait();
+        if (policy.levels.front().member == "LodBroken") return engine::Error{"cannot compile LodBroken"};
+        return LevelCompiler::Programs(policy.levels.size());
+      },
+      [this](const lod::LodPolicy& policy, LevelCompiler::Programs programs) -> engine::Expected<LevelCompiler::Scene> {
+        EXPECT_NE(std::this_thread::get_id(), caller_) << "prepared on the worker";
+        EXPECT_EQ(programs.size(), policy.levels.size());
+        prepared_.push_back(policy.levels.front().member);
+        if (policy.levels.front().member == "LodUnbakeable") return engine::Error{"cannot bake LodUnbakeable"};
+        return LevelCompiler::Scene{};
+      }};
 };
 
 TEST_F(LevelCompilerTest, TheCallersFramesGoOnWhileTheLevelsCompile) {
@@ -56,8 +69,9 @@ TEST_F(LevelCompilerTest, TheCallersFramesGoOnWhileTheLevelsCompile) {
   ASSERT_TRUE(outcome);
   EXPECT_EQ(outcome->request, 1U);
   EXPECT_EQ(outcome->policy.levels.front().member, "LodMQ");
-  ASSERT_TRUE(outcome->programs);
-  EXPECT_EQ(outcome->programs->size(), 1U);
+  EXPECT_FALSE(outcome->error);
+  EXPECT_GT(outcome->compileMs, 0.0);
+  EXPECT_EQ(prepared_, (std::vector<std::string>{"LodMQ"}));
   EXPECT_FALSE(compiler_.busy());
   EXPECT_FALSE(compiler_.poll()) << "an outcome comes back once";
 }
@@ -70,10 +84,22 @@ TEST_F(LevelCompilerTest, OnlyTheNewestRequestComesBack) {
   const auto outcome = nextOutcome(compiler_);
   ASSERT_TRUE(outcome);
   EXPECT_EQ(outcome->request, 3U) << "request 1's levels are dropped: a newer request waited";
-  ASSERT_FALSE(outcome->programs);
-  EXPECT_EQ(outcome->programs.error().message, "cannot compile LodBroken");
+  ASSERT_TRUE(outcome->error);
+  EXPECT_EQ(outcome->error->message, "cannot compile LodBroken");
+  EXPECT_EQ(outcome->prepareMs, 0.0);
   EXPECT_FALSE(compiler_.busy());
   EXPECT_EQ(compiled_, (std::vector<std::string>{"LodMQ", "LodBroken"})) << "request 2 never compiled";
+  EXPECT_EQ(prepared_, (std::vector<std::string>{"LodMQ"})) << "a failed compile is not prepared";
+}
+
+TEST_F(LevelCompilerTest, APrepareErrorComesBackAsTheOutcomesError) {
+  compiler_.submit(1, policyOf("LodUnbakeable"));
+  release_.set_value();
+  const auto outcome = nextOutcome(compiler_);
+  ASSERT_TRUE(outcome);
+  ASSERT_TRUE(outcome->error);
+  EXPECT_EQ(outcome->error->message, "cannot bake LodUnbakeable");
+  EXPECT_EQ(outcome->scene, nullptr);
 }
 
 }  // namespace

@@ -150,6 +150,7 @@ TEST_F(LodExplorerWindowTest, AMemberEditCompilesWhileFramesGoOnAndUndoRestoresT
   for (const nlohmann::json& edit : edits) EXPECT_TRUE(edit["ok"]) << edit["action"] << ": " << edit["error"];
   EXPECT_EQ(edits[1]["action"], "policy member 1 LodLQ");
   EXPECT_GT(edits[1]["compile_ms"].get<double>(), 0.0) << "the new member compiled on the worker";
+  EXPECT_GT(edits[1]["prepare_ms"].get<double>(), 0.0) << "its bakes and pipelines were made on the worker too";
   EXPECT_GE(edits[1]["frames_while_compiling"].get<uint32_t>(), 1U)
       << "the window presented the previous levels while the new member compiled";
   EXPECT_EQ(edits[0]["compile_ms"].get<double>(), 0.0) << "a new edge compiles nothing";
