@@ -932,12 +932,14 @@ TEST_F(StabilityTest, HazardsNameTheOperationInTheComponentOrFunction) {
       << err.str();
   fs::remove_all(outputDir);
   const std::string text = err.str();
+  // The first pixel to fail is the first the device ran, which lavapipe's
+  // threads may change from run to run: any pixel of the image.
   const std::string exponent =
-      "camera view 0: exponent (Fragment) went Inf in 289 px at `2.0 / k` (operation_hazard.spire:23:12); roughness = "
-      "0, clampedInverse = 100 there [instance 0 (OperationHazard), first at pixel (0, 0), defined at "
-      "operation_hazard.spire:33]";
-  EXPECT_NE(text.find("variant 'operation_per_fragment', " + exponent), std::string::npos) << text;
-  EXPECT_NE(text.find("variant 'operation_per_vertex', " + exponent), std::string::npos) << text;
+      R"(camera view 0: exponent \(Fragment\) went Inf in 289 px at `2\.0 / k` \(operation_hazard\.spire:23:12\); )"
+      R"(roughness = 0, clampedInverse = 100 there \[instance 0 \(OperationHazard\), first at pixel \(\d+, \d+\), )"
+      R"(defined at operation_hazard\.spire:33\])";
+  EXPECT_TRUE(std::regex_search(text, std::regex("variant 'operation_per_fragment', " + exponent))) << text;
+  EXPECT_TRUE(std::regex_search(text, std::regex("variant 'operation_per_vertex', " + exponent))) << text;
   EXPECT_NE(text.find("variant 'operation_per_vertex', camera view 0: logged (Vertex) went NaN in 25 vertices at "
                       "`log(color.r - 1.0)` (operation_hazard.spire:34:20); color = (0.5, 0.5, 0.5, 1) there"),
             std::string::npos)
@@ -963,9 +965,11 @@ TEST_F(StabilityTest, AUniformBakeHazardIsCountedInSurfaceSamples) {
   fs::remove_all(outputDir);
   const std::string text = err.str();
   EXPECT_NE(text.find("scaled (PrebakeUniform) went Inf in "), std::string::npos) << text;
-  EXPECT_NE(text.find(" surface samples at `color / divisor` (user_divide_per_object.spire:13:19); color = (0.5, "
-                      "0.5, 0.5, 1), divisor = 0 there [instance 0 (UserDividePerObject), first at surface sample 0"),
-            std::string::npos)
+  // Any sample may be the first to fail: the first the device ran.
+  EXPECT_TRUE(std::regex_search(
+      text, std::regex(R"( surface samples at `color / divisor` \(user_divide_per_object\.spire:13:19\); color = )"
+                       R"(\(0\.5, 0\.5, 0\.5, 1\), divisor = 0 there \[instance 0 \(UserDividePerObject\), )"
+                       R"(first at surface sample \d+, )")))
       << text;
 }
 
