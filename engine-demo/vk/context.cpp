@@ -321,24 +321,10 @@ Expected<void> Context::createCommandPool() {
   auto pool = makeCommandPool();
   if (!pool) return pool.error();
   commandPool_ = std::move(pool).value();
-  shared_->owner = std::this_thread::get_id();
   return {};
 }
 
-Expected<VkCommandPool> Context::threadCommandPool() const {
-  const std::thread::id self = std::this_thread::get_id();
-  if (self == shared_->owner) return commandPool_.get();
-  std::lock_guard lock(shared_->pools);
-  for (const auto& [thread, pool] : shared_->threadPools) {
-    if (thread == self) return pool.get();
-  }
-  auto pool = makeCommandPool();
-  if (!pool) return pool.error();
-  shared_->threadPools.emplace_back(self, std::move(pool).value());
-  return shared_->threadPools.back().second.get();
-}
-
-std::unique_lock<std::mutex> Context::lockQueue() const { return std::unique_lock(shared_->queue); }
+std::unique_lock<std::mutex> Context::lockQueue() const { return std::unique_lock(*queueMutex_); }
 
 Expected<uint32_t> Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags properties) const {
   for (uint32_t i = 0; i < memory_.memoryTypeCount; ++i) {
@@ -364,11 +350,13 @@ Expected<DeviceMemory> Context::allocateMemory(const VkMemoryRequirements& requi
 }
 
 Expected<void> Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
-  auto pool = threadCommandPool();
+  // A pool of this call's own: a pool may be used by one thread at a time,
+  // and making one costs microseconds against the submission's wait.
+  auto pool = makeCommandPool();
   if (!pool) return pool.error();
   VkCommandBufferAllocateInfo allocInfo{};
   allocInfo.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-  allocInfo.commandPool = *pool;
+  allocInfo.commandPool = pool->get();
   allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   allocInfo.commandBufferCount = 1;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
@@ -381,7 +369,7 @@ Expected<void> Context::submitAndWait(const std::function<void(VkCommandBuffer)>
     VkCommandPool pool;
     VkCommandBuffer cmd;
     ~Free() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
-  } freeOnExit{device(), *pool, cmd};
+  } freeOnExit{device(), pool->get(), cmd};
 
   VkCommandBufferBeginInfo beginInfo{};
 

@@ -5,7 +5,7 @@
 //
 // The one-shot helper may be called from any thread (a tool prepares the
 // next scene's bakes and pipelines on a worker while the window draws the
-// current one): each thread records into a command pool of its own, and
+// current one): each call records into a command pool of its own, and
 // every use of the queue holds the queue lock, which Vulkan requires of
 // queue submissions and presents from more than one thread.
 #pragma once
@@ -20,7 +20,6 @@
 #include <span>
 #include <string>
 #include <string_view>
-#include <thread>
 #include <vector>
 
 #include "vk/handle.h"
@@ -80,8 +79,8 @@ class Context {
   VkDevice device() const { return device_.get(); }
   VkQueue queue() const { return queue_; }
   uint32_t queueFamily() const { return queueFamily_; }
-  // The pool of the thread that created the context; other threads' one-shot
-  // commands come from pools of their own.
+  // For the thread that draws frames (the swapchain's command buffers);
+  // submitAndWait does not use it.
   VkCommandPool commandPool() const { return commandPool_.get(); }
   // Held around every vkQueueSubmit, vkQueuePresentKHR and vkDeviceWaitIdle
   // outside submitAndWait, which takes it itself.
@@ -141,17 +140,6 @@ class Context {
   Expected<void> createDevice();
   Expected<void> createCommandPool();
   Expected<CommandPool> makeCommandPool() const;
-  // The calling thread's pool: commandPool_ on the creating thread, else one
-  // made on the thread's first call and kept until the context dies.
-  Expected<VkCommandPool> threadCommandPool() const;
-
-  // What threads share: behind a pointer so that a Context still moves.
-  struct Shared {
-    std::mutex queue;
-    std::mutex pools;
-    std::thread::id owner;
-    std::vector<std::pair<std::thread::id, CommandPool>> threadPools;
-  };
 
   // Declaration order is destruction order reversed: the log outlives the
   // messenger and instance that write to it; the pool dies before the device;
@@ -171,7 +159,7 @@ class Context {
   uint32_t queueFamily_ = 0;
   VkQueue queue_ = VK_NULL_HANDLE;
   CommandPool commandPool_;
-  std::unique_ptr<Shared> shared_ = std::make_unique<Shared>();  // its pools die before the device
+  std::unique_ptr<std::mutex> queueMutex_ = std::make_unique<std::mutex>();  // behind a pointer: a Context moves
 };
 
 }  // namespace spire::vk
