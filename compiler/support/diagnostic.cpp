@@ -66,6 +66,13 @@ Diagnostic& DiagnosticList::reportOnce(DiagCode code, SourceRange range, std::st
   return report(code, range, std::move(message));
 }
 
+void DiagnosticList::reportAll(std::vector<Diagnostic> diagnostics) {
+  for (Diagnostic& d : diagnostics) {
+    if (d.code == DiagCode::E2005) continue;  // this list counts toward its own limit
+    report(d.code, d.range, std::move(d.message)).notes = std::move(d.notes);
+  }
+}
+
 std::vector<Diagnostic> DiagnosticList::takeSince(size_t mark) {
   std::vector<Diagnostic> taken(diagnostics_.begin() + static_cast<std::ptrdiff_t>(mark), diagnostics_.end());
   diagnostics_.resize(mark);

@@ -63,6 +63,10 @@ class DiagnosticList {
   // already reported: checks repeated per derived shader report once.
   Diagnostic& reportOnce(DiagCode code, SourceRange range, std::string message);
 
+  // Reports each of `diagnostics` (collected in another list, by a thread
+  // that could not report into this one) as report() would, notes kept.
+  void reportAll(std::vector<Diagnostic> diagnostics);
+
   const std::vector<Diagnostic>& all() const { return diagnostics_; }
   uint32_t errorCount() const { return errorCount_; }
   uint32_t warningCount() const { return warningCount_; }

@@ -46,12 +46,13 @@ struct ViewCaptures {
   std::vector<uint8_t> coverage;  // either image covered
 };
 
-// The worker's side of compiling: the library variants are compiled in,
+// The worker's side of a change: the library variants are compiled in,
 // replaced by a fresh one when a source was saved and still defines the
-// shader.
+// shader, and the scene that draws the new variant, prepared beside the
+// frame loop's draws of the previous one.
 class VariantCompiler {
  public:
-  VariantCompiler(const engine::SceneRenderer& renderer, size_t instance, std::string shader, ShaderLibrary& library)
+  VariantCompiler(engine::SceneRenderer& renderer, size_t instance, std::string shader, ShaderLibrary& library)
       : renderer_(renderer),
         instance_(instance),
         shader_(std::move(shader)),
@@ -59,24 +60,39 @@ class VariantCompiler {
         library_(std::shared_ptr<void>(), &library) {}
 
   void operator()(const CompileJob& job, CompileOutcome& outcome) {
-    if (job.reload) {
-      auto fresh = renderer_.loadLibrary(instance_);
-      if (!fresh) {
-        outcome.program = fresh.error();
-        return;
-      }
-      if ((*fresh)->choiceSpace(shader_) == nullptr) {
-        outcome.program = engine::Error{fmt::format("the edited source no longer defines the shader '{}'", shader_)};
-        return;
-      }
-      library_ = std::shared_ptr<ShaderLibrary>(std::move(fresh).value());
-      outcome.library = library_;
-    }
+    if (job.reload && !reload(outcome)) return;
     outcome.program = renderer_.compileVariantIn(*library_, instance_, job.placement, &outcome.skipped, job.attributes);
+    if (outcome.program) prepare(job.programs, outcome);
   }
 
  private:
-  const engine::SceneRenderer& renderer_;
+  bool reload(CompileOutcome& outcome) {
+    auto fresh = renderer_.loadLibrary(instance_);
+    if (!fresh) {
+      outcome.program = fresh.error();
+      return false;
+    }
+    if ((*fresh)->choiceSpace(shader_) == nullptr) {
+      outcome.program = engine::Error{fmt::format("the edited source no longer defines the shader '{}'", shader_)};
+      return false;
+    }
+    library_ = std::shared_ptr<ShaderLibrary>(std::move(fresh).value());
+    outcome.library = library_;
+    return true;
+  }
+
+  // The window shows the renderer's target, which the previous variant
+  // draws into meanwhile: it stays (TargetUse::Keep).
+  void prepare(std::vector<engine::VariantProgram> programs, CompileOutcome& outcome) {
+    programs.at(instance_) = *outcome.program;
+    DiagnosticList diagnostics;
+    const vk::HostTimer timer;
+    outcome.prepared = renderer_.prepare(programs, engine::SceneRenderer::TargetUse::Keep, &diagnostics);
+    outcome.prepareMs = timer.elapsedMs();
+    outcome.diagnostics = diagnostics.all();
+  }
+
+  engine::SceneRenderer& renderer_;
   size_t instance_;
   std::string shader_;
   std::shared_ptr<ShaderLibrary> library_;
@@ -517,7 +533,8 @@ void Explorer::startChange(std::string action, bool reload) {
   change.startMs = clock_.elapsedMs();
   pending_ = std::move(change);
   incoming_.reset();  // a variant of older decisions is not worth showing now
-  session_->compiler->submit({pending_->request, session_->state->decisions(), session_->state->attributes(), reload});
+  session_->compiler->submit(
+      {pending_->request, session_->state->decisions(), session_->state->attributes(), reload, programs_});
 }
 
 // The sources were read again: the choices are the new library's, keeping
@@ -539,21 +556,18 @@ void Explorer::adoptLibrary(const std::shared_ptr<ShaderLibrary>& library) {
 void Explorer::pollCompile() {
   std::optional<CompileOutcome> outcome = session_->compiler->poll();
   if (!outcome || !pending_ || outcome->request != pending_->request) return;
-  pending_->compileMs = outcome->milliseconds;
+  pending_->compileMs = outcome->milliseconds - outcome->prepareMs;
+  pending_->prepareMs = outcome->prepareMs;
   pending_->skipped = outcome->skipped;
   if (outcome->library) adoptLibrary(outcome->library);
   if (!outcome->program) return failChange(outcome->program.error().message, outcome->program.error().details);
-  std::vector<engine::VariantProgram> programs = programs_;
-  programs[session_->instance] = std::move(outcome->program).value();
-  const size_t mark = run_.diagnostics().size();
-  const vk::HostTimer timer;
-  auto prepared = renderer_.prepare(programs);
-  pending_->prepareMs = timer.elapsedMs();
-  if (!prepared) return failChange(prepared.error().message, prepared.error().details + renderSince(mark));
+  const std::string reported = run_.adoptDiagnostics(std::move(outcome->diagnostics));
+  engine::Expected<engine::PreparedScene>& prepared = *outcome->prepared;
+  if (!prepared) return failChange(prepared.error().message, prepared.error().details + reported);
   for (const engine::BakeRecord& bake : prepared->bakes) pending_->bakeMs += bake.reused ? 0.0 : bake.milliseconds;
   pending_->pipelinesCreated = prepared->pipelines.created;
   pending_->pipelinesReused = prepared->pipelines.reused;
-  programs_ = std::move(programs);
+  programs_[session_->instance] = std::move(outcome->program).value();
   incoming_ = std::move(prepared).value();
 }
 
@@ -698,6 +712,7 @@ engine::Expected<bool> Explorer::frame(const demo::WindowInput& input) {
     if (view_ == ViewMode::Variant) metrics_.addFrame(timing->gpuMs);
   }
   if (auto ok = present(); !ok) return ok.error();
+  if (pending_ && !first) ++pending_->framesWhileCompiling;
   if (windowShot_) {
     if (auto ok = windowScreenshot(*windowShot_); !ok) return ok.error();
     windowShot_.reset();
@@ -716,6 +731,9 @@ engine::Expected<bool> Explorer::frame(const demo::WindowInput& input) {
 }
 
 int Explorer::finish(int status) {
+  // A worker may still be preparing a change: what it reports to Vulkan's
+  // validation belongs to this run, which ends below.
+  for (auto& [index, session] : sessions_) session.compiler.reset();
   std::vector<double> totals;
   size_t failed = 0;
   nlohmann::ordered_json log = nlohmann::ordered_json::array();
@@ -730,6 +748,7 @@ int Explorer::finish(int status) {
                    {"bake_ms", change.bakeMs},
                    {"pipelines_created", change.pipelinesCreated},
                    {"pipelines_reused", change.pipelinesReused},
+                   {"frames_while_compiling", change.framesWhileCompiling},
                    {"first_frame_ms", change.firstFrameMs},
                    {"total_ms", change.totalMs},
                    {"error", change.error},

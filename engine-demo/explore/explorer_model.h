@@ -29,13 +29,16 @@ struct ChangeRecord {
   bool reload = false;     // the sources were read again (a file was saved)
   double startMs = 0.0;    // when the change was made (explorer clock)
   double compileMs = 0.0;  // compiler library: code generation, glslang, validation (worker thread)
-  double prepareMs = 0.0;  // pipelines, descriptor sets and bakes
+  double prepareMs = 0.0;  // pipelines, descriptor sets and bakes (worker thread, after the compile)
   double bakeMs = 0.0;     // of prepareMs, bakes run (not reused)
   // Of prepareMs: graphics pipelines built, and those shared with the
   // variant on screen because their kernels did not change (lavapipe
   // compiles only the built ones at the first frame).
   size_t pipelinesCreated = 0;
   size_t pipelinesReused = 0;
+  // Presented with the previous variant while the worker compiled and
+  // prepared the new one.
+  uint32_t framesWhileCompiling = 0;
   double firstFrameMs = 0.0;  // the first frame's host time: lavapipe compiles shaders at first draw
   double totalMs = 0.0;       // decision to the first presented frame of the new variant
   bool ok = false;

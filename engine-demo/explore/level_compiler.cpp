@@ -32,8 +32,10 @@ void LevelCompiler::launch(uint64_t request, lod::LodPolicy policy) {
       outcome.error = programs.error();
     } else {
       const auto prepareStart = Clock::now();
-      auto scene = prepare_(policy, std::move(programs).value());
+      DiagnosticList diagnostics;
+      auto scene = prepare_(policy, std::move(programs).value(), diagnostics);
       outcome.prepareMs = ms(prepareStart);
+      outcome.diagnostics = diagnostics.all();
       if (scene) {
         outcome.scene = std::move(scene).value();
       } else {

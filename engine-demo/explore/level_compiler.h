@@ -19,6 +19,7 @@
 #include "driver/shader_library.h"
 #include "lod/lod_policy.h"
 #include "renderer/lod_scene.h"
+#include "support/diagnostic.h"
 
 namespace spire::explore {
 
@@ -31,7 +32,8 @@ class LevelCompiler {
   // renderer allow beside draws (vk::Context::submitAndWait,
   // SceneRenderer::prepare with TargetUse::Keep).
   using CompileFunction = std::function<engine::Expected<Programs>(const lod::LodPolicy&)>;
-  using PrepareFunction = std::function<engine::Expected<Scene>(const lod::LodPolicy&, Programs)>;
+  // `prepare` reports into the list it is given, of the worker's own.
+  using PrepareFunction = std::function<engine::Expected<Scene>(const lod::LodPolicy&, Programs, DiagnosticList&)>;
 
   struct Outcome {
     uint64_t request = 0;
@@ -42,6 +44,8 @@ class LevelCompiler {
     std::optional<engine::Error> error;
     double compileMs = 0.0;  // the compile, on the worker
     double prepareMs = 0.0;  // the bakes and pipelines, on the worker; 0 when the compile failed
+    // What the prepare reported, for the caller's thread to add to its list.
+    std::vector<Diagnostic> diagnostics;
   };
 
   LevelCompiler(CompileFunction compile, PrepareFunction prepare)

@@ -164,8 +164,11 @@ std::optional<int> LodExplorer::start() {
   // From now on only the worker compiles in the renderer's libraries.
   levels_ = std::make_unique<LevelCompiler>(
       compileLevelsIn(renderer_, std::move(libraries)),
-      [&renderer = renderer_](const lod::LodPolicy& policy, LevelCompiler::Programs programs) {
-        return engine::LodScene::createCompiled(renderer, policy, std::move(programs));
+      [&renderer = renderer_](const lod::LodPolicy& policy, LevelCompiler::Programs programs,
+                              DiagnosticList& diagnostics) {
+        engine::LodOptions options;
+        options.diagnostics = &diagnostics;
+        return engine::LodScene::createCompiled(renderer, policy, std::move(programs), options);
       });
   scene_->resetLevels(view_);
   startLevels_ = levelCounts(*scene_);
@@ -233,8 +236,9 @@ void LodExplorer::pollLevels() {
   pending_.reset();
   record.compileMs = outcome->compileMs;
   record.prepareMs = outcome->prepareMs;
+  const std::string reported = run_.adoptDiagnostics(std::move(outcome->diagnostics));
   if (outcome->error) {
-    applyError_ = errorText(*outcome->error);
+    applyError_ = errorText(*outcome->error) + reported;
   } else {
     scene_ = std::move(outcome->scene);
     scene_->resetLevels(view_);

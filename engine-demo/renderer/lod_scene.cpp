@@ -127,8 +127,8 @@ Expected<void> LodScene::Impl::compileLevels(LevelPrograms* compiled) {
     // prepared while an earlier scene may still be drawing (createCompiled):
     // its target must stay.
     const bool keep = compiled != nullptr || l > 0;
-    auto prepared =
-        renderer.prepare(level.programs, keep ? SceneRenderer::TargetUse::Keep : SceneRenderer::TargetUse::Fit);
+    auto prepared = renderer.prepare(
+        level.programs, keep ? SceneRenderer::TargetUse::Keep : SceneRenderer::TargetUse::Fit, options.diagnostics);
     if (!prepared) return prepared.error();
     level.prepared = std::move(prepared).value();
     levels.push_back(std::move(level));

@@ -16,6 +16,7 @@
 #include "lod/instance_batches.h"
 #include "lod/lod_policy.h"
 #include "renderer/scene_renderer.h"
+#include "support/diagnostic.h"
 
 namespace spire::engine {
 
@@ -24,6 +25,9 @@ struct LodOptions {
   // (0: the nearest band's member, the scene at full quality).
   std::optional<uint32_t> fixedLevel;
   bool transitions = true;  // false: switch levels at once, whatever the policy says
+  // Where preparing the levels reports problems, else the renderer's list:
+  // a thread of its own (createCompiled) passes a list of its own.
+  DiagnosticList* diagnostics = nullptr;
 };
 
 struct LodFrameStats {

@@ -227,41 +227,41 @@ Expected<std::vector<VariantProgram>> SceneRenderer::compile(const std::optional
   return programs;
 }
 
-const GpuMesh* SceneRenderer::meshFor(const std::string& name, SourceRange range) {
+const GpuMesh* SceneRenderer::meshFor(const std::string& name, SourceRange range, DiagnosticList& diags) {
   if (const auto it = assets_->meshes.find(name); it != assets_->meshes.end()) return it->second.get();
   const scene::MeshDesc* desc = scene_.findMesh(name);
   if (!desc) {
-    diags_.report(DiagCode::E7006, range, fmt::format("no mesh named '{}'", name));
+    diags.report(DiagCode::E7006, range, fmt::format("no mesh named '{}'", name));
     return nullptr;
   }
   auto mesh = scene::buildMesh(*desc);
   if (!mesh) {
-    diags_.report(DiagCode::E7101, desc->range, fmt::format("mesh '{}': {}", name, mesh.error().message));
+    diags.report(DiagCode::E7101, desc->range, fmt::format("mesh '{}': {}", name, mesh.error().message));
     return nullptr;
   }
   auto uploaded = uploadMesh(ctx_, std::move(mesh).value());
   if (!uploaded) {
-    diags_.report(DiagCode::E7101, desc->range, fmt::format("mesh '{}': {}", name, uploaded.error().message));
+    diags.report(DiagCode::E7101, desc->range, fmt::format("mesh '{}': {}", name, uploaded.error().message));
     return nullptr;
   }
   return assets_->meshes.emplace(name, std::move(uploaded).value()).first->second.get();
 }
 
-const GpuTexture* SceneRenderer::textureFor(const std::string& name, SourceRange range) {
+const GpuTexture* SceneRenderer::textureFor(const std::string& name, SourceRange range, DiagnosticList& diags) {
   if (const auto it = assets_->textures.find(name); it != assets_->textures.end()) return it->second.get();
   const scene::TextureDesc* desc = scene_.findTexture(name);
   if (!desc) {
-    diags_.report(DiagCode::E7006, range, fmt::format("no texture named '{}'", name));
+    diags.report(DiagCode::E7006, range, fmt::format("no texture named '{}'", name));
     return nullptr;
   }
   auto image = scene::buildTexture(*desc, scene_);
   if (!image) {
-    diags_.report(DiagCode::E7101, desc->range, fmt::format("texture '{}': {}", name, image.error().message));
+    diags.report(DiagCode::E7101, desc->range, fmt::format("texture '{}': {}", name, image.error().message));
     return nullptr;
   }
   auto uploaded = uploadTexture(ctx_, *image, desc->clamp);
   if (!uploaded) {
-    diags_.report(DiagCode::E7101, desc->range, fmt::format("texture '{}': {}", name, uploaded.error().message));
+    diags.report(DiagCode::E7101, desc->range, fmt::format("texture '{}': {}", name, uploaded.error().message));
     return nullptr;
   }
   return assets_->textures.emplace(name, std::move(uploaded).value()).first->second.get();
@@ -306,10 +306,12 @@ void SceneRenderer::reportUnreadBindings() {
   }
 }
 
-Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>& programs, TargetUse targetUse) {
+Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>& programs, TargetUse targetUse,
+                                               DiagnosticList* diagnostics) {
+  DiagnosticList& diags = diagnostics ? *diagnostics : diags_;
   PreparedScene prepared;
   std::vector<const GpuMesh*> meshes;
-  const size_t errorsBefore = diags_.errorCount();
+  const size_t errorsBefore = diags.errorCount();
   for (size_t i = 0; i < programs.size(); ++i) {
     scene::InstanceDesc instance = scene_.instances[i];
     for (scene::MaterialBinding& binding : instance.material) {
@@ -323,14 +325,16 @@ Expected<PreparedScene> SceneRenderer::prepare(const std::vector<VariantProgram>
         binding.numbers = it->second;
       }
     }
-    meshes.push_back(meshFor(instance.mesh, instance.meshRange));
-    const TextureLookup lookup = [this](const std::string& name, SourceRange range) { return textureFor(name, range); };
-    ResolvedMaterial material = resolveMaterial(programs[i], instance, lookup, diags_);
+    meshes.push_back(meshFor(instance.mesh, instance.meshRange, diags));
+    const TextureLookup lookup = [this, &diags](const std::string& name, SourceRange range) {
+      return textureFor(name, range, diags);
+    };
+    ResolvedMaterial material = resolveMaterial(programs[i], instance, lookup, diags);
     if (!readBindings_[i]) readBindings_[i].emplace();
     readBindings_[i]->merge(material.read);
     prepared.materials.push_back(material.values ? std::move(*material.values) : MaterialValues{});
   }
-  if (diags_.errorCount() != errorsBefore) return Error{"nothing was rendered: the scene has errors", {}, {}};
+  if (diags.errorCount() != errorsBefore) return Error{"nothing was rendered: the scene has errors", {}, {}};
 
   size_t colorTargets = 0;
   for (const VariantProgram& program : programs) {

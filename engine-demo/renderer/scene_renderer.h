@@ -128,13 +128,16 @@ class SceneRenderer {
     Fit,   // make a new one that fits (the first prepare of a tool, or a whole new scene)
     Keep,  // keep it, and fail: draws prepared before use it (another thread may be drawing them)
   };
-  // Resolves materials (reporting problems to `diags`), runs the bakes the
-  // programs need and builds their draws.
+  // Resolves materials (reporting problems to `diagnostics`, else to the
+  // renderer's list), runs the bakes the programs need and builds their
+  // draws.
   //
   // One thread may prepare while another draws scenes prepared before, with
-  // TargetUse::Keep: prepare then changes nothing a draw reads. Two prepares
-  // at once are not allowed.
-  Expected<PreparedScene> prepare(const std::vector<VariantProgram>& programs, TargetUse target = TargetUse::Fit);
+  // TargetUse::Keep: prepare then changes nothing a draw reads. That thread
+  // passes a list of its own, since the other one may report meanwhile. Two
+  // prepares at once are not allowed.
+  Expected<PreparedScene> prepare(const std::vector<VariantProgram>& programs, TargetUse target = TargetUse::Fit,
+                                  DiagnosticList* diagnostics = nullptr);
   // W7101 for each material binding that no variant prepared so far read:
   // called once after a tool's variants are prepared, since one variant not
   // reading a value another reads is expected.
@@ -192,8 +195,8 @@ class SceneRenderer {
   // or group named `prefix`.
   bool knownToAnotherSource(const scene::InstanceDesc& instance, std::string_view prefix);
   Expected<std::unique_ptr<ShaderLibrary>> loadLibrary(const scene::InstanceDesc& instance) const;
-  const GpuMesh* meshFor(const std::string& name, SourceRange range);
-  const GpuTexture* textureFor(const std::string& name, SourceRange range);
+  const GpuMesh* meshFor(const std::string& name, SourceRange range, DiagnosticList& diags);
+  const GpuTexture* textureFor(const std::string& name, SourceRange range, DiagnosticList& diags);
   // The name of a solid texture of `rgba`, made on first use, that
   // textureFor then gives.
   Expected<std::string> solidTexture(const std::vector<double>& rgba);

@@ -4,6 +4,7 @@
 
 #include "driver/exit_codes.h"
 #include "renderer/host_allocator.h"
+#include "support/diagnostic_renderer.h"
 
 namespace spire::engine {
 
@@ -46,6 +47,14 @@ SceneRenderer& ToolRun::startRenderer(uint32_t defaultBakeSize) {
   TextureBakeOptions bakeOptions;
   bakeOptions.defaultSize = defaultBakeSize;
   return renderer_.emplace(*context_, *scene_, diags_, bakeOptions);
+}
+
+std::string ToolRun::adoptDiagnostics(std::vector<Diagnostic> diagnostics) {
+  const size_t mark = diags_.size();
+  diags_.reportAll(std::move(diagnostics));
+  std::string text;
+  for (size_t i = mark; i < diags_.size(); ++i) text += renderDiagnostic(sources_, diags_.all()[i]);
+  return text;
 }
 
 int ToolRun::finish(int status) const { return reportValidation(*context_, status, err_); }

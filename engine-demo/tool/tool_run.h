@@ -64,6 +64,10 @@ class ToolRun {
   // reads (a script, a decision file) here so their errors print the same way.
   SourceManager& sources() { return sources_; }
   ErrorReporter& reporter() { return reporter_; }
+  // Adds `diagnostics`, which a worker thread collected in a list of its own
+  // (it cannot report into this one while this thread may), and returns
+  // them rendered.
+  std::string adoptDiagnostics(std::vector<Diagnostic> diagnostics);
   // Prints `error` after any pending diagnostics; returns kExitInputError.
   int fail(const Error& error) { return reporter_.fail(error); }
 

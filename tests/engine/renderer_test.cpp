@@ -366,6 +366,53 @@ TEST_F(RendererTest, NonFiniteOutputIsCountedNotAveraged) {
 // The tuner's in-memory decisions go through the compiler's one compile
 // path: attributes are checked against the catalogue, and decisions that do
 // not apply are reported back as skipped rather than refused.
+// A prepare beside draws of scenes prepared before (spire-explore's worker)
+// keeps the frame's target: kernels that need another number of color
+// outputs are refused, fewer as well as more, and the target stays the one
+// the earlier draws use. A tool's own prepare (TargetUse::Fit) makes a target
+// that fits instead.
+TEST_F(RendererTest, KeepingTheTargetRefusesKernelsWithAnotherNumberOfColorOutputs) {
+  std::string json = planeScene("flat_plane.spire", "FlatPlane", R"({"color": [0.2, 0.4, 0.6, 1]})");
+  json.replace(json.rfind("}]"), 2, R"(}, {"mesh": "plane", "source": "two_outputs.spire", "shader": "TwoColors",
+      "material": {"color": [0.9, 0.5, 0.1, 1]}}])");
+  ASSERT_TRUE(loadScene(json));
+  SceneRenderer renderer(ctx(), *scene_, *diags_);
+  auto programs = renderer.compile(std::nullopt);
+  ASSERT_TRUE(programs) << programs.error().message << "\n" << programs.error().details;
+  // Every draw of a frame writes the target's outputs, so each scene draws
+  // one of the shaders, as instance 0: its plane and color suit both.
+  const std::vector<VariantProgram> oneOutput{(*programs)[0]};
+  const std::vector<VariantProgram> twoOutputs{(*programs)[1]};
+
+  auto one = renderer.prepare(oneOutput);
+  ASSERT_TRUE(one) << one.error().message;
+  const vk::Image* frame = renderer.colorImage();
+  ASSERT_EQ(renderer.target()->formats().colors.size(), 1U);
+  auto refused = renderer.prepare(twoOutputs, SceneRenderer::TargetUse::Keep);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("write 2 color output(s), and the target the scene's other draws use has 1"),
+            std::string::npos)
+      << refused.error().message;
+  EXPECT_EQ(renderer.colorImage(), frame) << "the target the earlier draws use stays";
+  EXPECT_TRUE(renderer.renderView(*one, scene_->camera.views.front(), 0.0F));
+
+  auto two = renderer.prepare(twoOutputs, SceneRenderer::TargetUse::Fit);
+  ASSERT_TRUE(two) << two.error().message;
+  EXPECT_EQ(renderer.target()->formats().colors.size(), 2U);
+  auto capture = renderer.capture(*two, scene_->camera.views.front());
+  ASSERT_TRUE(capture) << capture.error().message;
+  // Exports take their locations in name order: normalOut is color target 0,
+  // the one captured and shown.
+  EXPECT_NEAR(coveredMean(*capture)[0], 0.5, 1e-3);
+  auto fewer = renderer.prepare(oneOutput, SceneRenderer::TargetUse::Keep);
+  ASSERT_FALSE(fewer);
+  EXPECT_NE(fewer.error().message.find("write 1 color output(s), and the target the scene's other draws use has 2"),
+            std::string::npos)
+      << fewer.error().message;
+  EXPECT_EQ(renderer.target()->formats().colors.size(), 2U);
+  EXPECT_TRUE(renderer.renderView(*two, scene_->camera.views.front(), 0.0F));
+}
+
 TEST_F(RendererTest, InMemoryDecisionsAreCheckedAndSkippedOnesReported) {
   std::string json = planeScene("normal_bake.spire", "NormalBake", R"({"colorMap": "noise"})");
   ASSERT_TRUE(loadScene(json));

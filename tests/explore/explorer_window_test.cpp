@@ -132,6 +132,54 @@ TEST_F(ExplorerWindowTest, ABrokenEditKeepsTheWindowAndTheLastGoodVariant) {
   EXPECT_TRUE(changes[1]["ok"]) << "the session goes on with the last good sources";
 }
 
+// The new variant's scene is prepared on the worker, beside the frame
+// loop's draws: a variation that reads a material input the scene does not
+// bind fails there, and the scene's diagnostic (its file, line and column)
+// reaches the change's error while the previous variant stays on screen.
+TEST_F(ExplorerWindowTest, AVariantTheSceneCannotDrawFailsOnTheWorkerWithTheScenesDiagnostic) {
+  std::ofstream(dir_ / "tinted.spire") << "using \"" << fs::absolute("pipelines/engine.spire").string() << R"(";
+shader Tinted using EnginePipeline {
+    @FrameUniform mat4 matMVP;
+    @MaterialUniform vec4 color;
+    @MaterialUniform vec4 tint;
+    vec4 projPos = matMVP * vec4(vert_pos, 1.0);
+    vec4 shade = color;
+    vec4 shade:tinted = color * tint;
+    vec4 output = shade;
+}
+)";
+  std::ofstream(dir_ / "tinted.json") << R"({
+  "resolution": [96, 64], "frames": 2, "warmupFrames": 1,
+  "camera": {"fovY": 60, "views": [{"position": [0, 2.2, 0.01], "target": [0, 0, 0]}]},
+  "meshes": {"plane": {"type": "plane", "size": 2, "resolution": 4}},
+  "instances": [{"mesh": "plane", "source": "tinted.spire", "shader": "Tinted",
+                 "material": {"color": [0.2, 0.6, 0.9, 1]}}]
+}
+)";
+  const fs::path path = script(
+      "screenshot before.png\n"
+      "set Tinted.shade = Fragment:tinted\n"
+      "screenshot after.png\n"
+      "set Tinted.shade = Vertex\n"
+      "quit\n");
+  ASSERT_EQ(explore({(dir_ / "tinted.json").string(), "--validation", "--script", path.string(), "--log",
+                     (dir_ / "log.json").string()}),
+            0)
+      << err_.str() << out_.str();
+  const nlohmann::json changes = log()["changes"];
+  ASSERT_EQ(changes.size(), 2U) << out_.str();
+  EXPECT_FALSE(changes[0]["ok"]);
+  EXPECT_GT(changes[0]["prepare_ms"].get<double>(), 0.0) << "the failure comes from the prepare";
+  const std::string error = changes[0]["error"];
+  EXPECT_NE(error.find("tinted.json:6:30: error[E7102]: input 'tint' (vec4 from MaterialUniform) of 'Tinted' is "
+                       "not bound"),
+            std::string::npos)
+      << error;
+  EXPECT_EQ(comparePngs(dir_ / "before.png", dir_ / "after.png").largest, 0) << "the previous variant stays";
+  EXPECT_TRUE(changes[1]["ok"]) << changes[1]["error"];
+  EXPECT_GT(changes[1]["prepare_ms"].get<double>(), 0.0);
+}
+
 TEST_F(ExplorerWindowTest, ABadScriptFailsWithItsLineAndColumn) {
   const fs::path path = script("set Terrain.albedo = Nowhere\n");
   EXPECT_EQ(explore({"examples/scenes/terrain.json", "--script", path.string()}), 1);

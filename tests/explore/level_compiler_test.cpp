@@ -44,20 +44,24 @@ class LevelCompilerTest : public ::testing::Test {
   std::thread::id caller_ = std::this_thread::get_id();
   // Each compile waits until the test releases them all. Last: its
   // destructor waits for the worker, which uses the members above.
-  LevelCompiler compiler_{
-      [this](const lod::LodPolicy& policy) -> engine::Expected<LevelCompiler::Programs> {
-        compiled_.push_back(policy.levels.front().member);
-        released_.wait();
-        if (policy.levels.front().member == "LodBroken") return engine::Error{"cannot compile LodBroken"};
-        return LevelCompiler::Programs(policy.levels.size());
-      },
-      [this](const lod::LodPolicy& policy, LevelCompiler::Programs programs) -> engine::Expected<LevelCompiler::Scene> {
-        EXPECT_NE(std::this_thread::get_id(), caller_) << "prepared on the worker";
-        EXPECT_EQ(programs.size(), policy.levels.size());
-        prepared_.push_back(policy.levels.front().member);
-        if (policy.levels.front().member == "LodUnbakeable") return engine::Error{"cannot bake LodUnbakeable"};
-        return LevelCompiler::Scene{};
-      }};
+  LevelCompiler compiler_{[this](const lod::LodPolicy& policy) -> engine::Expected<LevelCompiler::Programs> {
+                            compiled_.push_back(policy.levels.front().member);
+                            released_.wait();
+                            if (policy.levels.front().member == "LodBroken")
+                              return engine::Error{"cannot compile LodBroken"};
+                            return LevelCompiler::Programs(policy.levels.size());
+                          },
+                          [this](const lod::LodPolicy& policy, LevelCompiler::Programs programs,
+                                 DiagnosticList& diagnostics) -> engine::Expected<LevelCompiler::Scene> {
+                            EXPECT_NE(std::this_thread::get_id(), caller_) << "prepared on the worker";
+                            EXPECT_EQ(programs.size(), policy.levels.size());
+                            prepared_.push_back(policy.levels.front().member);
+                            if (policy.levels.front().member == "LodUnbakeable") {
+                              diagnostics.report(DiagCode::E7102, {}, "input 'tint' is not bound");
+                              return engine::Error{"cannot bake LodUnbakeable"};
+                            }
+                            return LevelCompiler::Scene{};
+                          }};
 };
 
 TEST_F(LevelCompilerTest, TheCallersFramesGoOnWhileTheLevelsCompile) {
@@ -92,7 +96,7 @@ TEST_F(LevelCompilerTest, OnlyTheNewestRequestComesBack) {
   EXPECT_EQ(prepared_, (std::vector<std::string>{"LodMQ"})) << "a failed compile is not prepared";
 }
 
-TEST_F(LevelCompilerTest, APrepareErrorComesBackAsTheOutcomesError) {
+TEST_F(LevelCompilerTest, APrepareErrorComesBackAsTheOutcomesErrorWithItsDiagnostics) {
   compiler_.submit(1, policyOf("LodUnbakeable"));
   release_.set_value();
   const auto outcome = nextOutcome(compiler_);
@@ -100,6 +104,8 @@ TEST_F(LevelCompilerTest, APrepareErrorComesBackAsTheOutcomesError) {
   ASSERT_TRUE(outcome->error);
   EXPECT_EQ(outcome->error->message, "cannot bake LodUnbakeable");
   EXPECT_EQ(outcome->scene, nullptr);
+  ASSERT_EQ(outcome->diagnostics.size(), 1U) << "what the prepare reported comes back with it";
+  EXPECT_EQ(outcome->diagnostics.front().message, "input 'tint' is not bound");
 }
 
 }  // namespace

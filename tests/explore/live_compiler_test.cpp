@@ -28,13 +28,13 @@ TEST(LiveCompiler, TheLatestRequestWinsAndAReloadIsKept) {
     outcome.program = engine::Error{"compiled " + std::to_string(job.request) + " with " +
                                     std::to_string(job.placement.size()) + " decisions"};
   });
-  compiler.submit({1, {}, {}, false});
+  compiler.submit({1, {}, {}, false, {}});
   {
     std::unique_lock lock(mutex);
     ASSERT_TRUE(changed.wait_for(lock, std::chrono::seconds(10), [&] { return !started.empty(); }));
   }
-  compiler.submit({2, {}, {}, true});
-  compiler.submit({3, {{"albedo", "Fragment"}}, {}, false});
+  compiler.submit({2, {}, {}, true, {}});
+  compiler.submit({3, {{"albedo", "Fragment"}}, {}, false, {}});
   EXPECT_TRUE(compiler.busy());
   {
     const std::lock_guard lock(mutex);

@@ -83,6 +83,27 @@ TEST(Diagnostics, ErrorLimitStopsCollection) {
   EXPECT_EQ(list.all().back().code, DiagCode::E2005);
 }
 
+// What a worker thread collected in a list of its own joins the main list
+// as if reported there: counted, with its notes, under that list's limit.
+TEST(Diagnostics, ReportAllAddsAnotherListsDiagnosticsUnderThisListsLimit) {
+  DiagnosticList worker(1);
+  worker.report(DiagCode::E7102, {}, "first").note({}, "why");
+  worker.report(DiagCode::E7102, {}, "second");  // over the worker's limit: E2005
+  DiagnosticList main;
+  main.report(DiagCode::E7102, {}, "earlier");
+  main.reportAll(worker.all());
+  ASSERT_EQ(main.all().size(), 2U) << "the worker's E2005 is the worker's limit, not this list's";
+  EXPECT_EQ(main.all()[1].message, "first");
+  ASSERT_EQ(main.all()[1].notes.size(), 1U);
+  EXPECT_EQ(main.all()[1].notes[0].message, "why");
+  EXPECT_EQ(main.errorCount(), 2U);
+
+  DiagnosticList small(1);
+  small.reportAll(main.all());
+  EXPECT_TRUE(small.limitReached());
+  EXPECT_EQ(small.errorCount(), 2U) << "one error and E2005";
+}
+
 TEST(Diagnostics, JsonCarriesTheSameContent) {
   SourceManager sm;
   const FileId f = sm.addFile("t.spire", "abc\n");
