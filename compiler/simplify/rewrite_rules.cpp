@@ -32,7 +32,7 @@ class RuleSet {
   }
   std::string text(const ast::Expr& e) const { return std::string(sources_.text(e.range)); }
   bool isConstructor(const ast::CallExpr& call) const { return call.callee.name == typeName(call); }
-  bool isConstant(const ast::Expr& e) const;
+  bool isConstant(const ast::Expr& e) const { return isConstantExpr(model_, e); }
   // `e` replaced by `kept` (parenthesized: the context's precedence is kept
   // whatever `kept` is), when both have the same type.
   void collapse(const char* rule, const ast::Expr& e, const ast::Expr& kept) {
@@ -85,24 +85,6 @@ class RuleSet {
   std::vector<Rewrite> rewrites_;
 };
 
-bool RuleSet::isConstant(const ast::Expr& e) const {
-  switch (e.kind) {
-    case ast::ExprKind::BoolLiteral:
-    case ast::ExprKind::IntLiteral:
-    case ast::ExprKind::FloatLiteral: return true;
-    case ast::ExprKind::Unary: {
-      const auto& u = ast::cast<ast::UnaryExpr>(e);
-      return (u.op == ast::UnaryOp::Negate || u.op == ast::UnaryOp::Plus) && isConstant(*u.operand);
-    }
-    case ast::ExprKind::Call: {
-      const auto& call = ast::cast<ast::CallExpr>(e);
-      return isConstructor(call) &&
-             std::all_of(call.args.begin(), call.args.end(), [&](const ast::ExprPtr& a) { return isConstant(*a); });
-    }
-    default: return false;
-  }
-}
-
 // `for (...; i < N; ...)` or `i <= N` with an integer literal N: one
 // iteration fewer.
 void RuleSet::loop(const ast::Stmt& s) {
@@ -118,6 +100,26 @@ void RuleSet::loop(const ast::Stmt& s) {
 }
 
 }  // namespace
+
+bool isConstantExpr(const sem::Model& model, const ast::Expr& e) {
+  switch (e.kind) {
+    case ast::ExprKind::BoolLiteral:
+    case ast::ExprKind::IntLiteral:
+    case ast::ExprKind::FloatLiteral: return true;
+    case ast::ExprKind::Unary: {
+      const auto& u = ast::cast<ast::UnaryExpr>(e);
+      return (u.op == ast::UnaryOp::Negate || u.op == ast::UnaryOp::Plus) && isConstantExpr(model, *u.operand);
+    }
+    case ast::ExprKind::Call: {
+      const auto& call = ast::cast<ast::CallExpr>(e);
+      const sem::Type* type = model.typeOf(call);
+      return type && call.callee.name == type->name() &&
+             std::all_of(call.args.begin(), call.args.end(),
+                         [&](const ast::ExprPtr& a) { return isConstantExpr(model, *a); });
+    }
+    default: return false;
+  }
+}
 
 std::vector<Rewrite> proposeRewrites(const sem::Model& model, const SourceManager& sources,
                                      const ast::ComponentDecl& decl, const std::vector<UserRule>& userRules) {

@@ -13,7 +13,8 @@
 //                      iteration (`i < 4` -> `i < 3`)
 //
 // Pellacini's third rule, a subtree replaced by its average over the
-// parameter ranges, needs values measured by rendering and is not here.
+// parameter ranges, needs values measured by rendering: average_sites.h
+// finds where it applies, and spire-simplify --search measures the averages.
 //
 // User rules (user_rules.h) propose rewrites on the same walk, so they reach
 // the same expressions and skip what the built-in rules skip.
@@ -58,6 +59,10 @@ struct Rewrite {
 // `userRules` propose theirs alongside the built-in ones.
 std::vector<Rewrite> proposeRewrites(const sem::Model& model, const SourceManager& sources,
                                      const ast::ComponentDecl& decl, const std::vector<UserRule>& userRules = {});
+
+// Whether `e` is a constant as the rules mean it: a literal, a negated one,
+// or a constructor of constants (`vec3(0.5, -1.0, 2.0)`).
+bool isConstantExpr(const sem::Model& model, const ast::Expr& e);
 
 // The order to offer rewrites of one component's definitions in, as
 // indices into `rewrites`: the largest saving first, then those that remove

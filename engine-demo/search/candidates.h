@@ -14,6 +14,7 @@
 
 #include "driver/shader_library.h"
 #include "search/chain.h"
+#include "simplify/average_sites.h"
 #include "simplify/user_rules.h"
 #include "support/expected.h"
 
@@ -55,6 +56,23 @@ struct StepRequest {
 // Every candidate of the step, component by component in `components`
 // order, each rule's first K1 per component.
 Expected<std::vector<Candidate>, Failure> proposeCandidates(const StepRequest& request);
+
+// Pellacini 2005's average rule at one site of a component's current
+// definition (simplify/average_sites.h): measured by rendering the probe,
+// then a candidate (averageCandidate).
+struct AverageProbe {
+  std::string component;
+  std::string placement;  // the component's in the current level: "Fragment", "Fragment:level2"
+  simplify::AverageSite site;
+};
+
+// Every selected component's first K1 sites of the average rule.
+Expected<std::vector<AverageProbe>, Failure> proposeAverageProbes(const StepRequest& request);
+
+// The candidate that replaces `probe`'s subtree by `average` (one value per
+// scalar), numbered `number` among the step's candidates.
+Expected<Candidate, Failure> averageCandidate(const StepRequest& request, const AverageProbe& probe,
+                                              const std::vector<double>& average, size_t number);
 
 // The variation name of a search's definition: `kind` and `number` after the
 // author's variation, if the original placement had one (`ggx_level2`).

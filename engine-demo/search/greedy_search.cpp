@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 
+#include "search/average_probes.h"
 #include "search/candidate_ranking.h"
 #include "search/model_cost.h"
 #include "simplify/rewrite_target.h"
@@ -43,6 +44,7 @@ class GreedySearch {
  private:
   Expected<std::optional<Accepted>, Failure> step(size_t level);
   Expected<std::vector<Candidate>, Failure> propose(size_t level);
+  void addAverageCandidates(const StepRequest& request, size_t level, std::vector<Candidate>& candidates);
   Expected<void, Failure> writeStepModule(size_t level, int attempt, std::vector<Candidate>& candidates);
   // The chain so far and `candidates`, or `only` of them, as a module.
   std::string stepText(const std::vector<Candidate>& candidates, const Candidate* only = nullptr) const;
@@ -134,7 +136,39 @@ Expected<std::vector<Candidate>, Failure> GreedySearch::propose(size_t level) {
   StepRequest request{current->get(),  setup_.header.derived, chain_.levels.back().placement,
                       setup_.original, setup_.components,     options_.k1,
                       level,           setup_.userRules};
-  return proposeCandidates(request);
+  auto candidates = proposeCandidates(request);
+  if (candidates && options_.average) addAverageCandidates(request, level, *candidates);
+  return candidates;
+}
+
+// Pellacini's average rule: each site's probe rendered over the scene's
+// views and samples, and a candidate with the average in place of the
+// subtree. Probes that cannot be measured leave the step without them, and
+// the log says why.
+void GreedySearch::addAverageCandidates(const StepRequest& request, size_t level, std::vector<Candidate>& candidates) {
+  auto probes = proposeAverageProbes(request);
+  if (!probes || probes->empty()) return;
+  const ProbeSetup setup{setup_.scene,
+                         setup_.instance,
+                         setup_.tuner,
+                         setup_.compile,
+                         setup_.header.derived,
+                         chainModuleText(setup_.header, accepted()),
+                         (setup_.workDir / fmt::format("probe{}.spire", level)).string(),
+                         chain_.levels.back().placement};
+  auto averages = measureAverages(setup, *probes);
+  if (!averages) return note(fmt::format("  no average candidates: {}", averages.error().message));
+  for (size_t i = 0; i < probes->size(); ++i) {
+    const AverageProbe& probe = (*probes)[i];
+    auto candidate = (*averages)[i] ? averageCandidate(request, probe, *(*averages)[i], candidates.size() + 1)
+                                    : Failure{"no pixel shows it, or it is not finite"};
+    if (!candidate) {
+      note(fmt::format("  no average of '{}' in {}: {}", probe.site.rewrite.before, probe.component,
+                       candidate.error().message));
+      continue;
+    }
+    candidates.push_back(std::move(candidate).value());
+  }
 }
 
 std::string GreedySearch::stepText(const std::vector<Candidate>& candidates, const Candidate* only) const {

@@ -294,6 +294,26 @@ uint32_t Tuner::unmeasuredFrames() const {
   return std::max(options_.warmupFrames, static_cast<uint32_t>(renderer_.scene().camera.views.size()));
 }
 
+engine::Expected<void> Tuner::forEachCapture(const TunePoint& point,
+                                             const std::function<void(const engine::Capture&)>& use) {
+  auto programs = programsFor(point, nullptr);
+  if (!programs) return programs.error();
+  const std::vector<ParameterSample> parameterSamples = samples();
+  for (size_t s = 0; s < parameterSamples.size(); ++s) {
+    if (excluded(s)) continue;
+    renderer_.setParameterOverrides(parameterSamples[s]);
+    auto prepared = renderer_.prepare(*programs);
+    renderer_.setParameterOverrides({});
+    if (!prepared) return prepared.error();
+    for (const scene::CameraView& view : renderer_.scene().camera.views) {
+      auto capture = renderer_.capture(*prepared, view);
+      if (!capture) return capture.error();
+      use(*capture);
+    }
+  }
+  return {};
+}
+
 engine::Expected<engine::Capture> Tuner::capture(const TunePoint& point) {
   auto programs = programsFor(point, nullptr);
   if (!programs) return programs.error();

@@ -5,6 +5,7 @@
 // kernels are identical (by content hash) are measured once.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -86,6 +87,11 @@ class Tuner {
   // and decision files.
   engine::Expected<engine::Capture> capture(const TunePoint& point);
   engine::Expected<engine::VariantProgram> program(const TunePoint& point);
+  // Every camera view of the point's variant under every parameter sample
+  // the reference is finite under, read back and given to `use` in turn:
+  // the domain the variant's error is measured over, for a caller that
+  // averages what a probe variant shows there (spire-simplify --search).
+  engine::Expected<void> forEachCapture(const TunePoint& point, const std::function<void(const engine::Capture&)>& use);
 
   const TimeSplit& timeSplit() const { return split_; }
 

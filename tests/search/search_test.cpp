@@ -289,6 +289,76 @@ TEST_F(SearchRun, OrdersByMeasuredTimeWhenAsked) {
   EXPECT_NE(readText(dir_ / "out/report.md").find("the chain ordered by the measured time"), std::string::npos);
 }
 
+// Pellacini's average rule: a ramp across the plane, which the camera
+// looks straight down on, centred. Its only rewrites are averages, and
+// every subtree of it averages to 0.5 in each scalar over the pixels the
+// plane covers (its texture coordinate, symmetric about the image's centre);
+// the chain's first level puts that constant in its place. Without the rule
+// there is nothing to rewrite.
+TEST_F(SearchRun, TheAverageRuleReplacesASubtreeByItsAverageOverThePixels) {
+  std::ofstream(dir_ / "ramp.spire") << R"(using "pipelines/engine.spire";
+shader Ramp using EnginePipeline {
+    @FrameUniform mat4 matMVP;
+    vec4 projPos = matMVP * vec4(vert_pos, 1.0);
+    float ramp = vert_uv.x;
+    vec4 output = vec4(vec3(ramp), 1.0);
+}
+)";
+  // The ramp on a plane half as wide, over a light grey one of another
+  // shader that fills the rest of the image: only the ramp's pixels count.
+  std::string scene = sceneJson();
+  scene.replace(scene.find("\"plane\", \"source\": \"blurred.spire\", \"shader\": \"Blurred\""),
+                std::string("\"plane\", \"source\": \"blurred.spire\", \"shader\": \"Blurred\"").size(),
+                "\"small\", \"source\": \"ramp.spire\", \"shader\": \"Ramp\"");
+  scene.replace(scene.find("\"meshes\": {"), std::string("\"meshes\": {").size(),
+                R"("meshes": {"small": {"type": "plane", "size": 1, "resolution": 4}, )");
+  scene.replace(scene.rfind("}]"), 2,
+                fmt::format(R"(}}, {{"mesh": "plane", "source": "{}/tests/data/engine/flat_plane.spire",
+      "shader": "FlatPlane", "transform": {{"translate": [0, -0.1, 0]}}, "material": {{"color": [0.9, 0.9, 0.9, 1]}}}}])",
+                            SPIRE_SOURCE_DIR));
+  std::ofstream(dir_ / "ramp.json") << scene;
+  const std::vector<std::string> args{"--search",
+                                      "--scene",
+                                      (dir_ / "ramp.json").string(),
+                                      "--shader",
+                                      "Ramp",
+                                      "--component",
+                                      "ramp",
+                                      "--k1",
+                                      "4",
+                                      "--max-levels",
+                                      "1",
+                                      "--validation",
+                                      "-o",
+                                      (dir_ / "out").string()};
+  std::ostringstream out, err;
+  ASSERT_EQ(runSearchTool(args, out, err), kExitSuccess) << err.str() << out.str();
+  const std::string log = out.str();
+  const size_t at = log.find("ramp:level1 = ramp with average: '");
+  ASSERT_NE(at, std::string::npos) << log;
+  const size_t open = log.find("-> '(", at);
+  ASSERT_NE(open, std::string::npos) << log;
+  const size_t begin = open + std::string("-> '(").size();
+  const std::string constant = log.substr(begin, log.find(")'", begin) - begin);  // "float(0.5)" or "vec2(...)"
+  std::istringstream values(constant.substr(constant.find('(') + 1));
+  size_t count = 0;
+  for (std::string value; std::getline(values, value, ',');) {
+    EXPECT_NEAR(std::stod(value), 0.5, 0.01) << constant;
+    ++count;
+  }
+  EXPECT_GE(count, 1U) << constant;
+  EXPECT_NE(readText(dir_ / "out/RampSearch.spire").find("float ramp:level1 = (" + constant + ");"), std::string::npos)
+      << readText(dir_ / "out/RampSearch.spire");
+
+  std::ostringstream noOut, noErr;
+  std::vector<std::string> without = args;
+  without.back() = (dir_ / "out-without").string();
+  without.insert(without.end() - 2, "--no-average");
+  ASSERT_EQ(runSearchTool(without, noOut, noErr), kExitSuccess) << noErr.str() << noOut.str();
+  EXPECT_EQ(noOut.str().find("average"), std::string::npos) << noOut.str();
+  EXPECT_NE(noOut.str().find("stopped: no rewrite is left"), std::string::npos) << noOut.str();
+}
+
 TEST(SearchCommandLine, RefusesWhatItCannotRun) {
   const fs::path dir = fs::temp_directory_path() / fmt::format("spire_search_cli_{}", ::getpid());
   fs::remove_all(dir);
