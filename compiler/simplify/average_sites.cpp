@@ -15,14 +15,6 @@ bool within(const SourceRange& inner, const SourceRange& outer) {
   return inner.file == outer.file && inner.begin >= outer.begin && inner.end <= outer.end;
 }
 
-std::optional<size_t> floatScalars(const std::string& type) {
-  if (type == "float") return 1;
-  if (type == "vec2") return 2;
-  if (type == "vec3") return 3;
-  if (type == "vec4") return 4;
-  return std::nullopt;
-}
-
 class SiteFinder {
  public:
   SiteFinder(const sem::Model& model, const SourceManager& sources, const ast::ComponentDecl& decl)
@@ -58,7 +50,7 @@ class SiteFinder {
       return;
     }
     const sem::Type* type = model_.typeOf(e);
-    const std::optional<size_t> scalars = type ? floatScalars(type->name()) : std::nullopt;
+    const std::optional<size_t> scalars = type ? floatScalarCount(type->name()) : std::nullopt;
     if (!scalars || isConstantExpr(model_, e)) return;
     if (std::any_of(written.begin(), written.end(), [&](const SourceRange& r) { return within(e.range, r); })) return;
     const std::string source(sources_.text(e.range));
@@ -102,6 +94,14 @@ std::vector<AverageSite> proposeAverageSites(const sem::Model& model, const Sour
   std::vector<AverageSite> ranked;
   for (size_t i : rankRewrites(rewrites)) ranked.push_back(std::move(sites[i]));
   return ranked;
+}
+
+std::optional<size_t> floatScalarCount(const std::string& type) {
+  if (type == "float") return 1;
+  if (type == "vec2") return 2;
+  if (type == "vec3") return 3;
+  if (type == "vec4") return 4;
+  return std::nullopt;
 }
 
 std::string averageReplacement(const std::string& type, const std::vector<double>& values) {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,10 @@ struct AverageSite {
 // that the statements before it are all its value depends on).
 std::vector<AverageSite> proposeAverageSites(const sem::Model& model, const SourceManager& sources,
                                              const ast::ComponentDecl& decl);
+
+// The scalars of `float`, `vec2`, `vec3` and `vec4`, the types whose values
+// can be averaged; nullopt for any other.
+std::optional<size_t> floatScalarCount(const std::string& type);
 
 // A constant of `type` (a site's) holding `values`, one per scalar, as Spire
 // source that reads back to the same floats: `vec3(0.5, 0.25, 1)`.

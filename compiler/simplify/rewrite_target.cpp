@@ -5,7 +5,23 @@
 #include <algorithm>
 #include <set>
 
+#include "simplify/syntax_walk.h"
+
 namespace spire::simplify {
+namespace {
+
+// `text`, the source of `decl` with edits after its name only, renamed
+// `variation`: the name comes before the definition, so its offsets hold.
+void renameDefinition(std::string& text, const ast::ComponentDecl& decl, const std::string& variation) {
+  const uint32_t base = decl.range.begin;
+  if (decl.variation.empty()) {
+    text.insert(decl.nameRange.end - base, ":" + variation);
+  } else {
+    text.replace(decl.variationRange.begin - base, decl.variationRange.end - decl.variationRange.begin, variation);
+  }
+}
+
+}  // namespace
 
 bool immutable(const sem::Component& component) {
   return std::any_of(component.attributes.begin(), component.attributes.end(),
@@ -38,12 +54,37 @@ std::string rewrittenText(const SourceManager& sources, const ast::ComponentDecl
   const uint32_t base = decl.range.begin;
   std::string text(sources.text(decl.range));
   text.replace(rewrite.range.begin - base, rewrite.range.end - rewrite.range.begin, rewrite.replacement);
-  // The name comes before the definition, so its offsets still hold.
-  if (decl.variation.empty()) {
-    text.insert(decl.nameRange.end - base, ":" + variation);
-  } else {
-    text.replace(decl.variationRange.begin - base, decl.variationRange.end - decl.variationRange.begin, variation);
+  renameDefinition(text, decl, variation);
+  return text;
+}
+
+std::optional<std::string> shiftedText(const SourceManager& sources, const ast::ComponentDecl& decl,
+                                       const std::string& shift, const std::string& variation) {
+  std::vector<const ast::Expr*> values;
+  size_t returns = 0;
+  if (decl.init) values.push_back(decl.init.get());
+  SyntaxWalker mutableOnly([](const ast::Expr&) {},
+                           [&](const ast::Stmt& s) {
+                             if (const auto* r = ast::dyn_cast<ast::ReturnStmt>(&s); r && r->value) {
+                               values.push_back(r->value.get());
+                             }
+                           });
+  mutableOnly.stmt(decl.body.get());
+  SyntaxWalker every([](const ast::Expr&) {},
+                     [&](const ast::Stmt& s) { returns += ast::dyn_cast<ast::ReturnStmt>(&s) != nullptr ? 1 : 0; },
+                     SyntaxWalker::Immutable::Visit);
+  every.stmt(decl.body.get());
+  if (values.size() != returns + (decl.init ? 1 : 0)) return std::nullopt;
+  const uint32_t base = decl.range.begin;
+  std::string text(sources.text(decl.range));
+  // From the last value back, so that the offsets of the earlier ones hold.
+  std::sort(values.begin(), values.end(),
+            [](const ast::Expr* a, const ast::Expr* b) { return a->range.begin > b->range.begin; });
+  for (const ast::Expr* value : values) {
+    text.insert(value->range.end - base, ") + " + shift + ")");
+    text.insert(value->range.begin - base, "((");
   }
+  renameDefinition(text, decl, variation);
   return text;
 }
 

@@ -31,6 +31,14 @@ Expected<std::vector<const sem::Component*>, Failure> selectComponents(const sem
 std::string rewrittenText(const SourceManager& sources, const ast::ComponentDecl& decl, const Rewrite& rewrite,
                           const std::string& variation);
 
+// `decl`'s source named `variation`, with `shift` (Spire source of a
+// constant of the definition's type) added to every value it gives: its
+// expression, or each returned value, as `((value) + shift)`. Pellacini
+// 2005's renormalization of a candidate. nullopt when a `return` lies in an
+// [Immutable] statement, which nothing may change.
+std::optional<std::string> shiftedText(const SourceManager& sources, const ast::ComponentDecl& decl,
+                                       const std::string& shift, const std::string& variation);
+
 // Where rewrittenText puts `rewrite`'s replacement in its result: after the
 // name, whose variation part grew or shrank.
 size_t replacementOffset(const ast::ComponentDecl& decl, const Rewrite& rewrite, const std::string& variation);

@@ -5,13 +5,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "simplify/average_sites.h"
 #include "support/file_io.h"
 
 namespace spire::search {
 namespace {
 
-// Written into the probe's alpha: no surface a shader draws has it, so the
-// pixels that hold it are the probed shader's.
+// Written into the shown value's alpha: no surface a shader draws has it,
+// so the pixels that hold it are the probed shader's.
 constexpr float kProbeMark = -1.0F;
 constexpr size_t kScalarsPerImage = 3;  // alpha carries the mark
 
@@ -26,8 +27,9 @@ std::optional<std::string> shownExport(const sem::Shader& shader) {
   return shown;
 }
 
-std::string uniqueName(const sem::Shader& shader, size_t number) {
-  std::string name = fmt::format("spireAverageProbe{}", number);
+// A name of the derived shader's own, for a probe.
+std::string uniqueName(const sem::Shader& shader, const std::string& stem) {
+  std::string name = stem;
   while (shader.findComponent(name) != nullptr) name += "_";
   return name;
 }
@@ -47,43 +49,41 @@ std::string shownScalars(const std::string& value, size_t scalars, size_t first)
   return fmt::format("vec4({}, {}, {}, {:.1f})", parts[0], parts[1], parts[2], kProbeMark);
 }
 
+// What one render shows: scalars [first, first + 3) of value `value`.
 struct ProbeImage {
-  size_t probe = 0;
-  size_t first = 0;  // the first scalar it shows
+  size_t value = 0;
+  size_t first = 0;
+  size_t scalars = 0;  // of the value
   Placement placement;
 };
 
+// The module the values are shown from: the setup's, with variations of
+// the export that show each value, and the definitions the values need.
 class ProbeModule {
  public:
-  ProbeModule(const ProbeSetup& setup, const sem::Shader& shader, std::string shown)
-      : setup_(setup), shader_(shader), shown_(std::move(shown)) {}
+  ProbeModule(const sem::Shader& shader, std::string shown) : shader_(shader), shown_(std::move(shown)) {}
 
-  // The definitions of probe `index` and the images that show it.
-  void add(size_t index, const AverageProbe& probe) {
-    const std::string name = uniqueName(shader_, index + 1);
-    definitions_ +=
-        fmt::format("    // the value of '{}' in {}, for its average\n    {} {} {}\n", probe.site.rewrite.before,
-                    probe.component, probe.site.rewrite.type, name, probe.site.probe);
-    for (size_t first = 0; first < probe.site.scalars; first += kScalarsPerImage) {
-      const std::string variation = fmt::format("{}_{}", name, first);
-      definitions_ +=
-          fmt::format("    vec4 {}:{} = {};\n", shown_, variation, shownScalars(name, probe.site.scalars, first));
-      Placement placement = setup_.placement;
-      placement.emplace_back(name, worldOf(probe.placement));
-      for (auto& [component, where] : placement) {
-        if (component == shown_) where = worldOf(where) + ":" + variation;
+  void define(const std::string& text) { definitions_ += text; }
+  // Value `index`, a component of `scalars` scalars, in `placement`.
+  void show(size_t index, const std::string& component, size_t scalars, const Placement& placement) {
+    for (size_t first = 0; first < scalars; first += kScalarsPerImage) {
+      const std::string variation = uniqueName(shader_, fmt::format("spireShow{}_{}", index + 1, first));
+      definitions_ += fmt::format("    vec4 {}:{} = {};\n", shown_, variation, shownScalars(component, scalars, first));
+      Placement shownIn = placement;
+      for (auto& [name, where] : shownIn) {
+        if (name == shown_) where = worldOf(where) + ":" + variation;
       }
-      images_.push_back({index, first, std::move(placement)});
+      images_.push_back({index, first, scalars, std::move(shownIn)});
     }
   }
-  std::string text() const {
-    std::string text = setup_.moduleText;
+  std::string text(const std::string& module) const {
+    std::string text = module;
     return text.insert(text.rfind('}'), definitions_);
   }
   const std::vector<ProbeImage>& images() const { return images_; }
+  const sem::Shader& shader() const { return shader_; }
 
  private:
-  const ProbeSetup& setup_;
   const sem::Shader& shader_;
   std::string shown_;
   std::string definitions_;
@@ -112,28 +112,30 @@ Expected<std::optional<std::vector<double>>, Failure> meanOfMarked(tune::Tuner& 
   return std::optional(sum);
 }
 
-}  // namespace
+// The setup's module compiled, and the shader it derives.
+Expected<std::unique_ptr<ShaderLibrary>, Failure> compileSetup(const ProbeSetup& setup) {
+  auto library = compileModule(setup.compile, setup.path, setup.moduleText, setup.derived);
+  if (!library) return library.error();
+  if (!shownExport(*(*library)->model().findShader(setup.derived))) {
+    return Failure{"the pipeline exports no vec4 color to show the probes in"};
+  }
+  return library;
+}
 
-Expected<std::vector<std::optional<std::vector<double>>>, Failure> measureAverages(
-    const ProbeSetup& setup, const std::vector<AverageProbe>& probes) {
-  auto current = compileModule(setup.compile, setup.path, setup.moduleText, setup.derived);
-  if (!current) return current.error();
-  const sem::Shader& shader = *(*current)->model().findShader(setup.derived);
-  const std::optional<std::string> shown = shownExport(shader);
-  if (!shown) return Failure{"the pipeline exports no vec4 color to show the probes in"};
-  ProbeModule module(setup, shader, *shown);
-  for (size_t i = 0; i < probes.size(); ++i) module.add(i, probes[i]);
-  if (auto compiled = compileModule(setup.compile, setup.path, module.text(), setup.derived); !compiled) {
+// Renders every image of `module` and averages each value.
+Expected<Averages, Failure> measure(const ProbeSetup& setup, const ProbeModule& module, size_t values) {
+  const std::string text = module.text(setup.moduleText);
+  if (auto compiled = compileModule(setup.compile, setup.path, text, setup.derived); !compiled) {
     return Failure{fmt::format("the probes do not compile: {}", compiled.error().message)};
   }
-  if (auto written = writeFileAtomically(setup.path, module.text()); !written) return written.error();
+  if (auto written = writeFileAtomically(setup.path, text); !written) return written.error();
   setup.scene->instances.at(setup.instance).source = setup.path;
   setup.scene->instances.at(setup.instance).shader = setup.derived;
-  std::vector<std::optional<std::vector<double>>> averages(probes.size(), std::vector<double>{});
+  Averages averages(values, std::vector<double>{});
   for (const ProbeImage& image : module.images()) {
-    std::optional<std::vector<double>>& average = averages[image.probe];
+    std::optional<std::vector<double>>& average = averages[image.value];
     if (!average) continue;
-    const size_t count = std::min(kScalarsPerImage, probes[image.probe].site.scalars - image.first);
+    const size_t count = std::min(kScalarsPerImage, image.scalars - image.first);
     auto mean = meanOfMarked(*setup.tuner, image.placement, count);
     if (!mean) return mean.error();
     if (!*mean || !std::all_of((*mean)->begin(), (*mean)->end(), [](double v) { return std::isfinite(v); })) {
@@ -142,6 +144,49 @@ Expected<std::vector<std::optional<std::vector<double>>>, Failure> measureAverag
     }
     average->insert(average->end(), (*mean)->begin(), (*mean)->end());
   }
+  return averages;
+}
+
+}  // namespace
+
+Expected<Averages, Failure> measureAverages(const ProbeSetup& setup, const std::vector<AverageProbe>& probes,
+                                            const Placement& placement) {
+  auto library = compileSetup(setup);
+  if (!library) return library.error();
+  const sem::Shader& shader = *(*library)->model().findShader(setup.derived);
+  ProbeModule module(shader, *shownExport(shader));
+  for (size_t i = 0; i < probes.size(); ++i) {
+    const AverageProbe& probe = probes[i];
+    const std::string name = uniqueName(shader, fmt::format("spireAverageProbe{}", i + 1));
+    module.define(fmt::format("    // the value of '{}' in {}, for its average\n    {} {} {}\n",
+                              probe.site.rewrite.before, probe.component, probe.site.rewrite.type, name,
+                              probe.site.probe));
+    Placement withProbe = placement;
+    withProbe.emplace_back(name, worldOf(probe.placement));
+    module.show(i, name, probe.site.scalars, withProbe);
+  }
+  return measure(setup, module, probes.size());
+}
+
+Expected<Averages, Failure> measureComponents(const ProbeSetup& setup, const std::vector<ComponentValue>& values) {
+  auto library = compileSetup(setup);
+  if (!library) return library.error();
+  const sem::Shader& shader = *(*library)->model().findShader(setup.derived);
+  ProbeModule module(shader, *shownExport(shader));
+  std::vector<size_t> unmeasured;
+  for (size_t i = 0; i < values.size(); ++i) {
+    const sem::Component* c = shader.findComponent(values[i].component);
+    const std::optional<size_t> scalars =
+        c && c->type ? simplify::floatScalarCount(c->type->name()) : std::optional<size_t>{};
+    if (!scalars) {
+      unmeasured.push_back(i);
+      continue;
+    }
+    module.show(i, values[i].component, *scalars, values[i].placement);
+  }
+  auto averages = measure(setup, module, values.size());
+  if (!averages) return averages.error();
+  for (size_t i : unmeasured) (*averages)[i].reset();
   return averages;
 }
 

@@ -1,11 +1,13 @@
-// Pellacini 2005's averages, measured by rendering for spire-simplify
-// --search: each probe's subtree (simplify/average_sites.h) becomes a
-// component of its own, computed where the definition it comes from is, and
-// variations of the pipeline's exported color show its value, three scalars
-// at a time, with alpha -1 to mark the shader's pixels. The tuner renders
-// every camera view under every parameter sample (the domain the search's
-// errors are measured over), and the average is the mean over the marked
-// pixels: a Monte Carlo estimate over the inputs the scene gives the shader.
+// Averages over the scene, measured by rendering for spire-simplify
+// --search (Pellacini 2005): a value is shown in the pipeline's exported
+// color, three scalars at a time, with alpha -1 to mark the probed shader's
+// pixels; the tuner renders every camera view under every parameter sample
+// (the domain the search's errors are measured over), and the average is
+// the mean over the marked pixels: a Monte Carlo estimate over the inputs
+// the scene gives the shader. The values are the subtrees of the average
+// rule (simplify/average_sites.h), each a component of its own computed
+// where the definition it comes from is, and the components that
+// renormalization shifts.
 #pragma once
 
 #include <cstddef>
@@ -27,15 +29,27 @@ struct ProbeSetup {
   tune::Tuner* tuner = nullptr;
   ModuleCompile compile;
   std::string derived;     // the shader the module derives
-  std::string moduleText;  // the current level's module, which the probes are added to
+  std::string moduleText;  // the module the probes are added to
   std::string path;        // where the probe module is written
-  Placement placement;     // the current level's
 };
 
-// Per probe, its subtree's average (one value per scalar), or nullopt when
-// no pixel shows it or it is not finite. Fails when the probe module does
-// not compile or the pipeline exports no vec4 color to show probes in.
-Expected<std::vector<std::optional<std::vector<double>>>, Failure> measureAverages(
-    const ProbeSetup& setup, const std::vector<AverageProbe>& probes);
+// Per value, its average (one number per scalar), or nullopt when no pixel
+// shows it or it is not finite.
+using Averages = std::vector<std::optional<std::vector<double>>>;
+
+// The average of each probe's subtree with the other components placed as
+// `placement` places them. Fails when the probe module does not compile or
+// the pipeline exports no vec4 color to show values in.
+Expected<Averages, Failure> measureAverages(const ProbeSetup& setup, const std::vector<AverageProbe>& probes,
+                                            const Placement& placement);
+
+// A component of the module, and the variant in which to average it.
+struct ComponentValue {
+  std::string component;
+  Placement placement;
+};
+
+// The average of each component in its variant.
+Expected<Averages, Failure> measureComponents(const ProbeSetup& setup, const std::vector<ComponentValue>& values);
 
 }  // namespace spire::search

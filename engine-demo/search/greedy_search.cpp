@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -9,12 +10,17 @@
 #include "search/average_probes.h"
 #include "search/candidate_ranking.h"
 #include "search/model_cost.h"
+#include "simplify/average_sites.h"
 #include "simplify/rewrite_target.h"
 #include "support/file_io.h"
 
 namespace spire::search {
 
 namespace {
+
+// A renormalization shift below this in every scalar is rounding: no 8-bit
+// pixel moves by it.
+constexpr double kNegligibleShift = 1e-6;
 
 struct Trial {
   Candidate candidate;
@@ -45,6 +51,11 @@ class GreedySearch {
   Expected<std::optional<Accepted>, Failure> step(size_t level);
   Expected<std::vector<Candidate>, Failure> propose(size_t level);
   void addAverageCandidates(const StepRequest& request, size_t level, std::vector<Candidate>& candidates);
+  void renormalize(size_t level, int attempt, std::vector<Candidate>& candidates);
+  // Each candidate's component: its average at level 0 (measured once), and
+  // the candidate's own; nullopt where there is none.
+  Expected<std::vector<std::pair<std::optional<std::vector<double>>, std::optional<std::vector<double>>>>, Failure>
+  candidateAverages(size_t level, int attempt, const std::vector<Candidate>& candidates);
   Expected<void, Failure> writeStepModule(size_t level, int attempt, std::vector<Candidate>& candidates);
   // The chain so far and `candidates`, or `only` of them, as a module.
   std::string stepText(const std::vector<Candidate>& candidates, const Candidate* only = nullptr) const;
@@ -67,7 +78,8 @@ class GreedySearch {
   const SearchOptions& options_;
   std::ostream& progress_;
   Chain chain_;
-  std::map<std::string, Measure> cache_;        // the error cache, by rewrite
+  std::map<std::string, Measure> cache_;                                        // the error cache, by rewrite
+  std::map<std::string, std::optional<std::vector<double>>> originalAverages_;  // by component, at level 0
   std::unique_ptr<ShaderLibrary> stepLibrary_;  // the step's module compiled: the chain and its candidates
   uint64_t points_ = 0;
 };
@@ -154,9 +166,8 @@ void GreedySearch::addAverageCandidates(const StepRequest& request, size_t level
                          setup_.compile,
                          setup_.header.derived,
                          chainModuleText(setup_.header, accepted()),
-                         (setup_.workDir / fmt::format("probe{}.spire", level)).string(),
-                         chain_.levels.back().placement};
-  auto averages = measureAverages(setup, *probes);
+                         (setup_.workDir / fmt::format("probe{}.spire", level)).string()};
+  auto averages = measureAverages(setup, *probes, chain_.levels.back().placement);
   if (!averages) return note(fmt::format("  no average candidates: {}", averages.error().message));
   for (size_t i = 0; i < probes->size(); ++i) {
     const AverageProbe& probe = (*probes)[i];
@@ -179,6 +190,80 @@ std::string GreedySearch::stepText(const std::vector<Candidate>& candidates, con
     for (const Candidate& c : candidates) definitions.push_back(&c.rewriting);
   }
   return chainModuleText(setup_.header, definitions);
+}
+
+Expected<std::vector<std::pair<std::optional<std::vector<double>>, std::optional<std::vector<double>>>>, Failure>
+GreedySearch::candidateAverages(size_t level, int attempt, const std::vector<Candidate>& candidates) {
+  std::vector<ComponentValue> values;
+  std::vector<std::string> originals;  // components whose level-0 average is not known yet
+  for (const Candidate& c : candidates) {
+    const std::string& component = c.rewriting.component;
+    if (originalAverages_.contains(component) ||
+        std::find(originals.begin(), originals.end(), component) != originals.end()) {
+      continue;
+    }
+    originals.push_back(component);
+    values.push_back({component, setup_.original});
+  }
+  for (const Candidate& c : candidates) {
+    values.push_back({c.rewriting.component,
+                      withVariation(chain_.levels.back().placement, c.rewriting.component, c.rewriting.variation)});
+  }
+  const ProbeSetup setup{setup_.scene,
+                         setup_.instance,
+                         setup_.tuner,
+                         setup_.compile,
+                         setup_.header.derived,
+                         stepText(candidates),
+                         (setup_.workDir / fmt::format("renormalize{}-{}.spire", level, attempt)).string()};
+  auto averages = measureComponents(setup, values);
+  if (!averages) return averages.error();
+  for (size_t i = 0; i < originals.size(); ++i) originalAverages_[originals[i]] = (*averages)[i];
+  std::vector<std::pair<std::optional<std::vector<double>>, std::optional<std::vector<double>>>> result;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    result.emplace_back(originalAverages_.at(candidates[i].rewriting.component), (*averages)[originals.size() + i]);
+  }
+  return result;
+}
+
+// Pellacini's renormalization, f_c = s_c - average(s_c) + average(f_0), per
+// component: each candidate's definition shifted so that its average over
+// the scene is the component's at level 0. A candidate whose averages
+// cannot be measured, or whose definition returns from an [Immutable]
+// statement, stays as it is, and the log says so.
+void GreedySearch::renormalize(size_t level, int attempt, std::vector<Candidate>& candidates) {
+  auto averages = candidateAverages(level, attempt, candidates);
+  if (!averages) return note(fmt::format("  not renormalized: {}", averages.error().message));
+  const sem::Shader& shader = *stepLibrary_->model().findShader(setup_.header.derived);
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    Candidate& c = candidates[i];
+    const auto& [original, own] = (*averages)[i];
+    const ast::ComponentDecl* decl = simplify::definitionNamed(shader, c.rewriting.component, c.rewriting.variation);
+    const sem::Component* component = shader.findComponent(c.rewriting.component);
+    if (!original || !own || !decl || !component || !component->type) {
+      note(fmt::format("  not renormalized: {} ({}): its average cannot be measured", c.rewriting.from,
+                       c.rewriting.rule));
+      continue;
+    }
+    std::vector<double> shift;
+    for (size_t s = 0; s < own->size(); ++s) shift.push_back((*original)[s] - (*own)[s]);
+    // An average candidate's own average is the original's but for rounding:
+    // a shift that small would only cost an addition.
+    if (std::all_of(shift.begin(), shift.end(), [](double d) { return std::abs(d) < kNegligibleShift; })) continue;
+    const std::string constant = simplify::averageReplacement(component->type->name(), shift);
+    const auto text = simplify::shiftedText(stepLibrary_->sources(), *decl, constant, c.rewriting.variation);
+    const auto levelText = simplify::shiftedText(stepLibrary_->sources(), *decl, constant, c.level.variation);
+    if (!text || !levelText) {
+      note(fmt::format("  not renormalized: {} ({}): it returns from an [Immutable] statement", c.rewriting.from,
+                       c.rewriting.rule));
+      continue;
+    }
+    c.rewriting.text = *text;
+    c.level.text = *levelText;
+    c.rewriting.rule = c.level.rule = fmt::format("{}, renormalized by {}", c.rewriting.rule, constant);
+    c.key += "\n+ " + constant;
+    c.type.clear();  // checked on the module before the shift, whose offsets it names
+  }
 }
 
 // Keeps the candidates that compile with the chain, each alone; says why
@@ -309,6 +394,10 @@ Expected<std::optional<Accepted>, Failure> GreedySearch::step(size_t level) {
       return std::optional<Accepted>{};
     }
     if (auto written = writeStepModule(level, attempt, *candidates); !written) return written.error();
+    if (options_.renormalize) {
+      renormalize(level, attempt, *candidates);
+      if (auto written = writeStepModule(level, attempt, *candidates); !written) return written.error();
+    }
     std::vector<Trial> trials = measureCandidates(*candidates);
     std::vector<Measure> measures;
     for (const Trial& t : trials) measures.push_back(t.measure);

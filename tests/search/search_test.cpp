@@ -124,6 +124,16 @@ class SearchRun : public vk::testing::DeviceTest {
     args.insert(args.end(), extra.begin(), extra.end());
     return args;
   }
+  // The search of `ramp` in the Ramp shader of ramp.json (a test writes
+  // both), with validation, into DIR, and `extra` options.
+  std::vector<std::string> rampArgs(const std::string& dir, const std::vector<std::string>& extra) const {
+    std::vector<std::string> args{"--search",     "--scene", (dir_ / "ramp.json").string(),
+                                  "--shader",     "Ramp",    "--component",
+                                  "ramp",         "--k1",    "4",
+                                  "--validation", "-o",      (dir_ / dir).string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  }
   // spirec on the written module with level K's decisions: the placement it dumps.
   std::string compileLevel(size_t k) {
     const fs::path err = dir_ / "spirec.err";
@@ -317,20 +327,7 @@ shader Ramp using EnginePipeline {
       "shader": "FlatPlane", "transform": {{"translate": [0, -0.1, 0]}}, "material": {{"color": [0.9, 0.9, 0.9, 1]}}}}])",
                             SPIRE_SOURCE_DIR));
   std::ofstream(dir_ / "ramp.json") << scene;
-  const std::vector<std::string> args{"--search",
-                                      "--scene",
-                                      (dir_ / "ramp.json").string(),
-                                      "--shader",
-                                      "Ramp",
-                                      "--component",
-                                      "ramp",
-                                      "--k1",
-                                      "4",
-                                      "--max-levels",
-                                      "1",
-                                      "--validation",
-                                      "-o",
-                                      (dir_ / "out").string()};
+  const std::vector<std::string> args = rampArgs("out", {"--max-levels", "1"});
   std::ostringstream out, err;
   ASSERT_EQ(runSearchTool(args, out, err), kExitSuccess) << err.str() << out.str();
   const std::string log = out.str();
@@ -351,12 +348,61 @@ shader Ramp using EnginePipeline {
       << readText(dir_ / "out/RampSearch.spire");
 
   std::ostringstream noOut, noErr;
-  std::vector<std::string> without = args;
-  without.back() = (dir_ / "out-without").string();
-  without.insert(without.end() - 2, "--no-average");
-  ASSERT_EQ(runSearchTool(without, noOut, noErr), kExitSuccess) << noErr.str() << noOut.str();
+  ASSERT_EQ(runSearchTool(rampArgs("out-without", {"--max-levels", "1", "--no-average"}), noOut, noErr), kExitSuccess)
+      << noErr.str() << noOut.str();
   EXPECT_EQ(noOut.str().find("average"), std::string::npos) << noOut.str();
   EXPECT_NE(noOut.str().find("stopped: no rewrite is left"), std::string::npos) << noOut.str();
+}
+
+// Pellacini's renormalization: dropping the blend with a texture that adds
+// about 0.75 on average (`mix(u, t + 1.0, 0.5)` -> `u`) lowers the ramp's
+// average by about half that; renormalized, the level adds it back, and its
+// error is what the texture varied by, a fraction of the unrenormalized
+// level's.
+TEST_F(SearchRun, RenormalizedCandidatesKeepTheComponentsAverage) {
+  std::ofstream(dir_ / "ramp.spire") << R"(using "pipelines/engine.spire";
+shader Ramp using EnginePipeline {
+    @MaterialUniform sampler2D colorMap;
+    @FrameUniform mat4 matMVP;
+    vec4 projPos = matMVP * vec4(vert_pos, 1.0);
+    float ramp = mix(vert_uv.x, texture(colorMap, vert_uv).x + 1.0, 0.5);
+    vec4 output = vec4(vec3(ramp), 1.0);
+}
+)";
+  std::string scene = sceneJson();
+  scene.replace(scene.find("\"blurred.spire\", \"shader\": \"Blurred\""),
+                std::string("\"blurred.spire\", \"shader\": \"Blurred\"").size(),
+                "\"ramp.spire\", \"shader\": \"Ramp\"");
+  std::ofstream(dir_ / "ramp.json") << scene;
+  // Level 1's row of chain.csv, of a search with `extra` options. K2 keeps
+  // every candidate, so the one that saves the fetch is taken.
+  const auto levelOne = [&](const std::string& out, const std::vector<std::string>& extra) {
+    std::vector<std::string> args = rampArgs(out, {"--k2", "10", "--max-levels", "1", "--no-average"});
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::ostringstream log, err;
+    EXPECT_EQ(runSearchTool(args, log, err), kExitSuccess) << err.str() << log.str();
+    const std::string csv = readText(dir_ / out / "chain.csv");
+    const size_t row = csv.find("\n1,");
+    EXPECT_NE(row, std::string::npos) << log.str();
+    return row == std::string::npos ? std::string() : csv.substr(row + 1);
+  };
+  const std::string plain = levelOne("plain", {});
+  const std::string renormalized = levelOne("renormalized", {"--renormalize"});
+  const std::string rewrite = ",\"mix(vert_uv.x, texture(colorMap, vert_uv).x + 1.0, 0.5)\",(vert_uv.x)";
+  EXPECT_NE(plain.find(",call-to-argument" + rewrite), std::string::npos) << plain;
+  const std::string rule = ",\"call-to-argument, renormalized by float(";
+  const size_t at = renormalized.find(rule);
+  ASSERT_NE(at, std::string::npos) << renormalized;
+  EXPECT_NE(renormalized.find(rewrite), std::string::npos) << "the same rewrite: " << renormalized;
+  // The texture adds 0.5 x (its average + 1) to a ramp of average 0.5 halved.
+  const double shift = std::stod(renormalized.substr(at + rule.size()));
+  EXPECT_GT(shift, 0.3) << renormalized;
+  EXPECT_LT(shift, 0.7) << renormalized;
+  const auto rmse = [](const std::string& row) { return std::stod(row.substr(row.find(',') + 1)); };
+  EXPECT_LT(rmse(renormalized), rmse(plain) / 2) << "the bias is gone from the error:\n" << plain << renormalized;
+  EXPECT_NE(readText(dir_ / "renormalized/RampSearch.spire").find("float ramp:level1 = (((vert_uv.x) + float("),
+            std::string::npos)
+      << readText(dir_ / "renormalized/RampSearch.spire");
 }
 
 TEST(SearchCommandLine, RefusesWhatItCannotRun) {

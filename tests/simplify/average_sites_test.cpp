@@ -3,7 +3,7 @@
 // constants already, never what is assigned, nothing in loops, ifs or
 // [Immutable] statements), what a probe of each computes (the statements
 // before it, then the subtree), how sites rank, and the constants the
-// measured averages become.
+// measured averages become, and the shifted definitions of renormalization.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "simplify/average_sites.h"
+#include "simplify/rewrite_target.h"
 #include "simplify_fixture.h"
 
 namespace spire::simplify {
@@ -87,6 +88,40 @@ TEST_F(AverageSitesTest, NeverWhatIsAssignedNorInsideLoopsIfsOrImmutableStatemen
     EXPECT_NE(s.probe.find("return (s + kept);"), std::string::npos) << s.probe;
     EXPECT_EQ(s.probe.find("return s + kept;"), std::string::npos) << "the statement holding the site is not run";
   }
+}
+
+// Renormalization's text: every value the definition gives is shifted, its
+// expression or each return however nested, and the name is the variation's;
+// a return inside an [Immutable] statement cannot be, so nothing is.
+TEST_F(AverageSitesTest, ShiftedDefinitionsAddTheShiftToEveryValueTheyGive) {
+  load(R"(using "pipelines/engine.spire";
+shader S using EnginePipeline {
+    @FrameUniform mat4 mvp;
+    @MaterialUniform float gain;
+    vec4 projPos = mvp * vec4(vert_pos, 1.0);
+    float plain = gain * 2.0;
+    float branchy {
+        if (gain > 0.5) { return gain; }
+        return gain * 0.5;
+    }
+    float guarded {
+        [Immutable] { if (gain > 0.5) { return gain; } }
+        return 1.0;
+    }
+    vec4 output = vec4(plain, branchy, guarded, 1.0);
+}
+)");
+  const sem::Shader* shader = library_->model().findShader("S");
+  const auto decl = [&](const char* name) { return shader->findComponent(name)->definitions.front().decl; };
+  EXPECT_EQ(shiftedText(library_->sources(), *decl("plain"), "float(0.25)", "level1"),
+            "float plain:level1 = ((gain * 2.0) + float(0.25));");
+  const std::optional<std::string> branchy =
+      shiftedText(library_->sources(), *decl("branchy"), "float(-1)", "candidate2");
+  ASSERT_TRUE(branchy);
+  EXPECT_EQ(branchy->rfind("float branchy:candidate2 {", 0), 0U) << *branchy;
+  EXPECT_NE(branchy->find("return ((gain) + float(-1));"), std::string::npos) << *branchy;
+  EXPECT_NE(branchy->find("return ((gain * 0.5) + float(-1));"), std::string::npos) << *branchy;
+  EXPECT_FALSE(shiftedText(library_->sources(), *decl("guarded"), "float(1)", "level1"));
 }
 
 TEST_F(AverageSitesTest, AveragesBecomeConstantsOfTheSitesType) {
