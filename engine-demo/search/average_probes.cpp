@@ -15,6 +15,9 @@ namespace {
 // so the pixels that hold it are the probed shader's.
 constexpr float kProbeMark = -1.0F;
 constexpr size_t kScalarsPerImage = 3;  // alpha carries the mark
+// One marked pixel in this many is kept in a value's profile: enough to
+// compare two values, a sixteenth of the memory.
+constexpr uint64_t kProfileStride = 16;
 
 // The exported vec4 the captured image is: the first export by name, as
 // exports take their locations in name order (color target 0).
@@ -90,26 +93,32 @@ class ProbeModule {
   std::vector<ProbeImage> images_;
 };
 
-// The mean of the marked pixels' first `count` channels; nullopt when no
-// pixel is marked.
-Expected<std::optional<std::vector<double>>, Failure> meanOfMarked(tune::Tuner& tuner, const Placement& placement,
-                                                                   size_t count) {
+// The marked pixels' first `count` channels in the images of `placement`:
+// their sums, their number, and every kProfileStride-th one.
+struct MarkedPixels {
+  std::vector<double> sum;
+  uint64_t count = 0;
+  std::vector<float> sampled;
+};
+
+Expected<MarkedPixels, Failure> markedPixels(tune::Tuner& tuner, const Placement& placement, size_t count) {
   tune::TunePoint point;
   point.decisions = {placement.begin(), placement.end()};
-  std::vector<double> sum(count, 0.0);
-  uint64_t marked = 0;
+  MarkedPixels marked;
+  marked.sum.assign(count, 0.0);
   auto ok = tuner.forEachCapture(point, [&](const engine::Capture& capture) {
     for (size_t i = 0; i < capture.coverage.size(); ++i) {
       const float* rgba = &capture.color.rgba[i * 4];
       if (!capture.coverage[i] || rgba[3] != kProbeMark) continue;
-      for (size_t c = 0; c < count; ++c) sum[c] += rgba[c];
-      ++marked;
+      const bool sampled = marked.count++ % kProfileStride == 0;
+      for (size_t c = 0; c < count; ++c) {
+        marked.sum[c] += rgba[c];
+        if (sampled) marked.sampled.push_back(rgba[c]);
+      }
     }
   });
   if (!ok) return Failure{ok.error().message};
-  if (marked == 0) return std::optional<std::vector<double>>{};
-  for (double& s : sum) s /= static_cast<double>(marked);
-  return std::optional(sum);
+  return marked;
 }
 
 // The setup's module compiled, and the shader it derives.
@@ -122,8 +131,9 @@ Expected<std::unique_ptr<ShaderLibrary>, Failure> compileSetup(const ProbeSetup&
   return library;
 }
 
-// Renders every image of `module` and averages each value.
-Expected<Averages, Failure> measure(const ProbeSetup& setup, const ProbeModule& module, size_t values) {
+// Renders every image of `module`: each value's average and profile.
+Expected<std::vector<ValueProfile>, Failure> measure(const ProbeSetup& setup, const ProbeModule& module,
+                                                     size_t values) {
   const std::string text = module.text(setup.moduleText);
   if (auto compiled = compileModule(setup.compile, setup.path, text, setup.derived); !compiled) {
     return Failure{fmt::format("the probes do not compile: {}", compiled.error().message)};
@@ -131,33 +141,36 @@ Expected<Averages, Failure> measure(const ProbeSetup& setup, const ProbeModule& 
   if (auto written = writeFileAtomically(setup.path, text); !written) return written.error();
   setup.scene->instances.at(setup.instance).source = setup.path;
   setup.scene->instances.at(setup.instance).shader = setup.derived;
-  Averages averages(values, std::vector<double>{});
+  std::vector<ValueProfile> measured(values, ValueProfile{std::vector<double>{}, {}});
   for (const ProbeImage& image : module.images()) {
-    std::optional<std::vector<double>>& average = averages[image.value];
-    if (!average) continue;
+    ValueProfile& value = measured[image.value];
+    if (!value.average) continue;
     const size_t count = std::min(kScalarsPerImage, image.scalars - image.first);
-    auto mean = meanOfMarked(*setup.tuner, image.placement, count);
-    if (!mean) return mean.error();
-    if (!*mean || !std::all_of((*mean)->begin(), (*mean)->end(), [](double v) { return std::isfinite(v); })) {
-      average.reset();
+    auto marked = markedPixels(*setup.tuner, image.placement, count);
+    if (!marked) return marked.error();
+    for (double& s : marked->sum) s /= static_cast<double>(std::max<uint64_t>(marked->count, 1));
+    if (marked->count == 0 ||
+        !std::all_of(marked->sum.begin(), marked->sum.end(), [](double v) { return std::isfinite(v); })) {
+      value.average.reset();
       continue;
     }
-    average->insert(average->end(), (*mean)->begin(), (*mean)->end());
+    value.average->insert(value.average->end(), marked->sum.begin(), marked->sum.end());
+    value.profile.insert(value.profile.end(), marked->sampled.begin(), marked->sampled.end());
   }
+  return measured;
+}
+
+Averages averagesOf(const std::vector<ValueProfile>& measured) {
+  Averages averages;
+  for (const ValueProfile& value : measured) averages.push_back(value.average);
   return averages;
 }
 
-}  // namespace
-
-Expected<Averages, Failure> measureAverages(const ProbeSetup& setup, const std::vector<AverageProbe>& probes,
-                                            const Placement& placement) {
-  auto library = compileSetup(setup);
-  if (!library) return library.error();
-  const sem::Shader& shader = *(*library)->model().findShader(setup.derived);
-  ProbeModule module(shader, *shownExport(shader));
+// Each probe's subtree as a component of the module, shown in `placement`.
+void showProbes(ProbeModule& module, const std::vector<AverageProbe>& probes, const Placement& placement) {
   for (size_t i = 0; i < probes.size(); ++i) {
     const AverageProbe& probe = probes[i];
-    const std::string name = uniqueName(shader, fmt::format("spireAverageProbe{}", i + 1));
+    const std::string name = uniqueName(module.shader(), fmt::format("spireAverageProbe{}", i + 1));
     module.define(fmt::format("    // the value of '{}' in {}, for its average\n    {} {} {}\n",
                               probe.site.rewrite.before, probe.component, probe.site.rewrite.type, name,
                               probe.site.probe));
@@ -165,29 +178,53 @@ Expected<Averages, Failure> measureAverages(const ProbeSetup& setup, const std::
     withProbe.emplace_back(name, worldOf(probe.placement));
     module.show(i, name, probe.site.scalars, withProbe);
   }
-  return measure(setup, module, probes.size());
+}
+
+// Each component of `values` shown, as values `first` on; false for one
+// whose type cannot be averaged.
+std::vector<bool> showComponents(ProbeModule& module, const std::vector<ComponentValue>& values, size_t first) {
+  std::vector<bool> shown;
+  for (size_t i = 0; i < values.size(); ++i) {
+    const sem::Component* c = module.shader().findComponent(values[i].component);
+    const std::optional<size_t> scalars =
+        c && c->type ? simplify::floatScalarCount(c->type->name()) : std::optional<size_t>{};
+    shown.push_back(scalars.has_value());
+    if (scalars) module.show(first + i, values[i].component, *scalars, values[i].placement);
+  }
+  return shown;
+}
+
+}  // namespace
+
+Expected<Averages, Failure> measureAverages(const ProbeSetup& setup, const std::vector<AverageProbe>& probes,
+                                            const Placement& placement) {
+  auto profiles = profileValues(setup, probes, {}, placement);
+  if (!profiles) return profiles.error();
+  return averagesOf(*profiles);
 }
 
 Expected<Averages, Failure> measureComponents(const ProbeSetup& setup, const std::vector<ComponentValue>& values) {
+  auto profiles = profileValues(setup, {}, values, {});
+  if (!profiles) return profiles.error();
+  return averagesOf(*profiles);
+}
+
+Expected<std::vector<ValueProfile>, Failure> profileValues(const ProbeSetup& setup,
+                                                           const std::vector<AverageProbe>& probes,
+                                                           const std::vector<ComponentValue>& components,
+                                                           const Placement& placement) {
   auto library = compileSetup(setup);
   if (!library) return library.error();
   const sem::Shader& shader = *(*library)->model().findShader(setup.derived);
   ProbeModule module(shader, *shownExport(shader));
-  std::vector<size_t> unmeasured;
-  for (size_t i = 0; i < values.size(); ++i) {
-    const sem::Component* c = shader.findComponent(values[i].component);
-    const std::optional<size_t> scalars =
-        c && c->type ? simplify::floatScalarCount(c->type->name()) : std::optional<size_t>{};
-    if (!scalars) {
-      unmeasured.push_back(i);
-      continue;
-    }
-    module.show(i, values[i].component, *scalars, values[i].placement);
+  showProbes(module, probes, placement);
+  const std::vector<bool> shown = showComponents(module, components, probes.size());
+  auto measured = measure(setup, module, probes.size() + components.size());
+  if (!measured) return measured.error();
+  for (size_t i = 0; i < shown.size(); ++i) {
+    if (!shown[i]) (*measured)[probes.size() + i] = {};
   }
-  auto averages = measure(setup, module, values.size());
-  if (!averages) return averages.error();
-  for (size_t i : unmeasured) (*averages)[i].reset();
-  return averages;
+  return measured;
 }
 
 }  // namespace spire::search

@@ -52,4 +52,19 @@ struct ComponentValue {
 // The average of each component in its variant.
 Expected<Averages, Failure> measureComponents(const ProbeSetup& setup, const std::vector<ComponentValue>& values);
 
+// A value's average, and its profile: its scalars at a fixed sample of the
+// marked pixels (every 16th, image after image), which two values of one
+// type share, so that they can be compared pixel for pixel.
+struct ValueProfile {
+  std::optional<std::vector<double>> average;  // nullopt: no pixel shows it, or it is not finite
+  std::vector<float> profile;
+};
+
+// The probes' subtrees (with the other components placed as `placement`
+// places them), then `components`, each in its variant.
+Expected<std::vector<ValueProfile>, Failure> profileValues(const ProbeSetup& setup,
+                                                           const std::vector<AverageProbe>& probes,
+                                                           const std::vector<ComponentValue>& components,
+                                                           const Placement& placement);
+
 }  // namespace spire::search

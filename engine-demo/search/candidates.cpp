@@ -139,14 +139,15 @@ Expected<std::vector<AverageProbe>, Failure> proposeAverageProbes(const StepRequ
   return probes;
 }
 
-Expected<Candidate, Failure> averageCandidate(const StepRequest& request, const AverageProbe& probe,
-                                              const std::vector<double>& average, size_t number) {
+Expected<Candidate, Failure> siteCandidate(const StepRequest& request, const AverageProbe& probe,
+                                           const std::string& rule, const std::string& replacement, size_t number) {
   auto targets = targetsOf(request);
   if (!targets) return targets.error();
   for (const Target& target : *targets) {
     if (*target.name != probe.component) continue;
     simplify::Rewrite rewrite = probe.site.rewrite;
-    rewrite.replacement = "(" + simplify::averageReplacement(rewrite.type, average) + ")";
+    rewrite.rule = rule;
+    rewrite.replacement = "(" + replacement + ")";
     return makeCandidate(request, target, rewrite, number);
   }
   return Failure{fmt::format("'{}' is not rewritten in this step", probe.component)};

@@ -57,9 +57,10 @@ struct StepRequest {
 // order, each rule's first K1 per component.
 Expected<std::vector<Candidate>, Failure> proposeCandidates(const StepRequest& request);
 
-// Pellacini 2005's average rule at one site of a component's current
-// definition (simplify/average_sites.h): measured by rendering the probe,
-// then a candidate (averageCandidate).
+// A subtree of a component's current definition (simplify/average_sites.h)
+// that Pellacini 2005's average rule or He et al. 2015's approximate common
+// subexpression elimination replaces: measured by rendering its probe, then
+// a candidate (siteCandidate).
 struct AverageProbe {
   std::string component;
   std::string placement;  // the component's in the current level: "Fragment", "Fragment:level2"
@@ -69,10 +70,11 @@ struct AverageProbe {
 // Every selected component's first K1 sites of the average rule.
 Expected<std::vector<AverageProbe>, Failure> proposeAverageProbes(const StepRequest& request);
 
-// The candidate that replaces `probe`'s subtree by `average` (one value per
-// scalar), numbered `number` among the step's candidates.
-Expected<Candidate, Failure> averageCandidate(const StepRequest& request, const AverageProbe& probe,
-                                              const std::vector<double>& average, size_t number);
+// The candidate of rule `rule` that replaces `probe`'s subtree by
+// `replacement` (Spire source, parenthesized here), numbered `number` among
+// the step's candidates.
+Expected<Candidate, Failure> siteCandidate(const StepRequest& request, const AverageProbe& probe,
+                                           const std::string& rule, const std::string& replacement, size_t number);
 
 // The variation name of a search's definition: `kind` and `number` after the
 // author's variation, if the original placement had one (`ggx_level2`).

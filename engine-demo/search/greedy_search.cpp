@@ -22,6 +22,56 @@ namespace {
 // pixel moves by it.
 constexpr double kNegligibleShift = 1e-6;
 
+// The RMSE between two profiles of one type, over the scalars both have
+// finite; nullopt when they differ in length or share none.
+std::optional<double> profileDistance(const std::vector<float>& a, const std::vector<float>& b) {
+  if (a.size() != b.size()) return std::nullopt;
+  double sum = 0.0;
+  size_t count = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (!std::isfinite(a[i]) || !std::isfinite(b[i])) continue;
+    sum += (double{a[i]} - double{b[i]}) * (double{a[i]} - double{b[i]});
+    ++count;
+  }
+  if (count == 0) return std::nullopt;
+  return std::sqrt(sum / static_cast<double>(count));
+}
+
+// The RMSE of a profile against its own average: what replacing it by the
+// constant would cost at the profiled pixels.
+double spread(const ValueProfile& value) {
+  const std::vector<double>& average = *value.average;
+  std::vector<float> constant(value.profile.size());
+  for (size_t i = 0; i < constant.size(); ++i) constant[i] = static_cast<float>(average[i % average.size()]);
+  return profileDistance(value.profile, constant).value_or(0.0);
+}
+
+// The component of the probe's type, other than the one it is in and than
+// the subtree itself, whose profile is closest to the site's, with the
+// distance; nullopt when none is closer than the site's own average, which
+// the average rule proposes already.
+std::optional<std::pair<std::string, double>> closestComponent(const sem::Shader& shader, const AverageProbe& probe,
+                                                               const ValueProfile& site,
+                                                               const std::vector<ComponentValue>& components,
+                                                               const std::vector<ValueProfile>& profiles) {
+  if (!site.average) return std::nullopt;
+  std::optional<std::pair<std::string, double>> closest;
+  const double constant = spread(site);
+  for (size_t j = 0; j < components.size(); ++j) {
+    const std::string& name = components[j].component;
+    const sem::Component* c = shader.findComponent(name);
+    if (name == probe.component || name == probe.site.rewrite.before || !c || !c->type ||
+        c->type->name() != probe.site.rewrite.type || !profiles[j].average) {
+      continue;
+    }
+    const std::optional<double> distance = profileDistance(site.profile, profiles[j].profile);
+    if (distance && *distance < constant && (!closest || *distance < closest->second)) {
+      closest = std::pair{name, *distance};
+    }
+  }
+  return closest;
+}
+
 struct Trial {
   Candidate candidate;
   Measure measure;
@@ -51,6 +101,17 @@ class GreedySearch {
   Expected<std::optional<Accepted>, Failure> step(size_t level);
   Expected<std::vector<Candidate>, Failure> propose(size_t level);
   void addAverageCandidates(const StepRequest& request, size_t level, std::vector<Candidate>& candidates);
+  void addAcseCandidates(const StepRequest& request, size_t level, std::vector<Candidate>& candidates);
+  // Probes of `moduleText`, written to `file` in the work folder.
+  ProbeSetup probeSetup(std::string moduleText, const std::string& file) const {
+    return {setup_.scene,
+            setup_.instance,
+            setup_.tuner,
+            setup_.compile,
+            setup_.header.derived,
+            std::move(moduleText),
+            (setup_.workDir / file).string()};
+  }
   void renormalize(size_t level, int attempt, std::vector<Candidate>& candidates);
   // Each candidate's component: its average at level 0 (measured once), and
   // the candidate's own; nullopt where there is none.
@@ -60,6 +121,7 @@ class GreedySearch {
   // The chain so far and `candidates`, or `only` of them, as a module.
   std::string stepText(const std::vector<Candidate>& candidates, const Candidate* only = nullptr) const;
   void dropUncompilable(const std::string& path, std::vector<Candidate>& candidates);
+  void dropConflicting(const std::string& path, std::vector<Candidate>& candidates);
   bool dropRetyped(const ShaderLibrary& compiled, std::vector<Candidate>& candidates);
   std::vector<Trial> measureCandidates(const std::vector<Candidate>& candidates);
   Choice choose(const std::vector<size_t>& order, std::vector<Trial>& trials);
@@ -150,6 +212,7 @@ Expected<std::vector<Candidate>, Failure> GreedySearch::propose(size_t level) {
                       level,           setup_.userRules};
   auto candidates = proposeCandidates(request);
   if (candidates && options_.average) addAverageCandidates(request, level, *candidates);
+  if (candidates && options_.acse) addAcseCandidates(request, level, *candidates);
   return candidates;
 }
 
@@ -160,19 +223,16 @@ Expected<std::vector<Candidate>, Failure> GreedySearch::propose(size_t level) {
 void GreedySearch::addAverageCandidates(const StepRequest& request, size_t level, std::vector<Candidate>& candidates) {
   auto probes = proposeAverageProbes(request);
   if (!probes || probes->empty()) return;
-  const ProbeSetup setup{setup_.scene,
-                         setup_.instance,
-                         setup_.tuner,
-                         setup_.compile,
-                         setup_.header.derived,
-                         chainModuleText(setup_.header, accepted()),
-                         (setup_.workDir / fmt::format("probe{}.spire", level)).string()};
+  const ProbeSetup setup = probeSetup(chainModuleText(setup_.header, accepted()), fmt::format("probe{}.spire", level));
   auto averages = measureAverages(setup, *probes, chain_.levels.back().placement);
   if (!averages) return note(fmt::format("  no average candidates: {}", averages.error().message));
   for (size_t i = 0; i < probes->size(); ++i) {
     const AverageProbe& probe = (*probes)[i];
-    auto candidate = (*averages)[i] ? averageCandidate(request, probe, *(*averages)[i], candidates.size() + 1)
-                                    : Failure{"no pixel shows it, or it is not finite"};
+    auto candidate = (*averages)[i]
+                         ? siteCandidate(request, probe, simplify::kAverageRule,
+                                         simplify::averageReplacement(probe.site.rewrite.type, *(*averages)[i]),
+                                         candidates.size() + 1)
+                         : Failure{"no pixel shows it, or it is not finite"};
     if (!candidate) {
       note(fmt::format("  no average of '{}' in {}: {}", probe.site.rewrite.before, probe.component,
                        candidate.error().message));
@@ -209,13 +269,7 @@ GreedySearch::candidateAverages(size_t level, int attempt, const std::vector<Can
     values.push_back({c.rewriting.component,
                       withVariation(chain_.levels.back().placement, c.rewriting.component, c.rewriting.variation)});
   }
-  const ProbeSetup setup{setup_.scene,
-                         setup_.instance,
-                         setup_.tuner,
-                         setup_.compile,
-                         setup_.header.derived,
-                         stepText(candidates),
-                         (setup_.workDir / fmt::format("renormalize{}-{}.spire", level, attempt)).string()};
+  const ProbeSetup setup = probeSetup(stepText(candidates), fmt::format("renormalize{}-{}.spire", level, attempt));
   auto averages = measureComponents(setup, values);
   if (!averages) return averages.error();
   for (size_t i = 0; i < originals.size(); ++i) originalAverages_[originals[i]] = (*averages)[i];
@@ -224,6 +278,43 @@ GreedySearch::candidateAverages(size_t level, int attempt, const std::vector<Can
     result.emplace_back(originalAverages_.at(candidates[i].rewriting.component), (*averages)[originals.size() + i]);
   }
   return result;
+}
+
+// He et al. 2015's approximate common subexpression elimination: each site's
+// profile (its values at a sample of the shader's pixels over every view and
+// parameter sample) against every other live component of its type; the
+// closest one replaces the subtree, even when it is computed in another
+// world (the profile is what the fragment sees of it). A component that
+// depends on the one rewritten makes a cycle, which does not compile, and
+// the candidate is dropped with the compiler's reason.
+void GreedySearch::addAcseCandidates(const StepRequest& request, size_t level, std::vector<Candidate>& candidates) {
+  auto probes = proposeAverageProbes(request);
+  if (!probes || probes->empty()) return;
+  const Placement& placement = chain_.levels.back().placement;
+  const sem::Shader& shader = *request.current->model().findShader(setup_.header.derived);
+  std::vector<ComponentValue> components;
+  for (const auto& entry : placement) {
+    const sem::Component* c = shader.findComponent(entry.first);
+    if (c && !c->isExport) components.push_back({entry.first, placement});
+  }
+  const ProbeSetup setup = probeSetup(chainModuleText(setup_.header, accepted()), fmt::format("acse{}.spire", level));
+  auto profiles = profileValues(setup, *probes, components, placement);
+  if (!profiles) return note(fmt::format("  no acse candidates: {}", profiles.error().message));
+  std::vector<std::string> keys;
+  for (const Candidate& c : candidates) keys.push_back(c.key);
+  for (size_t i = 0; i < probes->size(); ++i) {
+    const AverageProbe& probe = (*probes)[i];
+    const auto closest =
+        closestComponent(shader, probe, (*profiles)[i], components,
+                         {profiles->begin() + static_cast<std::ptrdiff_t>(probes->size()), profiles->end()});
+    if (!closest) continue;
+    auto candidate = siteCandidate(request, probe, "acse", closest->first, candidates.size() + 1);
+    if (!candidate || std::find(keys.begin(), keys.end(), candidate->key) != keys.end()) continue;
+    note(fmt::format("  acse: '{}' in {} is closest to {} (RMSE {:.6f} at the profiled pixels)",
+                     probe.site.rewrite.before, probe.component, closest->first, closest->second));
+    keys.push_back(candidate->key);
+    candidates.push_back(std::move(candidate).value());
+  }
 }
 
 // Pellacini's renormalization, f_c = s_c - average(s_c) + average(f_0), per
@@ -278,6 +369,22 @@ void GreedySearch::dropUncompilable(const std::string& path, std::vector<Candida
   candidates = std::move(kept);
 }
 
+// Keeps the candidates that compile together, in order, each with those
+// kept before it: two that compile alone can still make a cycle together
+// (ACSE's `nDotV` for a subtree of `nDotH`, and `nDotH` for one of `nDotV`).
+void GreedySearch::dropConflicting(const std::string& path, std::vector<Candidate>& candidates) {
+  std::vector<Candidate> kept;
+  for (Candidate& c : candidates) {
+    kept.push_back(std::move(c));
+    auto together = compileModule(setup_.compile, path, stepText(kept), setup_.header.derived);
+    if (together) continue;
+    note(fmt::format("  dropped {} ({}): with the step's other candidates: {}", kept.back().rewriting.from,
+                     kept.back().rewriting.rule, together.error().message));
+    kept.pop_back();
+  }
+  candidates = std::move(kept);
+}
+
 // Drops the user rules' candidates whose replacement compiled to another
 // type than the one it replaced (it compiles, and means something else);
 // true when one was.
@@ -305,9 +412,19 @@ bool GreedySearch::dropRetyped(const ShaderLibrary& compiled, std::vector<Candid
 Expected<void, Failure> GreedySearch::writeStepModule(size_t level, int attempt, std::vector<Candidate>& candidates) {
   const std::string path = (setup_.workDir / fmt::format("step{}-{}.spire", level, attempt)).string();
   auto compiled = compileModule(setup_.compile, path, stepText(candidates), setup_.header.derived);
-  if (!compiled) dropUncompilable(path, candidates);
-  const bool retyped = compiled && dropRetyped(**compiled, candidates);
-  if (!compiled || retyped) compiled = compileModule(setup_.compile, path, stepText(candidates), setup_.header.derived);
+  if (!compiled) {
+    dropUncompilable(path, candidates);
+    compiled = compileModule(setup_.compile, path, stepText(candidates), setup_.header.derived);
+  }
+  if (!compiled) {
+    dropConflicting(path, candidates);
+    compiled = compileModule(setup_.compile, path, stepText(candidates), setup_.header.derived);
+  }
+  // On the module the kept candidates compile in, so that one candidate
+  // that does not compile cannot let another's change of type through.
+  if (compiled && dropRetyped(**compiled, candidates)) {
+    compiled = compileModule(setup_.compile, path, stepText(candidates), setup_.header.derived);
+  }
   if (!compiled) {
     return Failure{fmt::format("level {}'s candidates do not compile together: {}", level, compiled.error().message)};
   }

@@ -47,6 +47,9 @@ void defineSearchOptions(CLI::App& app, SearchOptions& options) {
   app.add_flag("--no-average{false}", options.average,
                "Leave out Pellacini's average rule (a subtree replaced by its average over the scene's views and "
                "parameter samples, measured by rendering a probe of each site)");
+  app.add_flag("--no-acse{false}", options.acse,
+               "Leave out approximate common subexpression elimination (a subtree replaced by the component whose "
+               "values at the scene's pixels are closest to its own, measured by rendering each)");
   app.add_flag("--renormalize", options.renormalize,
                "Shift every candidate so that its component's average over the scene is the original's, as "
                "Pellacini 2005 renormalizes (one more render per candidate)");

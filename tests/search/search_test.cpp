@@ -124,6 +124,14 @@ class SearchRun : public vk::testing::DeviceTest {
     args.insert(args.end(), extra.begin(), extra.end());
     return args;
   }
+  // ramp.json: the test's scene with its instance drawn by the Ramp shader
+  // of ramp.spire (which the test writes).
+  void writeRampScene() const {
+    std::string scene = sceneJson();
+    const std::string blurred = "\"blurred.spire\", \"shader\": \"Blurred\"";
+    scene.replace(scene.find(blurred), blurred.size(), "\"ramp.spire\", \"shader\": \"Ramp\"");
+    std::ofstream(dir_ / "ramp.json") << scene;
+  }
   // The search of `ramp` in the Ramp shader of ramp.json (a test writes
   // both), with validation, into DIR, and `extra` options.
   std::vector<std::string> rampArgs(const std::string& dir, const std::vector<std::string>& extra) const {
@@ -369,11 +377,7 @@ shader Ramp using EnginePipeline {
     vec4 output = vec4(vec3(ramp), 1.0);
 }
 )";
-  std::string scene = sceneJson();
-  scene.replace(scene.find("\"blurred.spire\", \"shader\": \"Blurred\""),
-                std::string("\"blurred.spire\", \"shader\": \"Blurred\"").size(),
-                "\"ramp.spire\", \"shader\": \"Ramp\"");
-  std::ofstream(dir_ / "ramp.json") << scene;
+  writeRampScene();
   // Level 1's row of chain.csv, of a search with `extra` options. K2 keeps
   // every candidate, so the one that saves the fetch is taken.
   const auto levelOne = [&](const std::string& out, const std::vector<std::string>& extra) {
@@ -403,6 +407,76 @@ shader Ramp using EnginePipeline {
   EXPECT_NE(readText(dir_ / "renormalized/RampSearch.spire").find("float ramp:level1 = (((vert_uv.x) + float("),
             std::string::npos)
       << readText(dir_ / "renormalized/RampSearch.spire");
+}
+
+// He et al.'s approximate common subexpression elimination: the ramp is
+// the texture coordinate but for a term too small to see, and `u`, computed
+// per vertex and interpolated, is the coordinate itself. Profiled at the
+// pixels, the ramp's whole expression is closest to `u`, which replaces it
+// across the stages: the fetch and the square root are gone for an error
+// far below the other rules' (the average rule is left out here: it would
+// average the tiny term away instead).
+TEST_F(SearchRun, ApproximateCommonSubexpressionsAreReplacedByTheClosestComponent) {
+  std::ofstream(dir_ / "ramp.spire") << R"(using "pipelines/engine.spire";
+shader Ramp using EnginePipeline {
+    @MaterialUniform sampler2D colorMap;
+    @FrameUniform mat4 matMVP;
+    vec4 projPos = matMVP * vec4(vert_pos, 1.0);
+    @Vertex float u = vert_uv.x;
+    float ramp = sqrt(vert_uv.x * vert_uv.x + 0.0001 * texture(colorMap, vert_uv).x);
+    vec4 output = vec4(ramp, u, 0.0, 1.0);
+}
+)";
+  writeRampScene();
+  std::ostringstream out, err;
+  ASSERT_EQ(runSearchTool(rampArgs("out", {"--max-levels", "1", "--no-average"}), out, err), kExitSuccess)
+      << err.str() << out.str();
+  EXPECT_NE(out.str().find("acse: 'sqrt(vert_uv.x * vert_uv.x + 0.0001 * texture(colorMap, vert_uv).x)' in ramp is "
+                           "closest to u"),
+            std::string::npos)
+      << out.str();
+  const auto rows = csvRows(dir_ / "out/chain.csv");
+  ASSERT_EQ(rows.size(), 2U) << out.str();
+  EXPECT_LT(std::stod(rows[1][1]), 0.001);
+  EXPECT_LT(std::stod(rows[1][4]), std::stod(rows[0][4]) / 4) << "C falls by more than the fetch";
+  EXPECT_NE(readText(dir_ / "out/RampSearch.spire").find("float ramp:level1 = (u);"), std::string::npos)
+      << readText(dir_ / "out/RampSearch.spire");
+  EXPECT_NE(readText(dir_ / "out/level1.decisions").find("RampSearch.u = Vertex"), std::string::npos)
+      << readText(dir_ / "out/level1.decisions");
+
+  std::ostringstream without, withoutErr;
+  ASSERT_EQ(
+      runSearchTool(rampArgs("out-without", {"--max-levels", "1", "--no-average", "--no-acse"}), without, withoutErr),
+      kExitSuccess)
+      << withoutErr.str();
+  EXPECT_EQ(without.str().find("acse"), std::string::npos) << without.str();
+}
+
+// Two components that are each the other but for a term too small to see:
+// ACSE proposes `b` for `a`'s expression and `a` for `b`'s. Each compiles
+// alone, together they are a cycle; the step keeps the first and drops the
+// second with the compiler's reason, and the search goes on.
+TEST_F(SearchRun, AcseCandidatesThatMakeACycleTogetherAreDroppedOneByOne) {
+  std::ofstream(dir_ / "ramp.spire") << R"(using "pipelines/engine.spire";
+shader Ramp using EnginePipeline {
+    @MaterialUniform sampler2D colorMap;
+    @FrameUniform mat4 matMVP;
+    vec4 projPos = matMVP * vec4(vert_pos, 1.0);
+    float a = sqrt(vert_uv.x * vert_uv.x + 0.0001 * texture(colorMap, vert_uv).x);
+    float b = sqrt(vert_uv.x * vert_uv.x + 0.0001 * texture(colorMap, vert_uv * 2.0).x);
+    float ramp = a + b;
+    vec4 output = vec4(vec3(ramp), 1.0);
+}
+)";
+  writeRampScene();
+  const std::vector<std::string> args =
+      rampArgs("out", {"--max-levels", "1", "--no-average", "--component", "a", "--component", "b"});
+  std::ostringstream out, err;
+  ASSERT_EQ(runSearchTool(args, out, err), kExitSuccess) << err.str() << out.str();
+  EXPECT_NE(out.str().find("in a is closest to b"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("in b is closest to a"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("with the step's other candidates: cycle among components"), std::string::npos) << out.str();
+  EXPECT_EQ(csvRows(dir_ / "out/chain.csv").size(), 2U) << out.str();
 }
 
 TEST(SearchCommandLine, RefusesWhatItCannotRun) {
