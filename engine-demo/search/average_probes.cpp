@@ -196,13 +196,6 @@ std::vector<bool> showComponents(ProbeModule& module, const std::vector<Componen
 
 }  // namespace
 
-Expected<Averages, Failure> measureAverages(const ProbeSetup& setup, const std::vector<AverageProbe>& probes,
-                                            const Placement& placement) {
-  auto profiles = profileValues(setup, probes, {}, placement);
-  if (!profiles) return profiles.error();
-  return averagesOf(*profiles);
-}
-
 Expected<Averages, Failure> measureComponents(const ProbeSetup& setup, const std::vector<ComponentValue>& values) {
   auto profiles = profileValues(setup, {}, values, {});
   if (!profiles) return profiles.error();

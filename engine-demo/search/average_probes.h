@@ -5,9 +5,10 @@
 // (the domain the search's errors are measured over), and the average is
 // the mean over the marked pixels: a Monte Carlo estimate over the inputs
 // the scene gives the shader. The values are the subtrees of the average
-// rule (simplify/average_sites.h), each a component of its own computed
-// where the definition it comes from is, and the components that
-// renormalization shifts.
+// rule and ACSE (simplify/average_sites.h), each a component of its own
+// computed where the definition it comes from is, rendered once per step
+// for both rules; the live components ACSE compares them with; and the
+// components that renormalization shifts.
 #pragma once
 
 #include <cstddef>
@@ -36,12 +37,6 @@ struct ProbeSetup {
 // Per value, its average (one number per scalar), or nullopt when no pixel
 // shows it or it is not finite.
 using Averages = std::vector<std::optional<std::vector<double>>>;
-
-// The average of each probe's subtree with the other components placed as
-// `placement` places them. Fails when the probe module does not compile or
-// the pipeline exports no vec4 color to show values in.
-Expected<Averages, Failure> measureAverages(const ProbeSetup& setup, const std::vector<AverageProbe>& probes,
-                                            const Placement& placement);
 
 // A component of the module, and the variant in which to average it.
 struct ComponentValue {

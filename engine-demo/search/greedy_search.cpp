@@ -100,8 +100,7 @@ class GreedySearch {
  private:
   Expected<std::optional<Accepted>, Failure> step(size_t level);
   Expected<std::vector<Candidate>, Failure> propose(size_t level);
-  void addAverageCandidates(const StepRequest& request, size_t level, std::vector<Candidate>& candidates);
-  void addAcseCandidates(const StepRequest& request, size_t level, std::vector<Candidate>& candidates);
+  void addProbedCandidates(const StepRequest& request, size_t level, std::vector<Candidate>& candidates);
   // Probes of `moduleText`, written to `file` in the work folder.
   ProbeSetup probeSetup(std::string moduleText, const std::string& file) const {
     return {setup_.scene,
@@ -211,35 +210,8 @@ Expected<std::vector<Candidate>, Failure> GreedySearch::propose(size_t level) {
                       setup_.original, setup_.components,     options_.k1,
                       level,           setup_.userRules};
   auto candidates = proposeCandidates(request);
-  if (candidates && options_.average) addAverageCandidates(request, level, *candidates);
-  if (candidates && options_.acse) addAcseCandidates(request, level, *candidates);
+  if (candidates && (options_.average || options_.acse)) addProbedCandidates(request, level, *candidates);
   return candidates;
-}
-
-// Pellacini's average rule: each site's probe rendered over the scene's
-// views and samples, and a candidate with the average in place of the
-// subtree. Probes that cannot be measured leave the step without them, and
-// the log says why.
-void GreedySearch::addAverageCandidates(const StepRequest& request, size_t level, std::vector<Candidate>& candidates) {
-  auto probes = proposeAverageProbes(request);
-  if (!probes || probes->empty()) return;
-  const ProbeSetup setup = probeSetup(chainModuleText(setup_.header, accepted()), fmt::format("probe{}.spire", level));
-  auto averages = measureAverages(setup, *probes, chain_.levels.back().placement);
-  if (!averages) return note(fmt::format("  no average candidates: {}", averages.error().message));
-  for (size_t i = 0; i < probes->size(); ++i) {
-    const AverageProbe& probe = (*probes)[i];
-    auto candidate = (*averages)[i]
-                         ? siteCandidate(request, probe, simplify::kAverageRule,
-                                         simplify::averageReplacement(probe.site.rewrite.type, *(*averages)[i]),
-                                         candidates.size() + 1)
-                         : Failure{"no pixel shows it, or it is not finite"};
-    if (!candidate) {
-      note(fmt::format("  no average of '{}' in {}: {}", probe.site.rewrite.before, probe.component,
-                       candidate.error().message));
-      continue;
-    }
-    candidates.push_back(std::move(candidate).value());
-  }
 }
 
 std::string GreedySearch::stepText(const std::vector<Candidate>& candidates, const Candidate* only) const {
@@ -280,40 +252,57 @@ GreedySearch::candidateAverages(size_t level, int attempt, const std::vector<Can
   return result;
 }
 
-// He et al. 2015's approximate common subexpression elimination: each site's
-// profile (its values at a sample of the shader's pixels over every view and
-// parameter sample) against every other live component of its type; the
-// closest one replaces the subtree, even when it is computed in another
-// world (the profile is what the fragment sees of it). A component that
-// depends on the one rewritten makes a cycle, which does not compile, and
-// the candidate is dropped with the compiler's reason.
-void GreedySearch::addAcseCandidates(const StepRequest& request, size_t level, std::vector<Candidate>& candidates) {
+// The rules that need the sites' values: each site's probe (and, for ACSE,
+// each live component) rendered once over the scene's views and samples.
+// Pellacini's average rule puts the site's average in its place. He et al.
+// 2015's approximate common subexpression elimination puts the live
+// component of its type whose profile (its values at a sample of the
+// shader's pixels) is closest, even one computed in another world (the
+// profile is what the fragment sees of it); a component that depends on the
+// one rewritten makes a cycle, which does not compile, and the candidate is
+// dropped with the compiler's reason. Probes that cannot be measured leave
+// the step without these candidates, and the log says why.
+void GreedySearch::addProbedCandidates(const StepRequest& request, size_t level, std::vector<Candidate>& candidates) {
   auto probes = proposeAverageProbes(request);
   if (!probes || probes->empty()) return;
   const Placement& placement = chain_.levels.back().placement;
   const sem::Shader& shader = *request.current->model().findShader(setup_.header.derived);
   std::vector<ComponentValue> components;
   for (const auto& entry : placement) {
-    const sem::Component* c = shader.findComponent(entry.first);
+    const sem::Component* c = options_.acse ? shader.findComponent(entry.first) : nullptr;
     if (c && !c->isExport) components.push_back({entry.first, placement});
   }
-  const ProbeSetup setup = probeSetup(chainModuleText(setup_.header, accepted()), fmt::format("acse{}.spire", level));
+  const ProbeSetup setup = probeSetup(chainModuleText(setup_.header, accepted()), fmt::format("probe{}.spire", level));
   auto profiles = profileValues(setup, *probes, components, placement);
-  if (!profiles) return note(fmt::format("  no acse candidates: {}", profiles.error().message));
+  if (!profiles) return note(fmt::format("  no average or acse candidates: {}", profiles.error().message));
+  const std::vector<ValueProfile> componentProfiles(profiles->begin() + static_cast<std::ptrdiff_t>(probes->size()),
+                                                    profiles->end());
   std::vector<std::string> keys;
   for (const Candidate& c : candidates) keys.push_back(c.key);
-  for (size_t i = 0; i < probes->size(); ++i) {
-    const AverageProbe& probe = (*probes)[i];
-    const auto closest =
-        closestComponent(shader, probe, (*profiles)[i], components,
-                         {profiles->begin() + static_cast<std::ptrdiff_t>(probes->size()), profiles->end()});
-    if (!closest) continue;
-    auto candidate = siteCandidate(request, probe, "acse", closest->first, candidates.size() + 1);
-    if (!candidate || std::find(keys.begin(), keys.end(), candidate->key) != keys.end()) continue;
-    note(fmt::format("  acse: '{}' in {} is closest to {} (RMSE {:.6f} at the profiled pixels)",
-                     probe.site.rewrite.before, probe.component, closest->first, closest->second));
+  const auto add = [&](const AverageProbe& probe, const std::string& rule, const std::string& replacement) {
+    auto candidate = siteCandidate(request, probe, rule, replacement, candidates.size() + 1);
+    if (!candidate || std::find(keys.begin(), keys.end(), candidate->key) != keys.end()) return false;
     keys.push_back(candidate->key);
     candidates.push_back(std::move(candidate).value());
+    return true;
+  };
+  for (size_t i = 0; i < probes->size(); ++i) {
+    const AverageProbe& probe = (*probes)[i];
+    const ValueProfile& site = (*profiles)[i];
+    if (!site.average) {
+      note(fmt::format("  no average of '{}' in {}: no pixel shows it, or it is not finite", probe.site.rewrite.before,
+                       probe.component));
+      continue;
+    }
+    if (options_.average) {
+      add(probe, simplify::kAverageRule, simplify::averageReplacement(probe.site.rewrite.type, *site.average));
+    }
+    if (!options_.acse) continue;
+    const auto closest = closestComponent(shader, probe, site, components, componentProfiles);
+    if (closest && add(probe, "acse", closest->first)) {
+      note(fmt::format("  acse: '{}' in {} is closest to {} (RMSE {:.6f} at the profiled pixels)",
+                       probe.site.rewrite.before, probe.component, closest->first, closest->second));
+    }
   }
 }
 
