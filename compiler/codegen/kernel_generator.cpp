@@ -17,6 +17,14 @@
 namespace spire::codegen {
 namespace {
 
+// Each newline-terminated line of `text` as a line of `out`.
+void writeLines(GlslOutput& out, std::string_view text) {
+  for (size_t start = 0, end = text.find('\n'); end != std::string_view::npos;
+       start = end + 1, end = text.find('\n', start)) {
+    out.line(text.substr(start, end - start));
+  }
+}
+
 // The value of the world's attribute `name` ([Role]).
 std::optional<std::string> attributeValue(const ast::WorldDecl& decl, std::string_view name) {
   for (const ast::Attribute& a : decl.attributes) {
@@ -362,7 +370,7 @@ const ast::ComponentDecl& KernelGenerator::chosenDecl(sem::ComponentId id) const
 
 void KernelGenerator::writeHeader(GlslOutput& out, const sem::World& world, ShaderStage stage,
                                   const std::string& structs) const {
-  out.line("#version 450");
+  writeLines(out, kGlslVersionLines);
   out.line("#extension GL_GOOGLE_cpp_style_line_directive : require");
   // The header names no shader: shaders that share a locked world share
   // this text byte for byte.
@@ -373,10 +381,7 @@ void KernelGenerator::writeHeader(GlslOutput& out, const sem::World& world, Shad
     out.line("layout(local_size_x = 64) in;");
     out.line("");
   }
-  for (size_t start = 0, end = structs.find('\n'); end != std::string::npos;
-       start = end + 1, end = structs.find('\n', start)) {
-    out.line(std::string_view(structs).substr(start, end - start));
-  }
+  writeLines(out, structs);
 }
 
 void KernelGenerator::writeDefinitions(GlslOutput& out, const KernelBuilder& kernel, const KernelText& text,

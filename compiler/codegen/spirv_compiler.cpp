@@ -63,7 +63,7 @@ SpirvResult compileGlslToSpirv(ShaderStage stage, std::string_view glsl, std::st
   shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
 
   const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
-  const bool parsed = shader.parse(GetDefaultResources(), /*defaultVersion=*/450,
+  const bool parsed = shader.parse(GetDefaultResources(), /*defaultVersion=*/440,
                                    /*forwardCompatible=*/false, messages);
   appendLog(result.log, shader.getInfoLog());
   if (!parsed) return result;

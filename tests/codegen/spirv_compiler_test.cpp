@@ -21,7 +21,7 @@ constexpr uint32_t kSpirv15 = 0x00010500u;
 
 // What the generator emits for a vertex kernel: a std140 block, attributes,
 // varyings, all with explicit locations and bindings.
-constexpr const char* kVertexShader = R"(#version 450
+constexpr const char* kVertexShader = R"(#version 440
 #extension GL_GOOGLE_cpp_style_line_directive : require
 
 layout(std140, set = 0, binding = 0) uniform ViewUniforms {
@@ -48,7 +48,7 @@ void main() {
 }
 )";
 
-constexpr const char* kFragmentShader = R"(#version 450
+constexpr const char* kFragmentShader = R"(#version 440
 #extension GL_GOOGLE_cpp_style_line_directive : require
 
 layout(set = 0, binding = 1) uniform sampler2D albedoTex;
@@ -72,7 +72,7 @@ void main() {
 }
 )";
 
-constexpr const char* kComputeShader = R"(#version 450
+constexpr const char* kComputeShader = R"(#version 440
 #extension GL_GOOGLE_cpp_style_line_directive : require
 
 layout(local_size_x = 64) in;
@@ -127,7 +127,7 @@ TEST(SpirvCompilerTest, ComputeShaderCompilesAndValidates) {
 }
 
 TEST(SpirvCompilerTest, ErrorNamesSpireFileAndLineFromLineDirective) {
-  const std::string glsl = R"(#version 450
+  const std::string glsl = R"(#version 440
 #extension GL_GOOGLE_cpp_style_line_directive : require
 layout(local_size_x = 64) in;
 layout(std430, set = 0, binding = 0) buffer Out { float values[]; };
@@ -146,7 +146,7 @@ void main() {
 }
 
 TEST(SpirvCompilerTest, ErrorOnTheLineDirectiveLineItself) {
-  const std::string glsl = R"(#version 450
+  const std::string glsl = R"(#version 440
 #extension GL_GOOGLE_cpp_style_line_directive : require
 layout(location = 0) out vec4 outColor;
 #line 42 "terrain.spire"
@@ -161,7 +161,7 @@ void main() { outColor = vec4(missingComponent); }
 }
 
 TEST(SpirvCompilerTest, ErrorBeforeAnyLineDirectiveNamesTheKernel) {
-  const std::string glsl = "#version 450\nvoid main() { int x = ; }\n";
+  const std::string glsl = "#version 440\nvoid main() { int x = ; }\n";
   const SpirvResult r = compileGlslToSpirv(ShaderStage::Vertex, glsl, "Terrain_vs");
   EXPECT_FALSE(r.ok());
   EXPECT_TRUE(contains(r.log, "Terrain_vs:2"));
@@ -169,7 +169,7 @@ TEST(SpirvCompilerTest, ErrorBeforeAnyLineDirectiveNamesTheKernel) {
 
 TEST(SpirvCompilerTest, LinkErrorIsReported) {
   // Parses, but a shader without main() fails at link time.
-  const std::string glsl = "#version 450\nvoid helper() {}\n";
+  const std::string glsl = "#version 440\nvoid helper() {}\n";
   const SpirvResult r = compileGlslToSpirv(ShaderStage::Vertex, glsl, "no_main");
   EXPECT_FALSE(r.ok());
   EXPECT_TRUE(contains(r.log, "Missing entry point"));
@@ -177,7 +177,7 @@ TEST(SpirvCompilerTest, LinkErrorIsReported) {
 
 TEST(SpirvCompilerTest, WrongStageIsAnError) {
   // gl_Position is not writable from a compute shader.
-  const std::string glsl = "#version 450\nlayout(local_size_x = 64) in;\nvoid main() { gl_Position = vec4(0.0); }\n";
+  const std::string glsl = "#version 440\nlayout(local_size_x = 64) in;\nvoid main() { gl_Position = vec4(0.0); }\n";
   const SpirvResult r = compileGlslToSpirv(ShaderStage::Compute, glsl, "wrong_stage");
   EXPECT_FALSE(r.ok());
   EXPECT_TRUE(contains(r.log, "gl_Position"));
@@ -212,7 +212,7 @@ TEST(SpirvCompilerTest, ConcurrentCompilesMatchSerialOnes) {
         if (compileGlslToSpirv(ShaderStage::Vertex, kVertexShader, "v").words != vertex) ++mismatches[t];
         if (compileGlslToSpirv(ShaderStage::Fragment, kFragmentShader, "f").words != fragment) ++mismatches[t];
         if (compileGlslToSpirv(ShaderStage::Compute, kComputeShader, "c").words != compute) ++mismatches[t];
-        if (compileGlslToSpirv(ShaderStage::Compute, "#version 450\nvoid main() { x; }\n", "bad").ok()) {
+        if (compileGlslToSpirv(ShaderStage::Compute, "#version 440\nvoid main() { x; }\n", "bad").ok()) {
           ++mismatches[t];
         }
       }

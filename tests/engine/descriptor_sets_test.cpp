@@ -105,14 +105,14 @@ const std::string kVertexBlockReflection = R"(
 
 // Vertex in set 0 and Fragment in set 1, both numbering bindings from 0: what
 // the compiler emits when kernels are numbered one by one.
-const TestKernel kVertexSet0{codegen::ShaderStage::Vertex, "Vertex", R"(#version 450
+const TestKernel kVertexSet0{codegen::ShaderStage::Vertex, "Vertex", R"(#version 440
 layout(set = 0, binding = 0, std140) uniform VertexBlock { vec4 offset; };
 layout(location = 0) in vec3 vert_pos;
 void main() { gl_Position = vec4(vert_pos.x + offset.x, vert_pos.z + offset.y, 0.5, 1.0); }
 )",
                              kVertexBlockReflection};
 
-const TestKernel kFragmentSet1{codegen::ShaderStage::Fragment, "Fragment", R"(#version 450
+const TestKernel kFragmentSet1{codegen::ShaderStage::Fragment, "Fragment", R"(#version 440
 layout(set = 1, binding = 0) uniform sampler2D tint;
 layout(set = 1, binding = 1, std140) uniform FragmentBlock { vec4 scale; };
 layout(location = 0) out vec4 color;
@@ -281,7 +281,7 @@ TEST_F(RendererDescriptorSetsTest, OneSetWithBindingsUniqueAcrossKernelsDraws) {
 // Both stages sample the same material texture at set 0, binding 0: one
 // binding with both stage flags.
 TEST_F(RendererDescriptorSetsTest, StagesSharingASlotForOneResourceMergeStageFlags) {
-  const TestKernel vertex{codegen::ShaderStage::Vertex, "Vertex", R"(#version 450
+  const TestKernel vertex{codegen::ShaderStage::Vertex, "Vertex", R"(#version 440
 layout(set = 0, binding = 0) uniform sampler2D tint;
 layout(location = 0) in vec3 vert_pos;
 void main() { gl_Position = vec4(vert_pos.x, vert_pos.z, 0.5, textureLod(tint, vec2(0.5), 0.0).a); }
@@ -291,7 +291,7 @@ void main() { gl_Position = vec4(vert_pos.x, vert_pos.z, 0.5, textureLod(tint, v
     {"kind": "sampler", "component": "tint", "type": "sampler2D", "from": "MaterialUniform", "set": 0, "binding": 0},
     {"kind": "varying", "component": "vert_pos", "type": "vec3", "from": "MeshVertex", "location": 0}],
   "outputs": [{"kind": "builtin", "builtin": "gl_Position", "expression": "projPos"}], "blocks": [])"};
-  const TestKernel fragment{codegen::ShaderStage::Fragment, "Fragment", R"(#version 450
+  const TestKernel fragment{codegen::ShaderStage::Fragment, "Fragment", R"(#version 440
 layout(set = 0, binding = 0) uniform sampler2D tint;
 layout(location = 0) out vec4 color;
 void main() { color = texture(tint, vec2(0.5)); }
@@ -318,7 +318,7 @@ void main() { color = texture(tint, vec2(0.5)); }
 // Set 0, binding 0 is the Vertex kernel's uniform block; a Fragment kernel
 // that puts something else there is refused before Vulkan sees it.
 TEST_F(RendererDescriptorSetsTest, StagesSharingASlotForDifferentResourcesIsAnError) {
-  const std::string fragmentSet0 = R"(#version 450
+  const std::string fragmentSet0 = R"(#version 440
 layout(set = 0, binding = 0) uniform sampler2D tint;
 layout(set = 0, binding = 1, std140) uniform FragmentBlock { vec4 scale; };
 layout(location = 0) out vec4 color;
@@ -346,7 +346,7 @@ void main() { color = texture(tint, vec2(0.5)) * scale; }
   sameType["outputs"] = Json::parse(R"([{"kind": "varying", "component": "color", "type": "vec4", "location": 0}])");
   sameType["inputs"].erase(1);
   auto differentResource = programOf({kVertexSet0,
-                                      {codegen::ShaderStage::Fragment, "Fragment", R"(#version 450
+                                      {codegen::ShaderStage::Fragment, "Fragment", R"(#version 440
 layout(set = 0, binding = 0, std140) uniform VertexBlock { vec4 scale; };
 layout(location = 0) out vec4 color;
 void main() { color = scale; }
@@ -363,7 +363,7 @@ void main() { color = scale; }
 // The texture bake's vertex shader is the engine's and binds nothing: a
 // PrebakeTex kernel in set 1 gets an empty set 0 before its own.
 TEST_F(RendererDescriptorSetsTest, TextureBakeKernelInSetOne) {
-  const TestKernel bake{codegen::ShaderStage::Fragment, "PrebakeTex", R"(#version 450
+  const TestKernel bake{codegen::ShaderStage::Fragment, "PrebakeTex", R"(#version 440
 layout(set = 1, binding = 0, std140) uniform BakeBlock { vec4 scale; };
 layout(location = 0) in vec2 vert_uv;
 layout(location = 0) out vec4 albedo;

@@ -164,11 +164,11 @@ TEST_F(DeviceTest, RejectsBadInputWithoutCrashing) {
 
 TEST_F(DeviceTest, RendersTriangleWithDepthIntoOffscreenImage) {
   constexpr uint32_t kSize = 64;
-  const auto vsWords = compile(ShaderStage::Vertex, R"(#version 450
+  const auto vsWords = compile(ShaderStage::Vertex, R"(#version 440
 layout(location = 0) in vec2 inPosition;
 void main() { gl_Position = vec4(inPosition, 0.5, 1.0); }
 )");
-  const auto fsWords = compile(ShaderStage::Fragment, R"(#version 450
+  const auto fsWords = compile(ShaderStage::Fragment, R"(#version 440
 layout(push_constant) uniform Push { vec4 color; } pc;
 layout(location = 0) out vec4 outColor;
 void main() { outColor = pc.color; }
@@ -245,7 +245,7 @@ void main() { outColor = pc.color; }
 
 TEST_F(DeviceTest, ComputeWritesStorageBuffer) {
   constexpr uint32_t kCount = 256;
-  const auto words = compile(ShaderStage::Compute, R"(#version 450
+  const auto words = compile(ShaderStage::Compute, R"(#version 440
 layout(local_size_x = 64) in;
 layout(std430, set = 0, binding = 0) buffer Out { uint values[]; } outBuffer;
 layout(push_constant) uniform Push { uint offset; } pc;
