@@ -18,23 +18,6 @@ std::string placementFor(const Placement& placement, const std::string& componen
   return {};
 }
 
-// The definition the placement computes: its variation, in its world when
-// the component has a definition for that world, else the general one.
-const ast::ComponentDecl* currentDecl(const sem::Shader& shader, const sem::Component& component,
-                                      const std::string& placement) {
-  const std::string variation = variationOf(placement);
-  const ast::ComponentDecl* general = nullptr;
-  for (const sem::Definition& d : component.definitions) {
-    if (!d.decl || d.isInput() || d.variation != variation) continue;
-    if (!d.world) {
-      general = general ? general : d.decl;
-    } else if (shader.pipeline && shader.pipeline->worlds.at(*d.world).name == worldOf(placement)) {
-      return d.decl;
-    }
-  }
-  return general;
-}
-
 std::string fromName(const std::string& component, const std::string& placement) {
   const std::string variation = variationOf(placement);
   return variation.empty() ? component : component + ":" + variation;
@@ -90,6 +73,21 @@ Candidate makeCandidate(const StepRequest& request, const Target& target, const 
 }
 
 }  // namespace
+
+const ast::ComponentDecl* currentDecl(const sem::Shader& shader, const sem::Component& component,
+                                      const std::string& placement) {
+  const std::string variation = variationOf(placement);
+  const ast::ComponentDecl* general = nullptr;
+  for (const sem::Definition& d : component.definitions) {
+    if (!d.decl || d.isInput() || d.variation != variation) continue;
+    if (!d.world) {
+      general = general ? general : d.decl;
+    } else if (shader.pipeline && shader.pipeline->worlds.at(*d.world).name == worldOf(placement)) {
+      return d.decl;
+    }
+  }
+  return general;
+}
 
 std::string searchVariation(const std::string& originalVariation, const std::string& kind, size_t number) {
   return fmt::format("{}{}{}{}", originalVariation, originalVariation.empty() ? "" : "_", kind, number);

@@ -27,6 +27,12 @@ struct ModuleCompile {
   std::optional<std::string> pipelineSource;
 };
 
+// The definition of `component` that `placement` ("Fragment:level2")
+// computes: its variation, in its world when the component has a definition
+// for that world, else the general one; null when there is none.
+const ast::ComponentDecl* currentDecl(const sem::Shader& shader, const sem::Component& component,
+                                      const std::string& placement);
+
 // `text`, as if read from `path`, compiled with its sources; the compiler's
 // first error when it or the derived shader does not compile.
 Expected<std::unique_ptr<ShaderLibrary>, Failure> compileModule(const ModuleCompile& compile, const std::string& path,

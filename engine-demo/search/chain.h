@@ -75,7 +75,9 @@ struct ModuleHeader {
 };
 
 // The derived shader holding `definitions` (each with a comment naming the
-// rewrite it adds to the definition it comes from), as Spire source.
-std::string chainModuleText(const ModuleHeader& header, const std::vector<const Rewriting*>& definitions);
+// rewrite it adds to the definition it comes from), then `more` (Spire
+// source of further definitions: the chain's transitions), as Spire source.
+std::string chainModuleText(const ModuleHeader& header, const std::vector<const Rewriting*>& definitions,
+                            const std::string& more = {});
 
 }  // namespace spire::search

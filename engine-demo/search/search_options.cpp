@@ -76,6 +76,15 @@ void defineSearchOptions(CLI::App& app, SearchOptions& options) {
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, CostKind>{{"model", CostKind::Model}, {"time", CostKind::Time}}))
       ->type_name("model|time");
+  app.add_option("--transition-width", options.transitionWidth,
+                 "The part of each policy band, before its edge, over which a transition shader blends it into the "
+                 "next (default 0.2; 0: no transition shaders)")
+      ->check(CLI::Range(0.0, 0.9))
+      ->type_name("F");
+  app.add_option("--transition-distance", options.transitionDistance,
+                 "The distance the transition shaders blend by: a Spire expression over the shader's components "
+                 "(default 'length(cameraPos - vert_pos)')")
+      ->type_name("EXPR");
   app.add_option("--name", options.derivedName, "The derived shader's name (default: SHADER + Search)")
       ->type_name("NAME");
   addOutputDirectory(app, options.outputDir, "Write the chain (module, decision files, report) to DIR")->required();

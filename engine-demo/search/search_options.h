@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,12 @@ struct SearchOptions {
   size_t maxLevels = 6;                 // levels after the original
   double errorBudget = std::numeric_limits<double>::infinity();  // RMSE no level may exceed
   CostKind cost = CostKind::Model;                               // what candidates are ranked and the chain ordered by
+  // He et al.'s transition shaders at the chain policy's switches
+  // (search/transitions.h): the part of each band they blend over, 0 for
+  // none, and the distance expression; without one, the default's, and a
+  // shader that cannot compute it gets no transitions (with a note).
+  double transitionWidth = 0.2;
+  std::optional<std::string> transitionDistance;
   std::string outputDir;
   std::string derivedName;  // default: the shader's name + "Search"
   // Measurement, as spire-tune's options of the same names.

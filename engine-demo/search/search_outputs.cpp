@@ -51,6 +51,27 @@ std::string cell(const std::string& text) {
   return escaped;
 }
 
+std::string transitionImageName(const Transition& t) { return fmt::format("transition{}_{}.png", t.from, t.to); }
+
+std::string transitionSection(const OutputRequest& request) {
+  if (!request.policy) return {};
+  std::string text =
+      "\n## Transitions\n\nHe et al.'s transition shaders: where the policy switches levels, a band over the "
+      "last part of the nearer one draws a variant that blends the two by distance (`mix(near, far, fade)` "
+      "of each component that differs), so that the switch does not pop.\n\n";
+  const ChainTransitions& made = request.transitions;
+  if (made.transitions.empty()) return text + fmt::format("None: {}.\n", made.note);
+  text +=
+      "| from level | to level | blends from | to | decision file | from the first camera view |\n"
+      "|---|---|---|---|---|---|\n";
+  for (size_t i = 0; i < made.transitions.size(); ++i) {
+    const Transition& t = made.transitions[i];
+    text += fmt::format("| {0} | {1} | {2:.4g} | {3:.4g} | `{4}` | ![from level {0} to level {1}]({5}) |\n", t.from,
+                        t.to, t.nearDistance, t.farDistance, transitionFileName(t), transitionImageName(t));
+  }
+  return text;
+}
+
 std::string report(const Chain& chain, const OutputRequest& request) {
   const SearchOptions& o = *request.options;
   std::string text = fmt::format(
@@ -89,6 +110,7 @@ std::string report(const Chain& chain, const OutputRequest& request) {
         "per switch.\n\n{}",
         o.policyChoice.errorExponent, o.policyChoice.maxError, o.policyChoice.switchPenalty, request.policy->table);
   }
+  text += transitionSection(request);
   text += "\n## Steps\n\n```\n";
   for (const std::string& line : chain.log) text += line + "\n";
   return text + "```\n";
@@ -114,7 +136,15 @@ Expected<FileSet, Failure> searchOutputs(const Chain& chain, const OutputRequest
   FileSet files;
   std::vector<const Rewriting*> steps;
   for (const Rewriting& r : chain.steps) steps.push_back(&r);
-  files.emplace_back(moduleFileName(request.header), chainModuleText(request.header, steps));
+  std::string transitions;
+  const ChainTransitions& made = request.transitions;
+  for (size_t i = 0; i < made.transitions.size(); ++i) {
+    const Transition& t = made.transitions[i];
+    transitions += t.definitions;
+    files.emplace_back(transitionFileName(t), transitionDecisionText(t, request.header));
+    if (i < made.images.size()) files.emplace_back(transitionImageName(t), made.images[i]);
+  }
+  files.emplace_back(moduleFileName(request.header), chainModuleText(request.header, steps, transitions));
   for (size_t k = 0; k < chain.levels.size(); ++k) {
     files.emplace_back(levelFileName(k), levelDecisionText(chain, k, request.header));
   }
@@ -123,7 +153,9 @@ Expected<FileSet, Failure> searchOutputs(const Chain& chain, const OutputRequest
   }
   files.emplace_back("chain.csv", chainCsv(chain));
   if (request.policy) {
-    files.emplace_back("lod_policy.json", lod::formatLodPolicy(request.policy->policy, request.options->outputDir));
+    const lod::LodPolicy policy =
+        withTransitions(request.policy->policy, made.transitions, request.header.derived, request.options->outputDir);
+    files.emplace_back("lod_policy.json", lod::formatLodPolicy(policy, request.options->outputDir));
   }
   files.emplace_back("report.md", report(chain, request));
   auto png = plot(chain);

@@ -1,7 +1,8 @@
 // What `spire-simplify --search` writes, as one set (replaced atomically):
 // the module of the chain's definitions, one decision file and one image
 // per level (level0.* is the original), chain.csv, the chain's
-// level-of-detail policy, report.md and the chain's error-against-time
+// level-of-detail policy with its transition shaders' decision files
+// (transitionA_B.decisions), report.md and the chain's error-against-time
 // plot, error_time.png.
 #pragma once
 
@@ -11,10 +12,17 @@
 #include "search/chain.h"
 #include "search/chain_policy.h"
 #include "search/search_options.h"
+#include "search/transitions.h"
 #include "support/atomic_directory.h"
 #include "support/expected.h"
 
 namespace spire::search {
+
+struct ChainTransitions {
+  std::vector<Transition> transitions;
+  std::vector<std::string> images;  // each from the scene's first camera view, PNG
+  std::string note;                 // without transitions, why
+};
 
 struct OutputRequest {
   ModuleHeader header;  // with the `using` path relative to the output folder
@@ -26,6 +34,10 @@ struct OutputRequest {
   // Each level's image from the scene's first camera view, PNG; none when
   // empty.
   std::vector<std::string> levelImages;
+  // The transition shaders at the policy's switches: their definitions go
+  // into the module, their decision files and images beside it, and their
+  // bands into the policy.
+  ChainTransitions transitions;
 };
 
 // The module's file name: the derived shader's name + ".spire".

@@ -16,7 +16,9 @@
 #include "search/chain_policy.h"
 #include "search/greedy_search.h"
 #include "search/search_outputs.h"
+#include "search/transitions.h"
 #include "simplify/rewrite_target.h"
+#include "support/file_io.h"
 #include "tool/tool_run.h"
 #include "tune/parameter_range.h"
 
@@ -121,20 +123,85 @@ void printSummary(const Chain& chain, const SearchOptions& options, std::ostream
       kTool, chain.steps.size(), options.outputDir, last.error, last.timeRatio, chain.stopReason);
 }
 
-// Each level of `chain` from the first camera view, as PNG: the instance
-// must point at a module that holds every level's definitions.
+// `placement` drawn from the first camera view, as PNG: the instance must
+// point at a module that defines what it names.
+Expected<std::string, Failure> imageOf(tune::Tuner& tuner, const Placement& placement) {
+  tune::TunePoint point;
+  point.decisions = {placement.begin(), placement.end()};
+  auto capture = tuner.capture(point);
+  if (!capture) return Failure{fmt::format("cannot be drawn: {}", capture.error().message)};
+  auto png = scene::encodePng(measure::toRgba8(capture->color));
+  if (!png) return Failure{fmt::format("its image cannot be encoded: {}", png.error().message)};
+  return std::move(png).value();
+}
+
+// Each level of `chain` from the first camera view, as PNG.
 Expected<std::vector<std::string>, Failure> levelImages(tune::Tuner& tuner, const Chain& chain) {
   std::vector<std::string> images;
   for (size_t k = 0; k < chain.levels.size(); ++k) {
-    tune::TunePoint point;
-    point.decisions = {chain.levels[k].placement.begin(), chain.levels[k].placement.end()};
-    auto capture = tuner.capture(point);
-    if (!capture) return Failure{fmt::format("level {} cannot be drawn: {}", k, capture.error().message)};
-    auto png = scene::encodePng(measure::toRgba8(capture->color));
-    if (!png) return Failure{fmt::format("level {}'s image cannot be encoded: {}", k, png.error().message)};
+    auto png = imageOf(tuner, chain.levels[k].placement);
+    if (!png) return Failure{fmt::format("level {} {}", k, png.error().message)};
     images.push_back(std::move(png).value());
   }
   return images;
+}
+
+// The chain's module with `transitions`' definitions, written to the work
+// folder and compiled; the instance is pointed at it.
+Expected<void, Failure> useTransitionModule(const Chain& chain, const SearchSetup& setup,
+                                            const std::vector<Transition>& transitions) {
+  std::vector<const Rewriting*> steps;
+  for (const Rewriting& r : chain.steps) steps.push_back(&r);
+  std::string definitions;
+  for (const Transition& t : transitions) definitions += t.definitions;
+  const std::string text = chainModuleText(setup.header, steps, definitions);
+  const fs::path path = setup.workDir / "transitions.spire";
+  auto compiled = compileModule(setup.compile, path.string(), text, setup.header.derived);
+  if (!compiled) return compiled.error();
+  if (auto written = writeFileAtomically(path.string(), text); !written) return written.error();
+  setup.scene->instances.at(setup.instance).source = path;
+  return {};
+}
+
+// He et al.'s transition shaders at the switches of the chain's policy, each
+// drawn from the first camera view (so that it compiles and validates). None,
+// with a note saying why, where the policy does not switch or where the
+// shader cannot compute the default distance; a distance the user gave must
+// compile.
+Expected<ChainTransitions, Failure> makeTransitions(const Chain& chain, const ChainPolicy& policy,
+                                                    const SearchSetup& setup, const SearchOptions& options,
+                                                    tune::Tuner& tuner) {
+  ChainTransitions made;
+  if (options.transitionWidth <= 0.0) {
+    made.note = "--transition-width is 0";
+    return made;
+  }
+  std::vector<const Rewriting*> steps;
+  for (const Rewriting& r : chain.steps) steps.push_back(&r);
+  auto module = compileModule(setup.compile, (setup.workDir / "chain.spire").string(),
+                              chainModuleText(setup.header, steps), setup.header.derived);
+  if (!module) return module.error();
+  const TransitionShape shape{options.transitionWidth, options.transitionDistance.value_or(TransitionShape{}.distance)};
+  auto transitions = chainTransitions(chain, policy.policy, **module, setup.header.derived, shape);
+  if (!transitions) return transitions.error();
+  if (transitions->empty()) made.note = "the policy draws one level of the chain at every distance";
+  if (transitions->empty()) return made;
+  if (auto used = useTransitionModule(chain, setup, *transitions); !used) {
+    const std::string why = fmt::format("the transition shaders do not compile with the distance '{}': {}",
+                                        shape.distance, used.error().message);
+    if (options.transitionDistance) return Failure{why};
+    made.note = why + " (--transition-distance gives a distance the shader can compute)";
+    return made;
+  }
+  for (const Transition& t : *transitions) {
+    auto png = imageOf(tuner, t.placement);
+    if (!png) {
+      return Failure{fmt::format("the transition from level {} to level {}: {}", t.from, t.to, png.error().message)};
+    }
+    made.images.push_back(std::move(png).value());
+  }
+  made.transitions = std::move(transitions).value();
+  return made;
 }
 
 // The search on the renderer, then its outputs; the exit status.
@@ -156,16 +223,23 @@ int search(const SearchOptions& options, const simplify::UserRules& rules, engin
   auto chain = greedySearch(*setup, options, out);
   if (!chain) return fail(chain.error().message);
   std::optional<ChainPolicy> policy;
+  ChainTransitions transitions;
   if (!chain->steps.empty()) {
     auto chosen = chainPolicy(*chain, *setup, renderer, options, options.outputDir);
     if (!chosen) return fail(chosen.error().message);
     policy = std::move(chosen).value();
     out << "level-of-detail policy of the chain:\n" << policy->table;
+    auto made = makeTransitions(*chain, *policy, *setup, options, tuner);
+    if (!made) return fail(made.error().message);
+    transitions = std::move(made).value();
+    out << fmt::format("transition shaders: {}\n", transitions.transitions.empty()
+                                                       ? "none: " + transitions.note
+                                                       : std::to_string(transitions.transitions.size()));
   }
   auto images = levelImages(tuner, *chain);
   if (!images) return fail(images.error().message);
-  auto files = searchOutputs(
-      *chain, {outputHeader, &options, tuner.referenceMs(), policy ? &*policy : nullptr, std::move(images).value()});
+  auto files = searchOutputs(*chain, {outputHeader, &options, tuner.referenceMs(), policy ? &*policy : nullptr,
+                                      std::move(images).value(), std::move(transitions)});
   if (!files) return fail(files.error().message);
   if (auto written = replaceDirectoryAtomically(options.outputDir, *files); !written) {
     return fail(written.error().message);

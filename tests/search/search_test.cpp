@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +20,7 @@
 #include "driver/exit_codes.h"
 #include "engine/device_fixture.h"
 #include "lod/lod_policy.h"
+#include "scene/texture.h"
 #include "search/search_tool.h"
 #include "tune/tune_cli.h"
 
@@ -143,16 +146,34 @@ class SearchRun : public vk::testing::DeviceTest {
     return args;
   }
   // spirec on the written module with level K's decisions: the placement it dumps.
-  std::string compileLevel(size_t k) {
+  std::string compileLevel(size_t k) { return compileDecisions(dir_ / fmt::format("out/level{}.decisions", k)); }
+  // spirec on the written module with `decisions`, without a warning: the
+  // placement it dumps.
+  std::string compileDecisions(const fs::path& decisions) {
     const fs::path err = dir_ / "spirec.err";
     const fs::path placement = dir_ / "placement.txt";
     const std::string command =
         fmt::format("{} '{}' -I '{}' --shader BlurredSearch --decisions '{}' --dump-placement > '{}' 2> '{}'",
-                    SPIRE_SPIREC_EXE, (dir_ / "out/BlurredSearch.spire").string(), SPIRE_SOURCE_DIR,
-                    (dir_ / fmt::format("out/level{}.decisions", k)).string(), placement.string(), err.string());
+                    SPIRE_SPIREC_EXE, (dir_ / "out/BlurredSearch.spire").string(), SPIRE_SOURCE_DIR, decisions.string(),
+                    placement.string(), err.string());
     EXPECT_EQ(std::system(command.c_str()), 0) << command << "\n" << readText(err);
     EXPECT_EQ(readText(err), "") << command;
     return readText(placement);
+  }
+
+  // Two images of the same size whose channels differ by at most 1 (of
+  // 255): mix(a, b, 1) need not round to b exactly.
+  static void expectSameImage(const fs::path& a, const fs::path& b) {
+    const auto imageA = scene::loadImage(a);
+    const auto imageB = scene::loadImage(b);
+    ASSERT_TRUE(imageA && imageB) << a << " " << b;
+    ASSERT_EQ(imageA->width, imageB->width);
+    ASSERT_EQ(imageA->bytes.size(), imageB->bytes.size());
+    int largest = 0;
+    for (size_t i = 0; i < imageA->bytes.size(); ++i) {
+      largest = std::max(largest, std::abs(int{imageA->bytes[i]} - int{imageB->bytes[i]}));
+    }
+    EXPECT_LE(largest, 1) << a << " against " << b;
   }
 
   // lod_policy.json names some of the chain's levels, in the chain's order
@@ -172,6 +193,15 @@ class SearchRun : public vk::testing::DeviceTest {
       ASSERT_EQ(level.decisions.count("BlurredSearch"), 1U) << readText(dir_ / "out/lod_policy.json");
       const fs::path file = level.decisions.at("BlurredSearch");
       EXPECT_EQ(fs::canonical(file.parent_path()), fs::canonical(dir_ / "out"));
+      // A transition's band lies between the two levels it blends.
+      if (file.stem().string().starts_with("transition")) {
+        ASSERT_TRUE(i > 0 && i + 1 < policy->levels.size()) << readText(dir_ / "out/lod_policy.json");
+        EXPECT_EQ(file.filename(),
+                  fmt::format("transition{}_{}.decisions",
+                              policy->levels[i - 1].decisions.at("BlurredSearch").stem().string().substr(5),
+                              policy->levels[i + 1].decisions.at("BlurredSearch").stem().string().substr(5)));
+        continue;
+      }
       const size_t k = std::stoul(file.stem().string().substr(std::string("level").size()));
       EXPECT_LT(k, levels);
       // The nearest band may skip level 0 where a level's error is 0 (as
@@ -235,6 +265,14 @@ TEST_F(SearchRun, WritesAMonotoneChainOfAccumulatingRewrites) {
     ASSERT_TRUE(fs::exists(image)) << image;
     EXPECT_NE(readText(dir_ / "out/report.md").find(fmt::format("](level{}.png)", k)), std::string::npos);
   }
+  // The test's shader has no cameraPos, so the default distance of the
+  // transition shaders does not compile: the report says so, and the policy
+  // has none.
+  EXPECT_NE(readText(dir_ / "out/report.md").find("the transition shaders do not compile with the distance"),
+            std::string::npos);
+  EXPECT_TRUE(std::none_of(fs::directory_iterator(dir_ / "out"), fs::directory_iterator(), [](const auto& entry) {
+    return entry.path().filename().string().starts_with("transition");
+  }));
   // Level 0 is the original, the last level lost at least one blur: the
   // images differ.
   EXPECT_NE(readText(dir_ / "out/level0.png"), readText(dir_ / "out" / fmt::format("level{}.png", rows.size() - 1)));
@@ -477,6 +515,39 @@ shader Ramp using EnginePipeline {
   EXPECT_NE(out.str().find("in b is closest to a"), std::string::npos) << out.str();
   EXPECT_NE(out.str().find("with the step's other candidates: cycle among components"), std::string::npos) << out.str();
   EXPECT_EQ(csvRows(dir_ / "out/chain.csv").size(), 2U) << out.str();
+}
+
+// He et al.'s transition shaders: at each switch of the policy, a band
+// that blends the two levels by a distance the shader computes. With the
+// distance 0 every pixel is before the blend and the transition draws the
+// nearer level; with 1e9 every pixel is past it and it draws the farther one.
+TEST_F(SearchRun, TransitionShadersBlendTheTwoLevelsOfEachSwitchByDistance) {
+  for (const char* distance : {"0.0", "1e9"}) {
+    SCOPED_TRACE(distance);
+    std::ostringstream out, err;
+    ASSERT_EQ(runSearchTool(searchArgs({"--max-levels", "3", "--max-error", "0.5", "--transition-distance", distance}),
+                            out, err),
+              kExitSuccess)
+        << err.str() << out.str();
+    const std::string policy = readText(dir_ / "out/lod_policy.json");
+    std::vector<std::pair<size_t, size_t>> transitions;
+    for (const auto& entry : fs::directory_iterator(dir_ / "out")) {
+      size_t from = 0, to = 0;
+      if (std::sscanf(entry.path().filename().c_str(), "transition%zu_%zu.decisions", &from, &to) == 2) {
+        transitions.emplace_back(from, to);
+      }
+    }
+    ASSERT_FALSE(transitions.empty()) << out.str() << policy;
+    for (const auto& [from, to] : transitions) {
+      const std::string name = fmt::format("transition{}_{}", from, to);
+      EXPECT_NE(policy.find(fmt::format("\"{}.decisions\"", name)), std::string::npos) << policy;
+      const std::string placement = compileDecisions(dir_ / "out" / (name + ".decisions"));
+      EXPECT_NE(placement.find(fmt::format("color = Fragment:{}\n", name)), std::string::npos) << placement;
+      const size_t shown = std::string(distance) == "0.0" ? from : to;
+      expectSameImage(dir_ / "out" / (name + ".png"), dir_ / "out" / fmt::format("level{}.png", shown));
+    }
+    expectAPolicyOfTheChain(csvRows(dir_ / "out/chain.csv").size());
+  }
 }
 
 TEST(SearchCommandLine, RefusesWhatItCannotRun) {

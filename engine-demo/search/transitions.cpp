@@ -1,0 +1,156 @@
+#include "search/transitions.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <optional>
+
+#include "search/candidates.h"
+#include "search/search_outputs.h"
+#include "simplify/average_sites.h"
+
+namespace spire::search {
+namespace {
+
+// The chain level a policy band draws `derived` with: K of its
+// `levelK.decisions`; nullopt for a band that names no level of the chain.
+std::optional<size_t> chainLevel(const lod::LodLevel& band, const std::string& derived) {
+  const auto it = band.decisions.find(derived);
+  if (it == band.decisions.end() || !band.member.empty()) return std::nullopt;
+  const std::string stem = it->second.stem().string();
+  const std::string_view digits =
+      std::string_view(stem).substr(std::min(stem.size(), std::string_view("level").size()));
+  if (!stem.starts_with("level") || digits.empty() || digits.size() > 6 ||
+      !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return std::nullopt;
+  }
+  const size_t k = std::stoul(std::string(digits));
+  if (it->second.filename() != levelFileName(k)) return std::nullopt;
+  return k;
+}
+
+std::string placementOf(const Placement& placement, const std::string& component) {
+  for (const auto& [name, where] : placement) {
+    if (name == component) return where;
+  }
+  return {};
+}
+
+// One transition's definitions and placement, from the chain's module.
+class TransitionWriter {
+ public:
+  TransitionWriter(const ShaderLibrary& module, const sem::Shader& shader) : module_(module), shader_(shader) {}
+
+  Expected<Transition, Failure> write(const Level& near, const Level& far, Transition t, const TransitionShape& shape) {
+    const std::string fade = fmt::format("spireTransitionFade{}_{}", t.from, t.to);
+    t.definitions = fmt::format(
+        "\n    // The transition from level {0} to level {1}: level {0} up to {2:.9g} from the eye, level {1} "
+        "from {3:.9g}.\n    float {4} = clamp(({5} - {2:.9g}) / {6:.9g}, 0.0, 1.0);\n",
+        t.from, t.to, t.nearDistance, t.farDistance, fade, shape.distance, t.farDistance - t.nearDistance);
+    t.placement = near.placement;
+    Placement helpers;
+    for (auto& [component, where] : t.placement) {
+      const std::string other = placementOf(far.placement, component);
+      if (other.empty() || other == where) continue;
+      auto blended = blend(component, where, other, t, fade, helpers);
+      if (!blended) return blended.error();
+      where = worldOf(where) + ":" + *blended;
+    }
+    // What only the farther level computes keeps its placement.
+    for (const auto& [component, where] : far.placement) {
+      if (placementOf(t.placement, component).empty()) t.placement.emplace_back(component, where);
+    }
+    t.placement.insert(t.placement.end(), helpers.begin(), helpers.end());
+    return t;
+  }
+
+ private:
+  // Defines `component:transitionA_B` from copies of its definitions at
+  // `near` and `far`; its variation name.
+  Expected<std::string, Failure> blend(const std::string& component, const std::string& near, const std::string& far,
+                                       Transition& t, const std::string& fade, Placement& helpers) {
+    const sem::Component* c = shader_.findComponent(component);
+    if (!c || !c->type) return Failure{fmt::format("the chain's shader has no component '{}'", component)};
+    const std::string type = c->type->name();
+    std::string copies[2];
+    const std::string* where[2] = {&near, &far};
+    for (size_t side = 0; side < 2; ++side) {
+      copies[side] = fmt::format("spireTransition{}_{}_{}_{}", t.from, t.to, component, side == 0 ? "near" : "far");
+      const ast::ComponentDecl* decl = currentDecl(shader_, *c, *where[side]);
+      if (!decl)
+        return Failure{fmt::format("the chain's shader has no definition of '{}' at '{}'", component, *where[side])};
+      const uint32_t after = decl->variation.empty() ? decl->nameRange.end : decl->variationRange.end;
+      const std::string_view body = module_.sources().text(SourceRange{decl->range.file, after, decl->range.end});
+      t.definitions +=
+          fmt::format("    {}{} {}{}\n", decl->world ? "@" + *decl->world + " " : "", type, copies[side], body);
+      helpers.emplace_back(copies[side], worldOf(*where[side]));
+    }
+    const std::string variation = fmt::format("transition{}_{}", t.from, t.to);
+    const std::string value = simplify::floatScalarCount(type)
+                                  ? fmt::format("mix({}, {}, {})", copies[0], copies[1], fade)
+                                  : fmt::format("{} < 0.5 ? {} : {}", fade, copies[0], copies[1]);
+    t.definitions += fmt::format("    {} {}:{} = {};\n", type, component, variation, value);
+    return variation;
+  }
+
+  const ShaderLibrary& module_;
+  const sem::Shader& shader_;
+};
+
+}  // namespace
+
+std::string transitionFileName(const Transition& transition) {
+  return fmt::format("transition{}_{}.decisions", transition.from, transition.to);
+}
+
+std::string transitionDecisionText(const Transition& transition, const ModuleHeader& header) {
+  return graph::writeDecisionFile(
+      placementDecisions(header.derived, transition.placement),
+      fmt::format("spire-simplify --search: the transition of {}'s chain from level {} to level {}, blended by "
+                  "distance from {:.9g} to {:.9g}.",
+                  header.base, transition.from, transition.to, transition.nearDistance, transition.farDistance));
+}
+
+Expected<std::vector<Transition>, Failure> chainTransitions(const Chain& chain, const lod::LodPolicy& policy,
+                                                            const ShaderLibrary& chainModule,
+                                                            const std::string& derived, const TransitionShape& shape) {
+  const sem::Shader* shader = chainModule.model().findShader(derived);
+  if (!shader) return Failure{fmt::format("the chain's module has no shader '{}'", derived)};
+  TransitionWriter writer(chainModule, *shader);
+  std::vector<Transition> transitions;
+  for (size_t band = 0; band + 1 < policy.levels.size(); ++band) {
+    const std::optional<size_t> from = chainLevel(policy.levels[band], derived);
+    const std::optional<size_t> to = chainLevel(policy.levels[band + 1], derived);
+    if (!from || !to || *from == *to || std::max(*from, *to) >= chain.levels.size()) continue;
+    if (chain.levels[*from].placement == chain.levels[*to].placement) continue;
+    const double start = band == 0 ? 0.0 : policy.levels[band - 1].until;
+    const double edge = policy.levels[band].until;
+    Transition t;
+    t.band = band;
+    t.from = *from;
+    t.to = *to;
+    t.nearDistance = edge - shape.width * (edge - start);
+    t.farDistance = edge;
+    auto written = writer.write(chain.levels[*from], chain.levels[*to], std::move(t), shape);
+    if (!written) return written.error();
+    transitions.push_back(std::move(written).value());
+  }
+  return transitions;
+}
+
+lod::LodPolicy withTransitions(lod::LodPolicy policy, const std::vector<Transition>& transitions,
+                               const std::string& derived, const std::filesystem::path& folder) {
+  // From the farthest band, so that the nearer bands keep their indices.
+  for (auto t = transitions.rbegin(); t != transitions.rend(); ++t) {
+    if (t->band + 1 >= policy.levels.size()) continue;
+    lod::LodLevel transition;
+    transition.until = policy.levels[t->band].until;
+    transition.decisions.emplace(derived, folder / transitionFileName(*t));
+    policy.levels[t->band].until = static_cast<float>(t->nearDistance);
+    policy.levels.insert(policy.levels.begin() + static_cast<std::ptrdiff_t>(t->band) + 1, std::move(transition));
+  }
+  return policy;
+}
+
+}  // namespace spire::search

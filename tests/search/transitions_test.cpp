@@ -1,0 +1,143 @@
+// The transition shaders of a chain (search/transitions.h) on a module the
+// test writes: where they blend, what they define and place, and the bands
+// they add to the policy. SearchRun draws them.
+#include "search/transitions.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "search/candidates.h"
+#include "search/search_outputs.h"
+
+namespace spire::search {
+namespace {
+
+// Level 1 rewrites `tint` (a float vector) and `steps` (an int).
+constexpr const char* kModule = R"(using "pipelines/engine.spire";
+
+shader Ramp using EnginePipeline {
+    @FrameUniform mat4 matMVP;
+    @FrameUniform vec3 cameraPos;
+    vec3 tint = vec3(vert_uv, 1.0);
+    int steps = 4;
+    vec4 projPos = matMVP * vec4(vert_pos, 1.0);
+    vec4 output = vec4(tint * float(steps) * 0.25, 1.0);
+}
+
+shader RampSearch : Ramp {
+    vec3 tint:level1 = vec3(0.5);
+    int steps:level1 = 2;
+}
+)";
+
+lod::LodLevel band(size_t level, float until) {
+  lod::LodLevel b;
+  b.until = until;
+  b.decisions.emplace("RampSearch", fmt::format("out/level{}.decisions", level));
+  return b;
+}
+
+class TransitionsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    compile_.frontEnd.includeDirs.push_back(SPIRE_SOURCE_DIR);
+    auto compiled = compileModule(compile_, "ramp_search.spire", kModule, "RampSearch");
+    ASSERT_TRUE(compiled) << compiled.error().message;
+    module_ = std::move(compiled).value();
+    chain_.levels.resize(2);
+    chain_.levels[0].placement = {{"tint", "Fragment"}, {"steps", "Fragment"}, {"output", "Fragment"}};
+    chain_.levels[1].placement = {{"tint", "Fragment:level1"}, {"steps", "Fragment:level1"}, {"output", "Fragment"}};
+  }
+
+  ModuleCompile compile_;
+  Chain chain_;
+  std::unique_ptr<ShaderLibrary> module_;
+};
+
+TEST_F(TransitionsTest, BlendEachComponentThatDiffersOverTheLastPartOfTheNearerBand) {
+  lod::LodPolicy policy;
+  policy.levels = {band(0, 10.0F), band(0, 20.0F), band(1, std::numeric_limits<float>::infinity())};
+  const TransitionShape shape{0.25, "length(cameraPos - vert_pos)"};
+  auto transitions = chainTransitions(chain_, policy, *module_, "RampSearch", shape);
+  ASSERT_TRUE(transitions) << transitions.error().message;
+  // Bands 0 and 1 draw the same level: one switch, at 20.
+  ASSERT_EQ(transitions->size(), 1U);
+  const Transition& t = transitions->front();
+  EXPECT_EQ(t.from, 0U);
+  EXPECT_EQ(t.to, 1U);
+  EXPECT_EQ(t.band, 1U);
+  EXPECT_DOUBLE_EQ(t.farDistance, 20.0);
+  EXPECT_DOUBLE_EQ(t.nearDistance, 17.5);  // the last quarter of 10..20
+  EXPECT_NE(t.definitions.find("clamp((length(cameraPos - vert_pos) - 17.5) / 2.5, 0.0, 1.0)"), std::string::npos)
+      << t.definitions;
+  // Both definitions copied, blended by mix where mix applies and switched
+  // halfway where it does not.
+  EXPECT_NE(t.definitions.find("vec3 spireTransition0_1_tint_near = vec3(vert_uv, 1.0);"), std::string::npos)
+      << t.definitions;
+  EXPECT_NE(t.definitions.find("vec3 spireTransition0_1_tint_far = vec3(0.5);"), std::string::npos);
+  EXPECT_NE(t.definitions.find("vec3 tint:transition0_1 = mix(spireTransition0_1_tint_near, "
+                               "spireTransition0_1_tint_far, spireTransitionFade0_1);"),
+            std::string::npos);
+  EXPECT_NE(t.definitions.find("int steps:transition0_1 = spireTransitionFade0_1 < 0.5 ? "
+                               "spireTransition0_1_steps_near : spireTransition0_1_steps_far;"),
+            std::string::npos)
+      << t.definitions;
+  const Placement expected{{"tint", "Fragment:transition0_1"},
+                           {"steps", "Fragment:transition0_1"},
+                           {"output", "Fragment"},
+                           {"spireTransition0_1_tint_near", "Fragment"},
+                           {"spireTransition0_1_tint_far", "Fragment"},
+                           {"spireTransition0_1_steps_near", "Fragment"},
+                           {"spireTransition0_1_steps_far", "Fragment"}};
+  EXPECT_EQ(t.placement, expected);
+
+  // The definitions compile in the derived shader, and the decision file
+  // places them.
+  std::string text = kModule;
+  text.insert(text.rfind('}'), t.definitions);
+  auto compiled = compileModule(compile_, "ramp_search.spire", text, "RampSearch");
+  EXPECT_TRUE(compiled) << (compiled ? "" : compiled.error().message) << text;
+  EXPECT_NE(transitionDecisionText(t, {"ramp.spire", "Ramp", "RampSearch"})
+                .find("RampSearch.tint = Fragment:transition0_1\n"),
+            std::string::npos);
+}
+
+TEST_F(TransitionsTest, ThePolicyGetsABandForEachTransitionBetweenTheLevelsItBlends) {
+  // Level 2 keeps level 1's tint and takes back the original steps.
+  chain_.levels.push_back(chain_.levels[1]);
+  chain_.levels[2].placement[1].second = "Fragment";
+  lod::LodPolicy policy;
+  policy.levels = {band(0, 10.0F), band(1, 30.0F), band(2, std::numeric_limits<float>::infinity())};
+  auto transitions = chainTransitions(chain_, policy, *module_, "RampSearch", {0.2, "0.0"});
+  ASSERT_TRUE(transitions) << transitions.error().message;
+  ASSERT_EQ(transitions->size(), 2U);
+  const lod::LodPolicy with = withTransitions(policy, *transitions, "RampSearch", "out");
+  ASSERT_EQ(with.levels.size(), 5U);
+  const float ends[] = {8.0F, 10.0F, 26.0F, 30.0F};
+  const char* files[] = {"out/level0.decisions", "out/transition0_1.decisions", "out/level1.decisions",
+                         "out/transition1_2.decisions", "out/level2.decisions"};
+  for (size_t i = 0; i < with.levels.size(); ++i) {
+    EXPECT_EQ(with.levels[i].decisions.at("RampSearch"), files[i]) << i;
+    if (i < 4) {
+      EXPECT_FLOAT_EQ(with.levels[i].until, ends[i]) << i;
+    }
+  }
+  EXPECT_TRUE(std::isinf(with.levels[4].until));
+  // Only steps differs between levels 1 and 2.
+  EXPECT_EQ(transitions->back().placement[0], (std::pair<std::string, std::string>{"tint", "Fragment:level1"}));
+  EXPECT_EQ(transitions->back().placement[1], (std::pair<std::string, std::string>{"steps", "Fragment:transition1_2"}));
+
+  // A switch between two levels that place alike blends nothing: no band.
+  chain_.levels[2] = chain_.levels[1];
+  auto none = chainTransitions(chain_, policy, *module_, "RampSearch", {0.2, "0.0"});
+  ASSERT_TRUE(none) << none.error().message;
+  EXPECT_EQ(none->size(), 1U);
+}
+
+}  // namespace
+}  // namespace spire::search
