@@ -21,7 +21,7 @@ using scene::JsonMember;
 using scene::JsonValue;
 
 const scene::KeyList kPolicyKeys = {"levels", "hysteresis", "transitionFrames"};
-const scene::KeyList kLevelKeys = {"member", "decisions", "until"};
+const scene::KeyList kLevelKeys = {"member", "decisions", "until", "blend"};
 
 class PolicyReader {
  public:
@@ -56,6 +56,10 @@ class PolicyReader {
     for (size_t i = 0; i < value.elements.size(); ++i) {
       const bool last = i + 1 == value.elements.size();
       LodLevel level = readLevel(value.elements[i], last);
+      if (level.blend && (i == 0 || last)) {
+        diags_.report(DiagCode::E7004, level.range,
+                      "a 'blend' band blends the bands on either side of it: it cannot be the first or the last");
+      }
       if (!last && !policy.levels.empty() && level.until <= policy.levels.back().until) {
         diags_.report(DiagCode::E7004, level.range,
                       fmt::format("level {} ends at {}, not beyond level {} ({}): bands go from near to far", i,
@@ -75,6 +79,8 @@ class PolicyReader {
         if (auto name = check_.text(member.value, "'member'")) level.member = *name;
       } else if (member.key == "decisions") {
         readDecisions(member.value, level);
+      } else if (member.key == "blend") {
+        if (auto blend = check_.flag(member.value, "'blend'")) level.blend = *blend;
       } else if (member.key == "until") {
         if (last) {
           diags_.report(DiagCode::E7002, member.keyRange,
@@ -180,6 +186,7 @@ std::string formatLodPolicy(const LodPolicy& policy, const std::filesystem::path
       fields.push_back(fmt::format("\"decisions\": {{{}}}", fmt::join(files, ", ")));
     }
     text += fmt::format("    {{{}", fmt::join(fields, ", "));
+    if (level.blend) text += ", \"blend\": true";
     if (std::isfinite(level.until)) text += fmt::format(", \"until\": {}", level.until);
     text += i + 1 < policy.levels.size() ? "},\n" : "}\n";
   }

@@ -18,7 +18,8 @@
 // draws the instances of TerrainSearch with level2.decisions (a path
 // relative to the policy file) and every other instance as the scene gives
 // it. That is how a chain of decision files over one shader, such as
-// spire-simplify --search writes, becomes a policy.
+// spire-simplify --search writes, becomes a policy. `"blend": true` marks a
+// band whose decision files are transition shaders between its neighbours.
 #pragma once
 
 #include <filesystem>
@@ -40,9 +41,16 @@ struct LodLevel {
   // By the instance's shader name (before `member` applies): the decision
   // file its instances draw with in this band instead of their own.
   std::map<std::string, std::filesystem::path> decisions;
+  // A transition shader's band (He et al. 2015): what it draws blends the
+  // bands on either side by each pixel's distance, so it is drawn by every
+  // object whose bounding sphere reaches into it, and its edges have no
+  // hysteresis: at them the blend is one of its neighbours.
+  bool blend = false;
 
   // Whether two levels draw every instance alike (their bands aside).
-  bool drawsAs(const LodLevel& other) const { return member == other.member && decisions == other.decisions; }
+  bool drawsAs(const LodLevel& other) const {
+    return member == other.member && decisions == other.decisions && blend == other.blend;
+  }
 };
 
 // `instance` as `level` draws it: compiled as `shader<member>` when the

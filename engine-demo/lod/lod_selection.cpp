@@ -6,31 +6,48 @@
 
 namespace spire::lod {
 
-uint32_t levelFor(const LodPolicy& policy, float distance, uint32_t current) {
-  const auto last = static_cast<uint32_t>(policy.levels.size() - 1);
-  uint32_t level = std::min(current, last);
-  while (level < last && distance > policy.levels[level].until * (1.0F + policy.hysteresis)) ++level;
-  while (level > 0 && distance < policy.levels[level - 1].until * (1.0F - policy.hysteresis)) --level;
-  return level;
-}
-
 namespace {
+
+// The hysteresis at band `band`'s far edge: none next to a blend band,
+// whose pixels at the edge are the neighbour's exactly.
+float hysteresisAt(const LodPolicy& policy, uint32_t band) {
+  return policy.levels[band].blend || policy.levels[band + 1].blend ? 0.0F : policy.hysteresis;
+}
 
 float distanceTo(std::span<const glm::vec3> centers, std::span<const float> radii, size_t i, const glm::vec3& camera) {
   const float d = glm::distance(centers[i], camera);
   return radii.empty() ? d : std::max(0.0F, d - radii[i]);
 }
 
+// To the farthest point of the bounding sphere.
+float farthestFrom(std::span<const glm::vec3> centers, std::span<const float> radii, size_t i,
+                   const glm::vec3& camera) {
+  const float d = glm::distance(centers[i], camera);
+  return radii.empty() ? d : d + radii[i];
+}
+
 }  // namespace
+
+uint32_t levelFor(const LodPolicy& policy, float distance, uint32_t current, float farthest) {
+  const auto last = static_cast<uint32_t>(policy.levels.size() - 1);
+  uint32_t level = std::min(current, last);
+  while (level < last && distance > policy.levels[level].until * (1.0F + hysteresisAt(policy, level))) ++level;
+  while (level > 0 && distance < policy.levels[level - 1].until * (1.0F - hysteresisAt(policy, level - 1))) --level;
+  if (level < last && policy.levels[level + 1].blend && std::max(distance, farthest) > policy.levels[level].until) {
+    ++level;
+  }
+  return level;
+}
 
 LodSelector::LodSelector(LodPolicy policy, size_t instances) : policy_(std::move(policy)), states_(instances) {}
 
 void LodSelector::reset(std::span<const glm::vec3> centers, const glm::vec3& camera, std::span<const float> radii) {
+  // Without hysteresis: the band the distance is in.
+  LodPolicy exact = policy_;
+  exact.hysteresis = 0.0F;
   for (size_t i = 0; i < states_.size(); ++i) {
-    // Without hysteresis: the band the distance is in.
-    const float d = distanceTo(centers, radii, i, camera);
-    uint32_t level = 0;
-    while (level + 1 < policy_.levels.size() && d > policy_.levels[level].until) ++level;
+    const uint32_t level =
+        levelFor(exact, distanceTo(centers, radii, i, camera), 0, farthestFrom(centers, radii, i, camera));
     states_[i] = {static_cast<uint8_t>(level), static_cast<uint8_t>(level), 0};
   }
 }
@@ -40,7 +57,8 @@ void LodSelector::update(std::span<const glm::vec3> centers, const glm::vec3& ca
   for (size_t i = 0; i < states_.size(); ++i) {
     LodState& s = states_[i];
     if (s.fadeLeft > 0) --s.fadeLeft;
-    const uint32_t level = levelFor(policy_, distanceTo(centers, radii, i, camera), s.level);
+    const uint32_t level =
+        levelFor(policy_, distanceTo(centers, radii, i, camera), s.level, farthestFrom(centers, radii, i, camera));
     if (level == s.level) continue;
     if (s.fadeLeft == 0) {
       s.from = s.level;

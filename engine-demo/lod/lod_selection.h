@@ -20,8 +20,11 @@ namespace spire::lod {
 // The level for an object at `distance` that is now at `current`: one band
 // farther only beyond the band's edge times (1 + hysteresis), one nearer
 // only within the nearer band's edge times (1 - hysteresis); repeated, so a
-// jump across several bands lands in the right one.
-uint32_t levelFor(const LodPolicy& policy, float distance, uint32_t current);
+// jump across several bands lands in the right one. An edge next to a blend
+// band has no hysteresis, and an object whose farthest point (`farthest`;
+// by default `distance`) reaches past its band into a blend band draws
+// that.
+uint32_t levelFor(const LodPolicy& policy, float distance, uint32_t current, float farthest = -1.0F);
 
 struct LodState {
   uint8_t level = 0;      // the level switched to

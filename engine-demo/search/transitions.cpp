@@ -145,6 +145,7 @@ lod::LodPolicy withTransitions(lod::LodPolicy policy, const std::vector<Transiti
   for (auto t = transitions.rbegin(); t != transitions.rend(); ++t) {
     if (t->band + 1 >= policy.levels.size()) continue;
     lod::LodLevel transition;
+    transition.blend = true;
     transition.until = policy.levels[t->band].until;
     transition.decisions.emplace(derived, folder / transitionFileName(*t));
     policy.levels[t->band].until = static_cast<float>(t->nearDistance);

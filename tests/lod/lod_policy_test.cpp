@@ -38,12 +38,16 @@ TEST(LodPolicyTest, ReadsLevelsNearestFirst) {
 }
 
 TEST(LodPolicyTest, FormattedPolicyReadsBackTheSame) {
-  const Parsed p = parse(R"({"levels": [{"member": "A", "until": 7.5}, {"member": "B"}]})");
+  const Parsed p = parse(
+      R"({"levels": [{"member": "A", "until": 7.5}, {"member": "T", "blend": true, "until": 8}, {"member": "B"}]})");
   ASSERT_TRUE(p.policy) << p.diagnostics;
   const Parsed again = parse(formatLodPolicy(*p.policy));
   ASSERT_TRUE(again.policy) << again.diagnostics;
   EXPECT_EQ(formatLodPolicy(*again.policy), formatLodPolicy(*p.policy));
   EXPECT_FLOAT_EQ(again.policy->levels[0].until, 7.5F);
+  EXPECT_FALSE(again.policy->levels[0].blend);
+  EXPECT_TRUE(again.policy->levels[1].blend);
+  EXPECT_FALSE(again.policy->levels[1].drawsAs(again.policy->levels[0]));
 }
 
 TEST(LodPolicyTest, BadPoliciesAreReportedAtTheirValues) {
@@ -67,6 +71,11 @@ TEST(LodPolicyTest, BadPoliciesAreReportedAtTheirValues) {
       {R"({"levels": []})", "'levels'"},
       {R"({"hysteresis": 0.1})", "the policy has no 'levels'"},
       {R"({"levels": [{"member": "A"}],})", "E7001"},
+      {R"({"levels": [{"member": "A", "blend": true, "until": 3}, {"member": "B"}]})",
+       "policy.json:1:13: error[E7004]: a 'blend' band blends the bands on either side of it"},
+      {R"({"levels": [{"member": "A", "until": 3}, {"member": "B", "blend": true}]})",
+       "cannot be the first or the last"},
+      {R"({"levels": [{"member": "A", "blend": 1, "until": 3}, {"member": "B"}]})", "'blend'"},
   };
   for (const Case& c : cases) {
     const Parsed p = parse(c.text);

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <random>
 
+#include <glm/vec3.hpp>
+
 namespace spire::lod {
 namespace {
 
@@ -28,6 +30,37 @@ TEST(LodSelectionTest, BandsWithHysteresisAtEachEdge) {
   EXPECT_EQ(levelFor(policy, 8.5F, 1), 0U);
   EXPECT_EQ(levelFor(policy, 100.0F, 0), 2U);  // several bands at once
   EXPECT_EQ(levelFor(policy, 1.0F, 2), 0U);
+}
+
+// A blend band (a transition shader's) between HQ and MQ, from 8 to 10.
+LodPolicy withBlend() {
+  LodPolicy policy = threeLevels(0.1F);
+  policy.levels[0].until = 8.0F;
+  policy.levels.insert(policy.levels.begin() + 1, LodLevel{"", 10.0F, {}, {}, true});
+  return policy;
+}
+
+TEST(LodSelectionTest, ABlendBandIsDrawnByEveryObjectReachingIntoItAndItsEdgesHaveNoHysteresis) {
+  const LodPolicy policy = withBlend();
+  EXPECT_EQ(levelFor(policy, 5.0F, 0, 7.9F), 0U);   // all of the object is before the blend
+  EXPECT_EQ(levelFor(policy, 5.0F, 0, 8.5F), 1U);   // its far side reaches into it
+  EXPECT_EQ(levelFor(policy, 8.1F, 0), 1U);         // no hysteresis into it
+  EXPECT_EQ(levelFor(policy, 7.9F, 1, 7.95F), 0U);  // nor out of it, nearer
+  EXPECT_EQ(levelFor(policy, 10.1F, 1), 2U);        // nor farther
+  EXPECT_EQ(levelFor(policy, 9.9F, 2, 12.0F), 1U);
+  EXPECT_EQ(levelFor(policy, 32.0F, 2), 2U);  // the other edges keep theirs
+  EXPECT_EQ(levelFor(policy, 33.5F, 2), 3U);
+
+  // Starting a path: the same choice, from the bounding spheres.
+  LodSelector selector(policy, 2);
+  const std::array<glm::vec3, 2> centers{glm::vec3(7.0F, 0.0F, 0.0F), glm::vec3(5.0F, 0.0F, 0.0F)};
+  const std::array<float, 2> radii{1.5F, 1.5F};  // nearest 5.5 and 3.5, farthest 8.5 and 6.5
+  selector.reset(centers, glm::vec3(0.0F), radii);
+  EXPECT_EQ(selector.state(0).level, 1U);
+  EXPECT_EQ(selector.state(1).level, 0U);
+  selector.update(centers, glm::vec3(0.0F), radii);
+  EXPECT_EQ(selector.state(0).level, 1U);
+  EXPECT_EQ(selector.state(1).level, 0U);
 }
 
 // Property: over random walks of distances, a level only changes when the

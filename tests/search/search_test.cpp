@@ -194,6 +194,7 @@ class SearchRun : public vk::testing::DeviceTest {
       const fs::path file = level.decisions.at("BlurredSearch");
       EXPECT_EQ(fs::canonical(file.parent_path()), fs::canonical(dir_ / "out"));
       // A transition's band lies between the two levels it blends.
+      EXPECT_EQ(level.blend, file.stem().string().starts_with("transition"));
       if (file.stem().string().starts_with("transition")) {
         ASSERT_TRUE(i > 0 && i + 1 < policy->levels.size()) << readText(dir_ / "out/lod_policy.json");
         EXPECT_EQ(file.filename(),

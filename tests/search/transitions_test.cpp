@@ -123,6 +123,7 @@ TEST_F(TransitionsTest, ThePolicyGetsABandForEachTransitionBetweenTheLevelsItBle
                          "out/transition1_2.decisions", "out/level2.decisions"};
   for (size_t i = 0; i < with.levels.size(); ++i) {
     EXPECT_EQ(with.levels[i].decisions.at("RampSearch"), files[i]) << i;
+    EXPECT_EQ(with.levels[i].blend, i % 2 == 1) << i;
     if (i < 4) {
       EXPECT_FLOAT_EQ(with.levels[i].until, ends[i]) << i;
     }
