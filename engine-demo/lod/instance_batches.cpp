@@ -26,7 +26,11 @@ InstanceBatcher::InstanceBatcher(DrawGroups groups, uint32_t blockCount)
 
 void InstanceBatcher::add(const SceneInstance& instance, uint32_t index, const LodSelector& selector) {
   LevelDraw draws[2];
-  const uint32_t n = selector.draws(index, draws);
+  uint32_t n = selector.draws(index, draws);
+  if (n == 2 && !groups_.canFade(groups_.groupOf[instance.prototype][draws[1].level])) {
+    draws[0] = {draws[1].level, 1.0F};
+    n = 1;
+  }
   for (uint32_t d = 0; d < n; ++d) {
     const uint32_t group = groups_.groupOf[instance.prototype][draws[d].level];
     const uint32_t block = draws[d].fade < 1.0F ? blockCount_ + instance.block : instance.block;

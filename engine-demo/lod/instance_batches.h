@@ -34,6 +34,13 @@ struct DrawGroups {
   std::vector<std::vector<uint32_t>> groupOf;  // [prototype][level]
   std::vector<uint32_t> meshOf;                // [prototype]
   uint32_t groupCount = 0;
+  // [group]: whether its kernels read lodFade, the weight a cross-fade
+  // blends with, which they write as the output's alpha. A switch into a
+  // group that does not is drawn at once, opaque: blended by an alpha that
+  // is not lodFade, the fade would show other colors. Empty: every group.
+  std::vector<uint8_t> fades;
+
+  bool canFade(uint32_t group) const { return fades.empty() || fades[group] != 0; }
 };
 
 // One instance in a group's record buffer.

@@ -52,6 +52,14 @@ Bounds meshBounds(const scene::Mesh& mesh) {
   return bounds;
 }
 
+// Whether the program's kernels read the cross-fade weight (lod::DrawGroups::fades).
+bool readsLodFade(const VariantProgram& program) {
+  return std::any_of(program.kernels.begin(), program.kernels.end(), [](const KernelProgram& kernel) {
+    return std::any_of(kernel.inputs.begin(), kernel.inputs.end(),
+                       [](const KernelInput& input) { return input.component == "lodFade"; });
+  });
+}
+
 // What the kernels read that is the same for every object of a batch: the
 // material's values. A value that differs per object but is not read per
 // instance (a uniform bake read as a uniform, a texture bake read as a
@@ -203,6 +211,7 @@ Expected<void> LodScene::Impl::formGroups() {
         groups.push_back(std::make_unique<DrawGroup>());
         groups.back()->level = level;
         groups.back()->representative = p;
+        drawGroups.fades.push_back(readsLodFade(program) ? 1 : 0);
       }
       DrawGroup& group = *groups[it->second];
       group.layerOf.emplace(p, static_cast<uint32_t>(group.prototypes.size()));

@@ -73,6 +73,34 @@ TEST(InstanceBatchesTest, PrototypesSharingAGroupLandInOneBatchPerBlock) {
   EXPECT_EQ(out.records[4].size(), 8U);
 }
 
+// A switch into a level whose group cannot fade (its kernels do not read
+// lodFade) draws that level at once, opaque; into one that can, both
+// levels, the new one blended.
+TEST(InstanceBatchesTest, ASwitchIntoAGroupThatCannotFadeIsDrawnAtOnce) {
+  for (const bool canFade : {true, false}) {
+    SCOPED_TRACE(canFade);
+    DrawGroups groups;
+    groups.groupOf = {{0, 1}};
+    groups.meshOf = {0};
+    groups.groupCount = 2;
+    groups.fades = {1, canFade ? uint8_t{1} : uint8_t{0}};
+    const std::vector<SceneInstance> instances{{{0, 0, -5.0F}, 0.5F, 0, 0}};
+    LodPolicy policy = twoLevels();
+    policy.transitionFrames = 4;
+    LodSelector selector(policy, 1);
+    const std::vector<glm::vec3> centers{instances[0].center};
+    selector.reset(centers, glm::vec3(0));
+    selector.update(centers, glm::vec3(0, 0, 20.0F));  // now 25 away: switching to LQ
+    InstanceBatcher batcher(groups, 1);
+    FrameBatches out;
+    batcher.build(instances, selector, viewProj(glm::vec3(0, 0, 20.0F), glm::vec3(0, 0, -1)), out);
+    ASSERT_EQ(out.batches.size(), canFade ? 2U : 1U);
+    EXPECT_EQ(out.records[1].size(), 1U);
+    EXPECT_EQ(out.records[1][0].fade == 1.0F, !canFade);
+    EXPECT_EQ(out.records[0].size(), canFade ? 1U : 0U);
+  }
+}
+
 // A subset (one object alone, as spire-tune --lod-policy draws it) batches
 // only the instances it lists, keeping their indices into the scene.
 TEST(InstanceBatchesTest, ASubsetDrawsOnlyTheInstancesItLists) {
