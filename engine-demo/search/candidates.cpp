@@ -11,13 +11,6 @@ namespace spire::search {
 
 namespace {
 
-std::string placementFor(const Placement& placement, const std::string& component) {
-  for (const auto& [name, place] : placement) {
-    if (name == component) return place;
-  }
-  return {};
-}
-
 std::string fromName(const std::string& component, const std::string& placement) {
   const std::string variation = variationOf(placement);
   return variation.empty() ? component : component + ":" + variation;
@@ -39,7 +32,7 @@ Expected<std::vector<Target>, Failure> targetsOf(const StepRequest& request) {
   std::vector<Target> targets;
   for (const std::string& name : request.components) {
     const sem::Component* component = shader->findComponent(name);
-    Target t{&name, placementFor(request.placement, name), nullptr, variationOf(placementFor(request.original, name))};
+    Target t{&name, placementOf(request.placement, name), nullptr, variationOf(placementOf(request.original, name))};
     if (!component || t.placement.empty()) continue;
     t.decl = currentDecl(*shader, *component, t.placement);
     if (!t.decl) return Failure{fmt::format("'{}' has no definition '{}'", name, fromName(name, t.placement))};

@@ -12,6 +12,13 @@ graph::DecisionFile placementDecisions(const std::string& shader, const Placemen
   return decisions;
 }
 
+std::string placementOf(const Placement& placement, const std::string& component) {
+  for (const auto& [name, where] : placement) {
+    if (name == component) return where;
+  }
+  return {};
+}
+
 std::string variationOf(const std::string& placement) {
   const size_t colon = placement.find(':');
   return colon == std::string::npos ? std::string() : placement.substr(colon + 1);
@@ -41,6 +48,12 @@ std::string chainModuleText(const ModuleHeader& header, const std::vector<const 
                         r->rule, r->before, r->after, r->text);
   }
   return text + more + "}\n";
+}
+
+std::string chainModuleText(const ModuleHeader& header, const Chain& chain, const std::string& more) {
+  std::vector<const Rewriting*> steps;
+  for (const Rewriting& r : chain.steps) steps.push_back(&r);
+  return chainModuleText(header, steps, more);
 }
 
 }  // namespace spire::search

@@ -37,6 +37,10 @@ Placement withVariation(Placement placement, const std::string& component, const
 // file says, and what its cost is computed for.
 graph::DecisionFile placementDecisions(const std::string& shader, const Placement& placement);
 
+// The placement of `component` in `placement`: "Fragment:level2", or ""
+// when it has none.
+std::string placementOf(const Placement& placement, const std::string& component);
+
 // The variation a placement names ("ggx" of "Fragment:ggx"), or "".
 std::string variationOf(const std::string& placement);
 // The world a placement names ("Fragment" of "Fragment:ggx").
@@ -79,5 +83,7 @@ struct ModuleHeader {
 // source of further definitions: the chain's transitions), as Spire source.
 std::string chainModuleText(const ModuleHeader& header, const std::vector<const Rewriting*>& definitions,
                             const std::string& more = {});
+// The same with every step of `chain`.
+std::string chainModuleText(const ModuleHeader& header, const Chain& chain, const std::string& more = {});
 
 }  // namespace spire::search

@@ -18,10 +18,8 @@ namespace fs = std::filesystem;
 // shader with level k's file (bands follow the levels' order; only the
 // order matters to the measurement).
 Expected<lod::LodPolicy, Failure> measuredPolicy(const Chain& chain, const SearchSetup& setup) {
-  std::vector<const Rewriting*> steps;
-  for (const Rewriting& r : chain.steps) steps.push_back(&r);
   const fs::path module = setup.workDir / "chain.spire";
-  if (auto written = writeFileAtomically(module.string(), chainModuleText(setup.header, steps)); !written) {
+  if (auto written = writeFileAtomically(module.string(), chainModuleText(setup.header, chain)); !written) {
     return written.error();
   }
   // A folder of their own, so that the files have the names the output

@@ -134,17 +134,14 @@ std::string moduleFileName(const ModuleHeader& header) { return header.derived +
 
 Expected<FileSet, Failure> searchOutputs(const Chain& chain, const OutputRequest& request) {
   FileSet files;
-  std::vector<const Rewriting*> steps;
-  for (const Rewriting& r : chain.steps) steps.push_back(&r);
-  std::string transitions;
   const ChainTransitions& made = request.transitions;
   for (size_t i = 0; i < made.transitions.size(); ++i) {
     const Transition& t = made.transitions[i];
-    transitions += t.definitions;
     files.emplace_back(transitionFileName(t), transitionDecisionText(t, request.header));
     if (i < made.images.size()) files.emplace_back(transitionImageName(t), made.images[i]);
   }
-  files.emplace_back(moduleFileName(request.header), chainModuleText(request.header, steps, transitions));
+  files.emplace_back(moduleFileName(request.header),
+                     chainModuleText(request.header, chain, transitionDefinitions(made.transitions)));
   for (size_t k = 0; k < chain.levels.size(); ++k) {
     files.emplace_back(levelFileName(k), levelDecisionText(chain, k, request.header));
   }

@@ -150,11 +150,7 @@ Expected<std::vector<std::string>, Failure> levelImages(tune::Tuner& tuner, cons
 // folder and compiled; the instance is pointed at it.
 Expected<void, Failure> useTransitionModule(const Chain& chain, const SearchSetup& setup,
                                             const std::vector<Transition>& transitions) {
-  std::vector<const Rewriting*> steps;
-  for (const Rewriting& r : chain.steps) steps.push_back(&r);
-  std::string definitions;
-  for (const Transition& t : transitions) definitions += t.definitions;
-  const std::string text = chainModuleText(setup.header, steps, definitions);
+  const std::string text = chainModuleText(setup.header, chain, transitionDefinitions(transitions));
   const fs::path path = setup.workDir / "transitions.spire";
   auto compiled = compileModule(setup.compile, path.string(), text, setup.header.derived);
   if (!compiled) return compiled.error();
@@ -176,16 +172,16 @@ Expected<ChainTransitions, Failure> makeTransitions(const Chain& chain, const Ch
     made.note = "--transition-width is 0";
     return made;
   }
-  std::vector<const Rewriting*> steps;
-  for (const Rewriting& r : chain.steps) steps.push_back(&r);
   auto module = compileModule(setup.compile, (setup.workDir / "chain.spire").string(),
-                              chainModuleText(setup.header, steps), setup.header.derived);
+                              chainModuleText(setup.header, chain), setup.header.derived);
   if (!module) return module.error();
   const TransitionShape shape{options.transitionWidth, options.transitionDistance.value_or(TransitionShape{}.distance)};
   auto transitions = chainTransitions(chain, policy.policy, **module, setup.header.derived, shape);
   if (!transitions) return transitions.error();
-  if (transitions->empty()) made.note = "the policy draws one level of the chain at every distance";
-  if (transitions->empty()) return made;
+  if (transitions->empty()) {
+    made.note = "the policy draws one level of the chain at every distance";
+    return made;
+  }
   if (auto used = useTransitionModule(chain, setup, *transitions); !used) {
     const std::string why = fmt::format("the transition shaders do not compile with the distance '{}': {}",
                                         shape.distance, used.error().message);

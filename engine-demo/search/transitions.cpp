@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <map>
 #include <optional>
 
@@ -18,23 +19,12 @@ namespace {
 std::optional<size_t> chainLevel(const lod::LodLevel& band, const std::string& derived) {
   const auto it = band.decisions.find(derived);
   if (it == band.decisions.end() || !band.member.empty()) return std::nullopt;
-  const std::string stem = it->second.stem().string();
-  const std::string_view digits =
-      std::string_view(stem).substr(std::min(stem.size(), std::string_view("level").size()));
-  if (!stem.starts_with("level") || digits.empty() || digits.size() > 6 ||
-      !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-    return std::nullopt;
-  }
-  const size_t k = std::stoul(std::string(digits));
-  if (it->second.filename() != levelFileName(k)) return std::nullopt;
+  const std::string name = it->second.filename().string();
+  size_t k = 0;
+  const auto parsed = std::from_chars(name.data() + std::min(name.size(), std::string_view("level").size()),
+                                      name.data() + name.size(), k);
+  if (parsed.ec != std::errc{} || name != levelFileName(k)) return std::nullopt;
   return k;
-}
-
-std::string placementOf(const Placement& placement, const std::string& component) {
-  for (const auto& [name, where] : placement) {
-    if (name == component) return where;
-  }
-  return {};
 }
 
 // One transition's definitions and placement, from the chain's module.
@@ -99,6 +89,12 @@ class TransitionWriter {
 };
 
 }  // namespace
+
+std::string transitionDefinitions(const std::vector<Transition>& transitions) {
+  std::string text;
+  for (const Transition& t : transitions) text += t.definitions;
+  return text;
+}
 
 std::string transitionFileName(const Transition& transition) {
   return fmt::format("transition{}_{}.decisions", transition.from, transition.to);

@@ -45,6 +45,9 @@ struct Transition {
   Placement placement;        // what its decision file says
 };
 
+// Every transition's definitions, for the chain's derived shader.
+std::string transitionDefinitions(const std::vector<Transition>& transitions);
+
 // The transition's decision file: "transition1_3.decisions", and its text.
 std::string transitionFileName(const Transition& transition);
 std::string transitionDecisionText(const Transition& transition, const ModuleHeader& header);

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <future>
 #include <set>
 
@@ -66,6 +67,10 @@ TEST_F(LodSceneTest, MaterialsSharingLockedKernelsLandInOneBatch) {
     // it has copies in; MQ and LQ: the locked kernels, one batch per block.
     const lod::DrawGroups& groups = scene->drawGroups();
     EXPECT_EQ(groups.groupCount, level == 0 ? 4U : 1U) << "level " << level;
+    // Every level of the library writes lodFade as its alpha: each group's
+    // switches cross-fade.
+    ASSERT_EQ(groups.fades.size(), groups.groupCount);
+    EXPECT_TRUE(std::all_of(groups.fades.begin(), groups.fades.end(), [](uint8_t f) { return f == 1; }));
     if (level > 0) {
       EXPECT_EQ(stats.batches, 4U);  // the four blocks
       EXPECT_GE(stats.drawCalls, 4U + 3U);
