@@ -4,7 +4,9 @@
 #include <CLI/CLI.hpp>
 
 #include <filesystem>
+#include <memory>
 #include <ostream>
+#include <sstream>
 
 #include "driver/compiler.h"
 #include "driver/shader_library.h"
@@ -102,11 +104,25 @@ bool buildVariantOutputs(ShaderLibrary& library, const graph::ChoiceSpace& space
   return true;
 }
 
-// Replaces each shader's directory as a whole, so that a reader never sees
-// kernels beside another variant's reflection.
-void writeDirectories(const std::vector<OutputDirectory>& directories, DiagnosticList& diags) {
+// Writes each shader's files beside its directory, to be put in place as a
+// whole, so that a reader never sees kernels beside another variant's
+// reflection. Stops at the first failure.
+std::vector<StagedDirectory> stageDirectories(const std::vector<OutputDirectory>& directories, DiagnosticList& diags) {
+  std::vector<StagedDirectory> staged;
   for (const OutputDirectory& dir : directories) {
-    if (auto written = replaceDirectoryAtomically(dir.path.string(), dir.files); !written) {
+    auto stage = StagedDirectory::stage(dir.path.string(), dir.files);
+    if (!stage) {
+      diags.report(DiagCode::E6003, {}, stage.error().message);
+      return {};
+    }
+    staged.push_back(std::move(stage).value());
+  }
+  return staged;
+}
+
+void commitDirectories(std::vector<StagedDirectory>& staged, DiagnosticList& diags) {
+  for (StagedDirectory& dir : staged) {
+    if (auto written = dir.commit(); !written) {
       diags.report(DiagCode::E6003, {}, written.error().message);
       return;
     }
@@ -187,6 +203,7 @@ struct SpirecOutput {
   std::string choices;                       // the choice file, with --choices
   std::string placements;                    // with --dump-placement
   std::vector<OutputDirectory> directories;  // with -o
+  std::vector<StagedDirectory> staged;       // the directories, written beside their place
 };
 
 // Applies --decisions to the selected shaders and builds their placement
@@ -234,18 +251,24 @@ void keepErrorsOnly(DiagnosticList& diags) {
   }
 }
 
-// Prints the diagnostics and, when there are no errors, writes the outputs;
-// returns the exit status.
-int finish(ShaderLibrary& library, const Options& options, const SpirecOutput& result, std::ostream& out,
-           std::ostream& err) {
+// Applies --warnings-as-errors or --quiet and, when there are no errors,
+// stages the output directories.
+void settle(ShaderLibrary& library, const Options& options, SpirecOutput& result) {
   DiagnosticList& diags = library.diagnostics();
-  const DiagnosticFormat format = options.diagnosticsFormat == "json" ? DiagnosticFormat::Json : DiagnosticFormat::Text;
   if (options.warningsAsErrors) {
     diags.promoteWarnings("treated as an error (--warnings-as-errors)");
   } else if (options.quiet) {
     keepErrorsOnly(diags);
   }
-  if (!diags.hasErrors()) writeDirectories(result.directories, diags);
+  if (!diags.hasErrors()) result.staged = stageDirectories(result.directories, diags);
+}
+
+// Prints the diagnostics and, when there are no errors, puts the outputs in
+// place; returns the exit status.
+int finish(ShaderLibrary& library, const Options& options, SpirecOutput& result, std::ostream& out, std::ostream& err) {
+  DiagnosticList& diags = library.diagnostics();
+  const DiagnosticFormat format = options.diagnosticsFormat == "json" ? DiagnosticFormat::Json : DiagnosticFormat::Text;
+  if (!diags.hasErrors()) commitDirectories(result.staged, diags);
   const std::string rendered = renderDiagnostics(library.sources(), diags, format);
   if (format == DiagnosticFormat::Json || !rendered.empty()) err << rendered;
   if (diags.hasErrors()) return kExitInputError;
@@ -267,24 +290,43 @@ int finish(ShaderLibrary& library, const Options& options, const SpirecOutput& r
   return kExitSuccess;
 }
 
-// One spirec run: a command line, or one line of a batch file.
-int runSpirecJob(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
-                 const SpirecEnvironment& environment) {
-  CLI::App app{"spirec: the Spire shader compiler", "spirec"};
+// What a run that stopped before compiling printed, replayed when it
+// finishes.
+SpirecFinish printed(int status, std::string outText, std::string errText) {
+  return [=](std::ostream& out, std::ostream& err) {
+    out << outText;
+    err << errText;
+    return status;
+  };
+}
+
+// A run's compiled state, kept until it finishes.
+struct PreparedRun {
   Options options;
+  std::unique_ptr<ShaderLibrary> library;
+  SpirecOutput result;
+};
+
+// Declares spirec's options and the --batch entry of --help, and parses
+// `args`; a status when the run stops there (--help, a usage error), with
+// what it printed in `out` and `err`.
+std::optional<int> parseSpirecArguments(const std::vector<std::string>& args, const SpirecEnvironment& environment,
+                                        Options& options, std::ostream& out, std::ostream& err) {
+  CLI::App app{"spirec: the Spire shader compiler", "spirec"};
   CLI::Option* choices = addOptions(app, options);
   // Only here for --help: batch mode is recognised before parsing, since its
   // FILE replaces the otherwise required sources.
   std::string batchFile;
   app.add_option("--batch", batchFile,
                  "Run each line of FILE as a separate spirec run (its arguments; '#' comments, \"...\" and '...' "
-                 "quoting, \\ escapes: docs/integration.md) in this one process; takes no other arguments")
+                 "quoting, \\ escapes: docs/integration.md) in this one process, -j N runs at a time (default: one "
+                 "per hardware thread); takes no other arguments")
       ->type_name("FILE");
   if (!environment.libraryDir.empty()) {
     app.footer("'using' files found neither next to their includer nor under -I are searched in the Spire library, " +
                environment.libraryDir + " (stdlib/, pipelines/).");
   }
-  if (const auto status = parseToolArguments(app, args, out, err)) return *status;
+  if (const auto status = parseToolArguments(app, args, out, err)) return status;
   options.choices = choices->count() > 0;
   options.spirvCache = environment.spirvCache;
   options.warningsAsErrors |= !options.warningFlags.empty();
@@ -295,13 +337,20 @@ int runSpirecJob(const std::vector<std::string>& args, std::ostream& out, std::o
                         err);
     }
   }
+  return std::nullopt;
+}
 
+// Compiles the sources and builds every output the options ask for; a status
+// when the run stops early (an unknown --shader).
+std::optional<int> compileRun(PreparedRun& run, const SpirecEnvironment& environment, std::ostream& err) {
+  const Options& options = run.options;
   FrontEndOptions feOptions;
   feOptions.includeDirs = options.includeDirs;
   if (!environment.libraryDir.empty()) feOptions.includeDirs.push_back(environment.libraryDir);
   feOptions.pipeline = options.pipeline;
   feOptions.errorLimit = options.maxErrors == 0 ? UINT32_MAX : options.maxErrors;
-  ShaderLibrary library(std::move(feOptions));
+  run.library = std::make_unique<ShaderLibrary>(std::move(feOptions));
+  ShaderLibrary& library = *run.library;
   for (const std::string& file : options.files) library.addFile(file);
   library.compile();
   DiagnosticList& diags = library.diagnostics();
@@ -314,23 +363,37 @@ int runSpirecJob(const std::vector<std::string>& args, std::ostream& out, std::o
       return kExitUsageError;
     }
   }
-
-  SpirecOutput result;
   const bool generate = !options.outputDir.empty();
   if (!diags.hasErrors() && (!options.decisionsPath.empty() || options.dumpPlacement || generate)) {
-    buildOutputs(library, options, diags, spaces, result);
+    buildOutputs(library, options, diags, spaces, run.result);
   }
-  if (!diags.hasErrors() && options.choices) result.choices = graph::writeChoiceFile(spaces);
-  return finish(library, options, result, out, err);
+  if (!diags.hasErrors() && options.choices) run.result.choices = graph::writeChoiceFile(spaces);
+  return std::nullopt;
+}
+
+// One spirec run, a command line or one line of a batch file, compiled; its
+// files are written and its output printed when the result is called.
+SpirecFinish prepareSpirecJob(const std::vector<std::string>& args, const SpirecEnvironment& environment) {
+  auto run = std::make_shared<PreparedRun>();
+  std::ostringstream earlyOut, earlyErr;
+  std::optional<int> stopped = parseSpirecArguments(args, environment, run->options, earlyOut, earlyErr);
+  if (!stopped) stopped = compileRun(*run, environment, earlyErr);
+  if (stopped) return printed(*stopped, std::move(earlyOut).str(), std::move(earlyErr).str());
+  settle(*run->library, run->options, run->result);
+  return [run](std::ostream& out, std::ostream& err) {
+    return finish(*run->library, run->options, run->result, out, err);
+  };
 }
 
 }  // namespace
 
 int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
               const SpirecEnvironment& environment) {
-  if (const auto batch = batchFileArgument(args)) return runSpirecBatch(*batch, runSpirecJob, out, err, environment);
-  if (batchMisuse(args)) return usageError("spirec", "--batch takes one FILE and no other arguments", err);
-  return runSpirecJob(args, out, err, environment);
+  if (const auto batch = batchRequest(args)) return runSpirecBatch(*batch, prepareSpirecJob, out, err, environment);
+  if (batchMisuse(args)) {
+    return usageError("spirec", "--batch takes one FILE, at most one -j N (N at least 1), and no other arguments", err);
+  }
+  return prepareSpirecJob(args, environment)(out, err);
 }
 
 }  // namespace spire

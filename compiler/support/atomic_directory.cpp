@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -31,7 +32,7 @@ Expected<void, Failure> writeStaged(const fs::path& staging, const FileSet& file
     return Failure{fmt::format("cannot create '{}': {}", staging.string(), ec ? ec.message() : "it already exists")};
   }
   for (const auto& [name, contents] : files) {
-    if (auto written = writeFileAtomically((staging / name).string(), contents); !written) return written;
+    if (auto written = writeNewFile((staging / name).string(), contents); !written) return written;
   }
   return {};
 }
@@ -62,30 +63,74 @@ Expected<fs::path, Failure> swapIn(const fs::path& staging, const fs::path& dir)
 
 }  // namespace
 
-Expected<void, Failure> replaceDirectoryAtomically(const std::string& path, const FileSet& files) {
-  const fs::path dir = fs::absolute(path).lexically_normal();
+StagedDirectory::StagedDirectory(fs::path dir, fs::path staging) : dir_(std::move(dir)), staging_(std::move(staging)) {}
+
+StagedDirectory::StagedDirectory(StagedDirectory&& other) noexcept
+    : dir_(std::move(other.dir_)), staging_(std::exchange(other.staging_, {})) {}
+
+StagedDirectory& StagedDirectory::operator=(StagedDirectory&& other) noexcept {
+  if (this != &other) {
+    discard();
+    dir_ = std::move(other.dir_);
+    staging_ = std::exchange(other.staging_, {});
+  }
+  return *this;
+}
+
+StagedDirectory::~StagedDirectory() { discard(); }
+
+void StagedDirectory::discard() {
+  if (staging_.empty()) return;
+  std::error_code ignored;
+  fs::remove_all(staging_, ignored);
+  staging_.clear();
+}
+
+Expected<StagedDirectory, Failure> StagedDirectory::stage(const std::string& path, const FileSet& files) {
+  fs::path dir = fs::absolute(path).lexically_normal();
   std::error_code ec;
   fs::create_directories(dir.parent_path(), ec);
   if (ec) return Failure{fmt::format("cannot create directory '{}': {}", dir.parent_path().string(), ec.message())};
-  const bool exists = fs::exists(fs::symlink_status(dir, ec));
-  if (exists && !fs::is_directory(fs::symlink_status(dir, ec))) {
-    return Failure{fmt::format("cannot write '{}': it exists and is not a directory", dir.string())};
-  }
-  const fs::path staging = stagingPath(dir, "new");
+  fs::path staging = stagingPath(dir, "new");
   if (auto staged = writeStaged(staging, files); !staged) {
     fs::remove_all(staging, ec);
-    return staged;
+    return staged.error();
   }
-  if (!exists) {
-    fs::rename(staging, dir, ec);
-    if (!ec) return {};
-    fs::remove_all(staging, ec);
-    return Failure{fmt::format("cannot create '{}': {}", dir.string(), ec.message())};
+  return StagedDirectory(std::move(dir), std::move(staging));
+}
+
+Expected<void, Failure> StagedDirectory::commit() {
+  // Whether the directory exists is decided now, not when staging: another
+  // writer may have made it in between.
+  std::error_code ec;
+  const fs::file_status status = fs::symlink_status(dir_, ec);
+  if (fs::exists(status) && !fs::is_directory(status)) {
+    discard();
+    return Failure{fmt::format("cannot write '{}': it exists and is not a directory", dir_.string())};
   }
-  auto old = swapIn(staging, dir);
-  fs::remove_all(old ? *old : staging, ec);
-  if (!old) return old.error();
+  if (!fs::exists(status)) {
+    fs::rename(staging_, dir_, ec);
+    if (ec) {
+      discard();
+      return Failure{fmt::format("cannot create '{}': {}", dir_.string(), ec.message())};
+    }
+    staging_.clear();
+    return {};
+  }
+  auto old = swapIn(staging_, dir_);
+  if (!old) {
+    discard();
+    return old.error();
+  }
+  staging_.clear();
+  fs::remove_all(*old, ec);
   return {};
+}
+
+Expected<void, Failure> replaceDirectoryAtomically(const std::string& dir, const FileSet& files) {
+  auto staged = StagedDirectory::stage(dir, files);
+  if (!staged) return staged.error();
+  return staged.value().commit();
 }
 
 }  // namespace spire

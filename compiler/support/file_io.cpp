@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -17,6 +18,19 @@ namespace {
 // errno as an error code, taken right after the call that failed: any later
 // call, even a successful one, may change errno.
 std::error_code lastError() { return {errno != 0 ? errno : EIO, std::generic_category()}; }
+
+// Writes a file that must not exist yet; the error that stopped it. A file it
+// created and could not finish is removed.
+std::error_code createFile(const std::filesystem::path& path, std::string_view contents) {
+  std::FILE* file = std::fopen(path.c_str(), "wbx");
+  if (!file) return lastError();
+  std::error_code error;
+  if (std::fwrite(contents.data(), 1, contents.size(), file) != contents.size()) error = lastError();
+  if (std::fclose(file) != 0 && !error) error = lastError();
+  std::error_code ignored;
+  if (error) std::filesystem::remove(path, ignored);
+  return error;
+}
 
 class FileDescriptor {
  public:
@@ -76,18 +90,25 @@ Expected<void, Failure> writeFileAtomically(const std::string& path, std::string
     return Failure{fmt::format("cannot write '{}': {}", path, error.message())};
   };
   // The temporary lives in the target's directory so the rename stays on one
-  // file system and is atomic.
-  const fs::path temp = target.parent_path() / fmt::format(".{}.tmp{}", target.filename().string(), ::getpid());
-  std::FILE* file = std::fopen(temp.c_str(), "wb");
-  if (!file) return failure(lastError());
-  std::error_code error;
-  if (std::fwrite(contents.data(), 1, contents.size(), file) != contents.size()) error = lastError();
-  if (std::fclose(file) != 0 && !error) error = lastError();
-  if (!error) fs::rename(temp, target, error);
+  // file system and is atomic; the counter keeps threads of one process that
+  // write the same target apart.
+  static std::atomic<unsigned> counter{0};
+  const fs::path temp =
+      target.parent_path() / fmt::format(".{}.tmp{}-{}", target.filename().string(), ::getpid(), counter++);
+  std::error_code error = createFile(temp, contents);
+  if (error) return failure(error);
+  fs::rename(temp, target, error);
   if (!error) return {};
   std::error_code ignored;
   fs::remove(temp, ignored);
   return failure(error);
+}
+
+Expected<void, Failure> writeNewFile(const std::string& path, std::string_view contents) {
+  if (const std::error_code error = createFile(path, contents)) {
+    return Failure{fmt::format("cannot write '{}': {}", path, error.message())};
+  }
+  return {};
 }
 
 }  // namespace spire

@@ -32,4 +32,9 @@ Expected<std::string, std::error_code> readThrough(const FileReader& reader, con
 // `path`. On failure the target is untouched and the message says why.
 Expected<void, Failure> writeFileAtomically(const std::string& path, std::string_view contents);
 
+// Creates `path` holding `contents`, failing if it exists. Not atomic: only
+// for a file in a directory that no reader sees yet (a staging directory,
+// replaced into place as a whole).
+Expected<void, Failure> writeNewFile(const std::string& path, std::string_view contents);
+
 }  // namespace spire

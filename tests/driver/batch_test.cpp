@@ -9,6 +9,7 @@
 
 #include "driver/batch_file.h"
 #include "driver/spirec.h"
+#include "driver/spirec_batch.h"
 #include "spirec_run.h"
 #include "support/file_io.h"
 
@@ -106,12 +107,71 @@ TEST_F(Batch, JobsMatchSeparateRunsByteForByte) {
       " --emit=glsl  # W5001\n" + quoted("plain.spire") + " -o " + quoted("out3") + " --emit spirv --depfile " +
       quoted("plain.d") + " --depfile-target plain.stamp\n" + quoted("lit.spire") + " " + quoted("plain.spire") +
       " --choices --shader 'Plain'\n" + quoted("lit.spire") + " -o " + quoted("out4") + "\n");
-  const SpirecRun batched = run({"--batch", batch});
+  // One job at a time, as many as the machine has threads, and more jobs at
+  // once than there are.
+  for (const std::vector<std::string>& jobFlags : std::vector<std::vector<std::string>>{{"-j", "1"}, {}, {"-j8"}}) {
+    std::vector<std::string> args = {"--batch", batch};
+    args.insert(args.end(), jobFlags.begin(), jobFlags.end());
+    const SpirecRun batched = run(args);
+    EXPECT_EQ(batched.exitCode, kExitSuccess) << batched.err;
+    EXPECT_EQ(batched.out, expectedOut);
+    EXPECT_EQ(batched.err, expectedErr);
+    EXPECT_NE(batched.err.find("W5001"), std::string::npos) << batched.err;
+    EXPECT_EQ(outputs(), separate);
+    removeOutputs();
+  }
+}
+
+TEST_F(Batch, ConcurrentJobsWriteAndPrintInFileOrder) {
+  // Jobs that write the same shader folder and depfile: the last job's files
+  // are what is left, as when they run one after another. The placements go
+  // to stdout in job order.
+  std::string lines;
+  std::string expectedOut;
+  for (int i = 0; i < 12; ++i) {
+    const bool decided = i % 2 == 1;
+    std::vector<std::string> job = {path("lit.spire"),  "-o",         path("out"), "--depfile", path("lit.d"),
+                                    "--dump-placement", "--emit=glsl"};
+    if (decided) job.insert(job.end(), {"--decisions", path("lit.decisions")});
+    const SpirecRun single = run(job);
+    ASSERT_EQ(single.exitCode, kExitSuccess) << single.err;
+    expectedOut += single.out;
+    for (const std::string& arg : job) lines += "\"" + arg + "\" ";
+    lines += "\n";
+  }
+  const std::map<std::string, std::string> last = outputs();  // the last job ran last
+  removeOutputs();
+  const SpirecRun batched = run({"--batch", writeBatch(lines), "-j", "4"});
   EXPECT_EQ(batched.exitCode, kExitSuccess) << batched.err;
   EXPECT_EQ(batched.out, expectedOut);
-  EXPECT_EQ(batched.err, expectedErr);
-  EXPECT_NE(batched.err.find("W5001"), std::string::npos) << batched.err;
-  EXPECT_EQ(outputs(), separate);
+  EXPECT_EQ(outputs(), last);
+}
+
+TEST(BatchRequest, JobCountsAndTheirSpellings) {
+  const auto jobs = [](const std::vector<std::string>& args) -> std::optional<unsigned> {
+    const auto request = batchRequest(args);
+    if (!request) return std::nullopt;
+    EXPECT_EQ(request->file, "b.txt");
+    return request->jobs;
+  };
+  EXPECT_EQ(jobs({"--batch", "b.txt"}), 0u);
+  EXPECT_EQ(jobs({"--batch=b.txt", "-j", "3"}), 3u);
+  EXPECT_EQ(jobs({"-j3", "--batch", "b.txt"}), 3u);
+  EXPECT_EQ(jobs({"--batch", "b.txt", "--jobs", "12"}), 12u);
+  EXPECT_EQ(jobs({"--jobs=2", "--batch", "b.txt"}), 2u);
+  for (const std::vector<std::string>& bad :
+       std::vector<std::vector<std::string>>{{"--batch", "b.txt", "-j", "0"},
+                                             {"--batch", "b.txt", "-j", "2x"},
+                                             {"--batch", "b.txt", "-j", "-1"},
+                                             {"--batch", "b.txt", "-j"},
+                                             {"--batch", "b.txt", "-j", "1", "-j", "2"},
+                                             {"--batch", "b.txt", "--batch", "c.txt"},
+                                             {"-j", "2"},
+                                             {"--batch", "b.txt", "x.spire"}}) {
+    EXPECT_FALSE(batchRequest(bad).has_value()) << ::testing::PrintToString(bad);
+  }
+  EXPECT_TRUE(batchMisuse({"--batch", "b.txt", "-j", "0"}));
+  EXPECT_FALSE(batchMisuse({"-j", "2", "x.spire"}));  // not batch mode: spirec's own parser rejects -j
 }
 
 TEST_F(Batch, FailingJobDoesNotStopTheOthers) {
@@ -152,7 +212,9 @@ TEST_F(Batch, BatchWithOtherArgumentsIsAUsageError) {
            {"--batch", batch, "-q"}, {path("plain.spire"), "--batch=" + batch}, {"--batch"}}) {
     const SpirecRun misuse = run(args);
     EXPECT_EQ(misuse.exitCode, kExitUsageError) << misuse.err;
-    EXPECT_NE(misuse.err.find("--batch takes one FILE and no other arguments"), std::string::npos) << misuse.err;
+    EXPECT_NE(misuse.err.find("--batch takes one FILE, at most one -j N (N at least 1), and no other arguments"),
+              std::string::npos)
+        << misuse.err;
   }
   EXPECT_EQ(run({"--batch=" + batch}).exitCode, kExitSuccess);
   const SpirecRun nested = run({"--batch", writeBatch("--batch " + quoted("jobs.txt") + "\n")});
