@@ -320,7 +320,7 @@ std::optional<int> parseSpirecArguments(const std::vector<std::string>& args, co
   app.add_option("--batch", batchFile,
                  "Run each line of FILE as a separate spirec run (its arguments; '#' comments, \"...\" and '...' "
                  "quoting, \\ escapes: docs/integration.md) in this one process, -j N runs at a time (default: one "
-                 "per hardware thread); takes no other arguments")
+                 "per hardware thread); takes no other arguments but -j")
       ->type_name("FILE");
   if (!environment.libraryDir.empty()) {
     app.footer("'using' files found neither next to their includer nor under -I are searched in the Spire library, " +

@@ -34,4 +34,15 @@ bool tight(const TimeRatio& time, double relativeWidth) {
          time.interval.high - time.interval.low <= relativeWidth * time.median;
 }
 
+std::vector<size_t> nextToRace(const std::vector<VariantResult>& results, const RaceState& state,
+                               double relativeWidth) {
+  std::vector<size_t> next;
+  for (size_t i : frontCandidates(results)) {
+    const VariantResult& r = results[i];
+    if (state.raced.contains(r.index)) continue;
+    if (!state.measuredHere.contains(r.index) || !tight(r.time, relativeWidth)) next.push_back(i);
+  }
+  return next;
+}
+
 }  // namespace spire::tune

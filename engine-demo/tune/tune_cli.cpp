@@ -162,29 +162,43 @@ std::optional<int> mergeResults(const TuneOptions& options, engine::ToolRun& run
   return std::nullopt;
 }
 
-// Racing: the candidates for the front whose time is not yet tight are
-// measured again, with pairs added until it is or up to --max-frames, in
-// this process (with the workers' single lavapipe thread when there were
-// workers, so that ratios compare).
-void race(const TuneOptions& options, TuneSession& session, std::vector<VariantResult>& results, std::ostream& err) {
-  const StoppingRule rule{options.frames, std::max(options.frames, options.maxFrames), StoppingRule{}.relativeWidth};
-  std::vector<size_t> loose;
-  for (size_t i : frontCandidates(results)) {
-    if (!tight(results[i].time, rule.relativeWidth) && results[i].time.pairs < rule.maxPairs) loose.push_back(i);
-  }
-  if (loose.empty()) return;
-  err << fmt::format("racing: {} candidates for the front measured again, up to {} pairs each\n", loose.size(),
-                     rule.maxPairs);
-  for (size_t i : loose) {
-    if (StopRequest::requested()) return;
-    auto time = session.tuner->remeasureTime(pointAt(session.space.axes, results[i].index), rule);
-    if (!time) continue;  // the earlier measurement stands
-    for (VariantResult& r : results) {
-      if (r.index != results[i].index && r.sameAs != results[i].index) continue;
-      r.time = *time;
-      r.frameMs = time->median * session.tuner->referenceMs();
+// Racing (tune/racing.h): the candidates for the front are measured again
+// in this process (with the workers' single lavapipe thread when there were
+// workers, so that ratios compare), with pairs added until the interval is
+// tight or up to --max-frames, round after round until no candidate is left
+// to measure.
+void race(const TuneOptions& options, TuneSession& session, RaceState state, std::vector<VariantResult>& results,
+          std::ostream& err) {
+  // A re-measured time stops no sooner than it is a 95% interval.
+  const uint32_t minPairs = std::max(options.frames, kPairsFor95);
+  const StoppingRule rule{minPairs, std::max(minPairs, options.maxFrames), StoppingRule{}.relativeWidth};
+  for (std::vector<size_t> next; !(next = nextToRace(results, state, rule.relativeWidth)).empty();) {
+    err << fmt::format("racing: {} candidates for the front measured again, up to {} pairs each\n", next.size(),
+                       rule.maxPairs);
+    for (size_t i : next) {
+      if (StopRequest::requested()) return;
+      const uint64_t index = results[i].index;
+      state.raced.insert(index);
+      auto time = session.tuner->remeasureTime(pointAt(session.space.axes, index), rule);
+      if (!time) continue;  // the earlier measurement stands
+      for (VariantResult& r : results) {
+        if (r.index != index && r.sameAs != index) continue;
+        r.time = *time;
+        r.frameMs = time->median * session.tuner->referenceMs();
+      }
     }
   }
+}
+
+// The rows this process measures itself: none when workers do, else every
+// row not resumed from an earlier run.
+RaceState raceState(const TuneOptions& options, const TuneSession& session, const std::string& workerProgram) {
+  RaceState state;
+  if (options.jobs > 1 && !workerProgram.empty()) return state;
+  for (const TunePoint& point : session.space.points) {
+    if (!session.done.contains(point.index)) state.measuredHere.insert(point.index);
+  }
+  return state;
 }
 
 std::optional<int> writeResultsTable(const TuneOptions& options, engine::ToolRun& run, const TuneSession& session,
@@ -267,10 +281,11 @@ int runTune(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   if (options.worker >= 0) return measureShard(options, run, session, options.worker, nullptr);
   // Before any worker starts: a broken reference stops the run here, once.
   if (auto ok = session.tuner->renderReference(session.reference); !ok) return run.fail(ok.error());
+  const RaceState raceStart = raceState(options, session, workerProgram);
   if (const auto status = measureAll(options, run, session, args, workerProgram, out, err)) return *status;
   std::vector<VariantResult> results;
   if (const auto status = mergeResults(options, run, session, results)) return *status;
-  race(options, session, results, err);
+  race(options, session, raceStart, results, err);
   if (StopRequest::requested()) return reportInterrupted(options, session, err);
   if (const auto status = writeResultsTable(options, run, session, results)) return *status;
   const TimeSplit split = collectTimeSplits(options);

@@ -169,5 +169,26 @@ TEST(Racing, CandidatesAreTheVariantsNotCertainlyDominated) {
   EXPECT_TRUE(tight(few, 0.1));
 }
 
+// Racing measures again, once each, the candidates whose time is loose or
+// came from another process; a variant that a raced one no longer
+// dominates joins the next round.
+TEST(Racing, NextRoundTakesLooseOrForeignCandidatesNotRacedYet) {
+  std::vector<VariantResult> results{
+      measured(0, 1.00, 0.99, 1.01, 0.0),   // tight, measured here
+      measured(1, 0.50, 0.49, 0.51, 0.02),  // tight, from a worker
+      measured(2, 0.70, 0.60, 0.80, 0.01),  // loose, measured here
+      measured(3, 0.60, 0.55, 0.65, 0.03),  // loose, certainly dominated by 1
+  };
+  RaceState state;
+  state.measuredHere = {0, 2, 3};
+  EXPECT_EQ(nextToRace(results, state, 0.06), (std::vector<size_t>{1, 2}));
+  state.raced = {1, 2};
+  results[1].time = {0.60, {0.58, 0.62}, 9};  // raced slower: 3 is uncovered
+  results[2].time = {0.75, {0.74, 0.76}, 9};
+  EXPECT_EQ(nextToRace(results, state, 0.06), (std::vector<size_t>{3}));
+  state.raced.insert(3);
+  EXPECT_TRUE(nextToRace(results, state, 0.06).empty());
+}
+
 }  // namespace
 }  // namespace spire::tune
