@@ -202,7 +202,7 @@ std::vector<const graph::ChoiceSpace*> selectShaders(ShaderLibrary& library, con
 struct SpirecOutput {
   std::string choices;                       // the choice file, with --choices
   std::string placements;                    // with --dump-placement
-  std::vector<OutputDirectory> directories;  // with -o
+  std::vector<OutputDirectory> directories;  // with -o, until staged
   std::vector<StagedDirectory> staged;       // the directories, written beside their place
 };
 
@@ -260,7 +260,9 @@ void settle(ShaderLibrary& library, const Options& options, SpirecOutput& result
   } else if (options.quiet) {
     keepErrorsOnly(diags);
   }
-  if (!diags.hasErrors()) result.staged = stageDirectories(result.directories, diags);
+  if (diags.hasErrors()) return;
+  result.staged = stageDirectories(result.directories, diags);
+  result.directories.clear();  // their files are on disk now; a batch job may wait a while to commit
 }
 
 // Prints the diagnostics and, when there are no errors, puts the outputs in
@@ -389,10 +391,7 @@ SpirecFinish prepareSpirecJob(const std::vector<std::string>& args, const Spirec
 
 int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
               const SpirecEnvironment& environment) {
-  if (const auto batch = batchRequest(args)) return runSpirecBatch(*batch, prepareSpirecJob, out, err, environment);
-  if (batchMisuse(args)) {
-    return usageError("spirec", "--batch takes one FILE, at most one -j N (N at least 1), and no other arguments", err);
-  }
+  if (namesBatchMode(args)) return runSpirecBatch(args, prepareSpirecJob, out, err, environment);
   return prepareSpirecJob(args, environment)(out, err);
 }
 

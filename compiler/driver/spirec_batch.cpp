@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <ostream>
 #include <sstream>
 #include <thread>
@@ -11,6 +10,7 @@
 #include "driver/batch_file.h"
 #include "driver/ordered_jobs.h"
 #include "driver/spirv_cache.h"
+#include "driver/tool_arguments.h"
 #include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
 
@@ -21,39 +21,11 @@ constexpr std::string_view kBatch = "--batch";
 
 bool namesBatch(const std::string& arg) { return arg == kBatch || arg.starts_with("--batch="); }
 
-// N of `-j N`: a whole number of at least 1, nothing else.
-std::optional<unsigned> jobCount(std::string_view text) {
-  unsigned value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || value == 0) return std::nullopt;
-  return value;
-}
-
-// Takes one option of batch mode from args[i] (and args[i + 1] when its value
-// is separate) into `file` or `jobs`; false when args[i] is not one, repeats
-// one or has a bad value.
-bool takeBatchOption(const std::vector<std::string>& args, size_t& i, std::optional<std::string>& file,
-                     std::optional<unsigned>& jobs) {
-  const std::string& arg = args[i];
-  const bool hasNext = i + 1 < args.size();
-  if (arg == kBatch && hasNext && !file) {
-    file = args[++i];
-  } else if (arg.starts_with("--batch=") && !file) {
-    file = arg.substr(kBatch.size() + 1);
-  } else if ((arg == "-j" || arg == "--jobs") && hasNext && !jobs) {
-    jobs = jobCount(args[++i]);
-    return jobs.has_value();
-  } else if (arg.starts_with("--jobs=") && !jobs) {
-    jobs = jobCount(std::string_view(arg).substr(7));
-    return jobs.has_value();
-  } else if (arg.starts_with("-j") && arg.size() > 2 && !jobs) {
-    jobs = jobCount(std::string_view(arg).substr(2));
-    return jobs.has_value();
-  } else {
-    return false;
-  }
-  return true;
-}
+// What `spirec --batch` is asked to do.
+struct BatchRequest {
+  std::string file;
+  unsigned jobs = 0;  // runs compiled at once; 0: one per hardware thread
+};
 
 // Runs one job and returns how it finishes: its status, output and
 // diagnostics under the job's header line.
@@ -83,24 +55,10 @@ JobFinish prepareJob(const BatchJob& job, size_t index, const std::string& path,
   };
 }
 
-}  // namespace
-
-std::optional<BatchRequest> batchRequest(const std::vector<std::string>& args) {
-  std::optional<std::string> file;
-  std::optional<unsigned> jobs;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (!takeBatchOption(args, i, file, jobs)) return std::nullopt;
-  }
-  if (!file) return std::nullopt;
-  return BatchRequest{*file, jobs.value_or(0)};
-}
-
-bool batchMisuse(const std::vector<std::string>& args) {
-  return !batchRequest(args) && std::ranges::any_of(args, namesBatch);
-}
-
-int runSpirecBatch(const BatchRequest& request, SpirecJobPreparer prepare, std::ostream& out, std::ostream& err,
-                   const SpirecEnvironment& environment) {
+// Runs the batch file's jobs as BatchRequest says; runSpirecBatch's work
+// once its arguments are parsed.
+int runBatchFile(const BatchRequest& request, SpirecJobPreparer prepare, std::ostream& out, std::ostream& err,
+                 const SpirecEnvironment& environment) {
   auto text = readFileBytes(request.file);
   if (!text) {
     err << fmt::format("spirec: error: cannot read batch file '{}': {}\n", request.file, text.error().message());
@@ -124,6 +82,24 @@ int runSpirecBatch(const BatchRequest& request, SpirecJobPreparer prepare, std::
     return prepareJob(jobs[i], i, request.file, prepare, jobEnvironment, out, err, worst);
   });
   return worst;
+}
+
+}  // namespace
+
+bool namesBatchMode(const std::vector<std::string>& args) { return std::ranges::any_of(args, namesBatch); }
+
+int runSpirecBatch(const std::vector<std::string>& args, SpirecJobPreparer prepare, std::ostream& out,
+                   std::ostream& err, const SpirecEnvironment& environment) {
+  CLI::App app{"spirec --batch: many spirec runs in one process (docs/integration.md)", "spirec"};
+  BatchRequest request;
+  app.add_option("--batch", request.file, "Run each line of FILE as a separate spirec run")
+      ->required()
+      ->type_name("FILE");
+  app.add_option("-j,--jobs", request.jobs, "Runs compiled at once (default: one per hardware thread)")
+      ->check(CLI::Range(1U, 4096U))
+      ->type_name("N");
+  if (const auto status = parseToolArguments(app, args, out, err)) return *status;
+  return runBatchFile(request, prepare, out, err, environment);
 }
 
 }  // namespace spire

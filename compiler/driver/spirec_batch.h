@@ -5,7 +5,6 @@
 
 #include <functional>
 #include <iosfwd>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,28 +21,19 @@ using SpirecFinish = std::function<int(std::ostream& out, std::ostream& err)>;
 // things.
 using SpirecJobPreparer = SpirecFinish (*)(const std::vector<std::string>& args, const SpirecEnvironment& environment);
 
-// What `spirec --batch` is asked to do.
-struct BatchRequest {
-  std::string file;
-  unsigned jobs = 0;  // jobs compiled at once; 0: one per hardware thread
-};
+// Whether `args` ask for batch mode: one of them is --batch or --batch=FILE.
+bool namesBatchMode(const std::vector<std::string>& args);
 
-// The request when `args` are exactly batch mode: `--batch FILE` (or
-// `--batch=FILE`) and at most one `-j N` (`-jN`, `--jobs N`, `--jobs=N`),
-// N at least 1, in either order. nullopt otherwise.
-std::optional<BatchRequest> batchRequest(const std::vector<std::string>& args);
-
-// True when `args` name --batch but are not exactly batch mode.
-bool batchMisuse(const std::vector<std::string>& args);
-
-// Runs every job of the batch file through `prepare`, request.jobs at a
-// time, and finishes them in file order: each job's files are written, its
-// output goes to `out`, and its diagnostics go to `err` after a line naming
-// the job and its place in the file, exactly as if the jobs had run one
-// after another. Returns 0 when every job succeeded, else the highest job
-// status; a batch file that cannot be read or has a malformed line runs no
-// job.
-int runSpirecBatch(const BatchRequest& request, SpirecJobPreparer prepare, std::ostream& out, std::ostream& err,
-                   const SpirecEnvironment& environment);
+// `spirec --batch FILE [-j N]`: parses `args` by the tools' argument
+// conventions (driver/tool_arguments.h; anything else on the line is a
+// usage error), then runs every job of the batch file through `prepare`, N
+// at a time (default: one per hardware thread), and finishes them in file
+// order: each job's files are written, its output goes to `out`, and its
+// diagnostics go to `err` after a line naming the job and its place in the
+// file, exactly as if the jobs had run one after another. Returns 0 when
+// every job succeeded, else the highest job status; a batch file that cannot
+// be read or has a malformed line runs no job.
+int runSpirecBatch(const std::vector<std::string>& args, SpirecJobPreparer prepare, std::ostream& out,
+                   std::ostream& err, const SpirecEnvironment& environment);
 
 }  // namespace spire

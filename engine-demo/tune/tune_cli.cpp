@@ -112,6 +112,11 @@ int reportInterrupted(const TuneOptions& options, const TuneSession& session, st
   return kExitInterrupted;
 }
 
+// Whether worker processes measure the variants (else this process does).
+bool workersMeasure(const TuneOptions& options, const std::string& workerProgram) {
+  return options.jobs > 1 && !workerProgram.empty();
+}
+
 // The coordinator: measures what is not done yet, in this process or in
 // worker processes.
 std::optional<int> measureAll(const TuneOptions& options, engine::ToolRun& run, TuneSession& session,
@@ -126,7 +131,7 @@ std::optional<int> measureAll(const TuneOptions& options, engine::ToolRun& run, 
       session.done.empty() ? std::string() : fmt::format(", resuming with {} measured", session.done.size()));
   const size_t already = doneInSpace(session);
   if (already == total) return std::nullopt;
-  if (options.jobs == 1 || workerProgram.empty()) {
+  if (!workersMeasure(options, workerProgram)) {
     Progress progress(err, total, already);
     const int status = measureShard(options, run, session, -1, &progress);
     // Workers prepare variants in other processes, so only an in-process
@@ -194,7 +199,7 @@ void race(const TuneOptions& options, TuneSession& session, RaceState state, std
 // row not resumed from an earlier run.
 RaceState raceState(const TuneOptions& options, const TuneSession& session, const std::string& workerProgram) {
   RaceState state;
-  if (options.jobs > 1 && !workerProgram.empty()) return state;
+  if (workersMeasure(options, workerProgram)) return state;
   for (const TunePoint& point : session.space.points) {
     if (!session.done.contains(point.index)) state.measuredHere.insert(point.index);
   }
@@ -221,7 +226,7 @@ std::optional<int> prepareCoordinator(const TuneOptions& options, const std::str
     return kExitInputError;
   }
   lock.emplace(std::move(acquired).value());
-  if (options.jobs > 1 && !workerProgram.empty()) environment.set("LP_NUM_THREADS", "1");
+  if (workersMeasure(options, workerProgram)) environment.set("LP_NUM_THREADS", "1");
   return std::nullopt;
 }
 
