@@ -83,7 +83,8 @@ void defineSearchOptions(CLI::App& app, SearchOptions& options) {
       ->type_name("F");
   app.add_option("--transition-distance", options.transitionDistance,
                  "The distance the transition shaders blend by: a Spire expression over the shader's components "
-                 "(default 'length(cameraPos - vert_pos)')")
+                 "(default: the eye's distance in world units, 'length(cameraPosWorld - (matModel * vec4(vert_pos, "
+                 "1.0)).xyz)')")
       ->type_name("EXPR");
   app.add_option("--name", options.derivedName, "The derived shader's name (default: SHADER + Search)")
       ->type_name("NAME");

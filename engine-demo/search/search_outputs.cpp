@@ -60,12 +60,12 @@ std::string transitionSection(const OutputRequest& request) {
       "last part of the nearer one draws a variant that blends the two by distance (`mix(near, far, fade)` "
       "of each component that differs), so that the switch does not pop.\n\n";
   const ChainTransitions& made = request.transitions;
-  if (made.transitions.empty()) return text + fmt::format("None: {}.\n", made.note);
+  if (made.transitions.list.empty()) return text + fmt::format("None: {}.\n", made.note);
   text +=
       "| from level | to level | blends from | to | decision file | from the first camera view |\n"
       "|---|---|---|---|---|---|\n";
-  for (size_t i = 0; i < made.transitions.size(); ++i) {
-    const Transition& t = made.transitions[i];
+  for (size_t i = 0; i < made.transitions.list.size(); ++i) {
+    const Transition& t = made.transitions.list[i];
     text += fmt::format("| {0} | {1} | {2:.4g} | {3:.4g} | `{4}` | ![from level {0} to level {1}]({5}) |\n", t.from,
                         t.to, t.nearDistance, t.farDistance, transitionFileName(t), transitionImageName(t));
   }
@@ -135,8 +135,8 @@ std::string moduleFileName(const ModuleHeader& header) { return header.derived +
 Expected<FileSet, Failure> searchOutputs(const Chain& chain, const OutputRequest& request) {
   FileSet files;
   const ChainTransitions& made = request.transitions;
-  for (size_t i = 0; i < made.transitions.size(); ++i) {
-    const Transition& t = made.transitions[i];
+  for (size_t i = 0; i < made.transitions.list.size(); ++i) {
+    const Transition& t = made.transitions.list[i];
     files.emplace_back(transitionFileName(t), transitionDecisionText(t, request.header));
     if (i < made.images.size()) files.emplace_back(transitionImageName(t), made.images[i]);
   }
@@ -150,8 +150,8 @@ Expected<FileSet, Failure> searchOutputs(const Chain& chain, const OutputRequest
   }
   files.emplace_back("chain.csv", chainCsv(chain));
   if (request.policy) {
-    const lod::LodPolicy policy =
-        withTransitions(request.policy->policy, made.transitions, request.header.derived, request.options->outputDir);
+    const lod::LodPolicy policy = withTransitions(request.policy->policy, made.transitions.list, request.header.derived,
+                                                  request.options->outputDir);
     files.emplace_back("lod_policy.json", lod::formatLodPolicy(policy, request.options->outputDir));
   }
   files.emplace_back("report.md", report(chain, request));

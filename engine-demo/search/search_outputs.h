@@ -19,7 +19,7 @@
 namespace spire::search {
 
 struct ChainTransitions {
-  std::vector<Transition> transitions;
+  Transitions transitions;
   std::vector<std::string> images;  // each from the scene's first camera view, PNG
   std::string note;                 // without transitions, why
 };

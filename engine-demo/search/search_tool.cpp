@@ -149,7 +149,7 @@ Expected<std::vector<std::string>, Failure> levelImages(tune::Tuner& tuner, cons
 // The chain's module with `transitions`' definitions, written to the work
 // folder and compiled; the instance is pointed at it.
 Expected<void, Failure> useTransitionModule(const Chain& chain, const SearchSetup& setup,
-                                            const std::vector<Transition>& transitions) {
+                                            const Transitions& transitions) {
   const std::string text = chainModuleText(setup.header, chain, transitionDefinitions(transitions));
   const fs::path path = setup.workDir / "transitions.spire";
   auto compiled = compileModule(setup.compile, path.string(), text, setup.header.derived);
@@ -157,6 +157,16 @@ Expected<void, Failure> useTransitionModule(const Chain& chain, const SearchSetu
   if (auto written = writeFileAtomically(path.string(), text); !written) return written.error();
   setup.scene->instances.at(setup.instance).source = path;
   return {};
+}
+
+// The distance the transitions blend by: the user's, or the eye's in world
+// units.
+Expected<FadeDistance, Failure> fadeDistance(const ShaderLibrary& module, const std::string& derived,
+                                             const SearchOptions& options) {
+  if (options.transitionDistance) return FadeDistance{*options.transitionDistance, {}};
+  const sem::Shader* shader = module.model().findShader(derived);
+  if (!shader) return Failure{fmt::format("the chain's module has no shader '{}'", derived)};
+  return eyeDistanceInWorld(*shader);
 }
 
 // He et al.'s transition shaders at the switches of the chain's policy, each
@@ -175,21 +185,27 @@ Expected<ChainTransitions, Failure> makeTransitions(const Chain& chain, const Ch
   auto module = compileModule(setup.compile, (setup.workDir / "chain.spire").string(),
                               chainModuleText(setup.header, chain), setup.header.derived);
   if (!module) return module.error();
-  const TransitionShape shape{options.transitionWidth, options.transitionDistance.value_or(TransitionShape{}.distance)};
+  auto distance = fadeDistance(**module, setup.header.derived, options);
+  if (!distance) {
+    made.note = "the shader cannot compute the eye's distance in world units: " + distance.error().message +
+                " (--transition-distance gives a distance it can compute)";
+    return made;
+  }
+  const TransitionShape shape{options.transitionWidth, std::move(distance).value()};
   auto transitions = chainTransitions(chain, policy.policy, **module, setup.header.derived, shape);
   if (!transitions) return transitions.error();
-  if (transitions->empty()) {
+  if (transitions->list.empty()) {
     made.note = "the policy draws one level of the chain at every distance";
     return made;
   }
   if (auto used = useTransitionModule(chain, setup, *transitions); !used) {
     const std::string why = fmt::format("the transition shaders do not compile with the distance '{}': {}",
-                                        shape.distance, used.error().message);
+                                        shape.distance.expression, used.error().message);
     if (options.transitionDistance) return Failure{why};
     made.note = why + " (--transition-distance gives a distance the shader can compute)";
     return made;
   }
-  for (const Transition& t : *transitions) {
+  for (const Transition& t : transitions->list) {
     auto png = imageOf(tuner, t.placement);
     if (!png) {
       return Failure{fmt::format("the transition from level {} to level {}: {}", t.from, t.to, png.error().message)};
@@ -228,9 +244,9 @@ int search(const SearchOptions& options, const simplify::UserRules& rules, engin
     auto made = makeTransitions(*chain, *policy, *setup, options, tuner);
     if (!made) return fail(made.error().message);
     transitions = std::move(made).value();
-    out << fmt::format("transition shaders: {}\n", transitions.transitions.empty()
+    out << fmt::format("transition shaders: {}\n", transitions.transitions.list.empty()
                                                        ? "none: " + transitions.note
-                                                       : std::to_string(transitions.transitions.size()));
+                                                       : std::to_string(transitions.transitions.list.size()));
   }
   auto images = levelImages(tuner, *chain);
   if (!images) return fail(images.error().message);

@@ -7,12 +7,31 @@
 #include <map>
 #include <optional>
 
+#include "renderer/supplied_values.h"
 #include "search/candidates.h"
 #include "search/search_outputs.h"
 #include "simplify/average_sites.h"
 
 namespace spire::search {
 namespace {
+
+// The component every fade reads the distance from.
+constexpr const char* kDistance = "spireTransitionDistance";
+
+// The world `shader` reads the engine's per-frame values from: that of its
+// first input named as one (engine::frameValues) that is not also supplied
+// per instance, as `matModel` is in an instanced pipeline.
+std::optional<std::string> engineFrameWorld(const sem::Shader& shader) {
+  const auto named = [](const auto& values, const std::string& name) {
+    return std::any_of(values.begin(), values.end(), [&](const auto& v) { return v.component == name; });
+  };
+  for (const sem::Component& c : shader.components) {
+    const ast::ComponentDecl* decl = c.firstDecl;
+    if (!decl || decl->hasDefinition() || !decl->world) continue;
+    if (named(engine::frameValues(), c.name) && !named(engine::instanceValues(), c.name)) return *decl->world;
+  }
+  return std::nullopt;
+}
 
 // The chain level a policy band draws `derived` with: K of its
 // `levelK.decisions`; nullopt for a band that names no level of the chain.
@@ -32,12 +51,12 @@ class TransitionWriter {
  public:
   TransitionWriter(const ShaderLibrary& module, const sem::Shader& shader) : module_(module), shader_(shader) {}
 
-  Expected<Transition, Failure> write(const Level& near, const Level& far, Transition t, const TransitionShape& shape) {
+  Expected<Transition, Failure> write(const Level& near, const Level& far, Transition t) {
     const std::string fade = fmt::format("spireTransitionFade{}_{}", t.from, t.to);
     t.definitions = fmt::format(
         "\n    // The transition from level {0} to level {1}: level {0} up to {2:.9g} from the eye, level {1} "
         "from {3:.9g}.\n    float {4} = clamp(({5} - {2:.9g}) / {6:.9g}, 0.0, 1.0);\n",
-        t.from, t.to, t.nearDistance, t.farDistance, fade, shape.distance, t.farDistance - t.nearDistance);
+        t.from, t.to, t.nearDistance, t.farDistance, fade, kDistance, t.farDistance - t.nearDistance);
     t.placement = near.placement;
     Placement helpers;
     for (auto& [component, where] : t.placement) {
@@ -90,9 +109,32 @@ class TransitionWriter {
 
 }  // namespace
 
-std::string transitionDefinitions(const std::vector<Transition>& transitions) {
-  std::string text;
-  for (const Transition& t : transitions) text += t.definitions;
+Expected<FadeDistance, Failure> eyeDistanceInWorld(const sem::Shader& shader) {
+  if (!shader.findComponent("vert_pos")) return Failure{fmt::format("'{}' has no vert_pos", shader.name)};
+  FadeDistance distance{"length(cameraPosWorld - (matModel * vec4(vert_pos, 1.0)).xyz)", {}};
+  std::optional<std::string> world;
+  for (const auto& [name, type] : {std::pair{"cameraPosWorld", "vec3"}, std::pair{"matModel", "mat4"}}) {
+    if (const sem::Component* c = shader.findComponent(name)) {
+      if (c->type && c->type->name() != type)
+        return Failure{
+            fmt::format("'{}' reads '{}' as a {}, not the engine's {}", shader.name, name, c->type->name(), type)};
+      continue;
+    }
+    if (!world) world = engineFrameWorld(shader);
+    if (!world)
+      return Failure{
+          fmt::format("'{}' reads no per-frame engine value (cameraPos, matMVP, ...), so no world to read "
+                      "'{}' from",
+                      shader.name, name)};
+    distance.declarations += fmt::format("    @{} {} {};\n", *world, type, name);
+  }
+  return distance;
+}
+
+std::string transitionDefinitions(const Transitions& transitions) {
+  if (transitions.list.empty()) return {};
+  std::string text = transitions.shared;
+  for (const Transition& t : transitions.list) text += t.definitions;
   return text;
 }
 
@@ -108,13 +150,16 @@ std::string transitionDecisionText(const Transition& transition, const ModuleHea
                   header.base, transition.from, transition.to, transition.nearDistance, transition.farDistance));
 }
 
-Expected<std::vector<Transition>, Failure> chainTransitions(const Chain& chain, const lod::LodPolicy& policy,
-                                                            const ShaderLibrary& chainModule,
-                                                            const std::string& derived, const TransitionShape& shape) {
+Expected<Transitions, Failure> chainTransitions(const Chain& chain, const lod::LodPolicy& policy,
+                                                const ShaderLibrary& chainModule, const std::string& derived,
+                                                const TransitionShape& shape) {
   const sem::Shader* shader = chainModule.model().findShader(derived);
   if (!shader) return Failure{fmt::format("the chain's module has no shader '{}'", derived)};
   TransitionWriter writer(chainModule, *shader);
-  std::vector<Transition> transitions;
+  Transitions transitions;
+  transitions.shared =
+      fmt::format("\n    // The eye's distance, which the transitions blend by.\n{}    float {} = {};\n",
+                  shape.distance.declarations, kDistance, shape.distance.expression);
   for (size_t band = 0; band + 1 < policy.levels.size(); ++band) {
     const std::optional<size_t> from = chainLevel(policy.levels[band], derived);
     const std::optional<size_t> to = chainLevel(policy.levels[band + 1], derived);
@@ -128,9 +173,9 @@ Expected<std::vector<Transition>, Failure> chainTransitions(const Chain& chain, 
     t.to = *to;
     t.nearDistance = edge - shape.width * (edge - start);
     t.farDistance = edge;
-    auto written = writer.write(chain.levels[*from], chain.levels[*to], std::move(t), shape);
+    auto written = writer.write(chain.levels[*from], chain.levels[*to], std::move(t));
     if (!written) return written.error();
-    transitions.push_back(std::move(written).value());
+    transitions.list.push_back(std::move(written).value());
   }
   return transitions;
 }

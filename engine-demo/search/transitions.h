@@ -7,8 +7,8 @@
 // variation `C:transitionA_B` = mix(C as level A defines it, C as level B
 // defines it, fade); the two definitions are copied into components of
 // their own, in their worlds. fade rises from 0 to 1 with a distance that
-// the shader computes (by default `length(cameraPos - vert_pos)`, the eye's
-// distance in model space) over the transition's band. At either end the
+// the shader computes (by default the eye's distance in world units, as the
+// policy measures distances) over the transition's band. At either end the
 // transition is one level: mix(a, b, 0) is a, and past the band the policy
 // draws level B. A component that is not a float or float vector switches
 // halfway (fade < 0.5 ? A : B): mix does not take it.
@@ -22,17 +22,33 @@
 #include "driver/shader_library.h"
 #include "lod/lod_policy.h"
 #include "search/chain.h"
+#include "sema/semantic_model.h"
 #include "support/expected.h"
 
 namespace spire::search {
+
+// The distance the transitions' fades are a function of, in the policy's
+// units: a Spire expression over the derived shader's components, and the
+// engine values it reads that the shader must declare for it.
+struct FadeDistance {
+  std::string expression;
+  std::string declarations;  // Spire source; empty when the shader reads them already
+};
+
+// The eye's distance from each point in world units, the distance that the
+// policy's bands measure: `cameraPosWorld` and `matModel` (the engine's
+// world-space eye and model matrix) with the mesh's `vert_pos`. A distance
+// in model space would blend a scaled instance over a scaled band. Those of
+// the two that the shader does not read are declared in the world it reads
+// the engine's other per-frame values from; a shader that reads none, or
+// reads one under another type, has no such distance.
+Expected<FadeDistance, Failure> eyeDistanceInWorld(const sem::Shader& shader);
 
 struct TransitionShape {
   // The part of the nearer band, from its start to its edge, over which the
   // fade rises: the transition's band is its last `width`.
   double width = 0.2;
-  // A Spire expression over the derived shader's components: the distance
-  // the fade is a function of, in the policy's units.
-  std::string distance = "length(cameraPos - vert_pos)";
+  FadeDistance distance;
 };
 
 struct Transition {
@@ -45,8 +61,16 @@ struct Transition {
   Placement placement;        // what its decision file says
 };
 
-// Every transition's definitions, for the chain's derived shader.
-std::string transitionDefinitions(const std::vector<Transition>& transitions);
+// A chain's transitions and the definitions they share: the distance, as
+// the component `spireTransitionDistance`, and what it declares.
+struct Transitions {
+  std::string shared;
+  std::vector<Transition> list;
+};
+
+// Every transition's definitions, for the chain's derived shader; none
+// without transitions.
+std::string transitionDefinitions(const Transitions& transitions);
 
 // The transition's decision file: "transition1_3.decisions", and its text.
 std::string transitionFileName(const Transition& transition);
@@ -56,9 +80,9 @@ std::string transitionDecisionText(const Transition& transition, const ModuleHea
 // another. The policy's levels are the chain's decision files
 // (`levelK.decisions`, for the shader `derived`); `chainModule` is the
 // chain's module compiled, which the definitions are copied from.
-Expected<std::vector<Transition>, Failure> chainTransitions(const Chain& chain, const lod::LodPolicy& policy,
-                                                            const ShaderLibrary& chainModule,
-                                                            const std::string& derived, const TransitionShape& shape);
+Expected<Transitions, Failure> chainTransitions(const Chain& chain, const lod::LodPolicy& policy,
+                                                const ShaderLibrary& chainModule, const std::string& derived,
+                                                const TransitionShape& shape);
 
 // `policy` with a band for each transition, between the nearer band (which
 // now ends at the transition's near distance) and the farther one: it draws

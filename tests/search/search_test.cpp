@@ -266,12 +266,10 @@ TEST_F(SearchRun, WritesAMonotoneChainOfAccumulatingRewrites) {
     ASSERT_TRUE(fs::exists(image)) << image;
     EXPECT_NE(readText(dir_ / "out/report.md").find(fmt::format("](level{}.png)", k)), std::string::npos);
   }
-  // The test's shader has no cameraPos, so the default distance of the
-  // transition shaders does not compile: the report says so, and the policy
-  // has none.
-  EXPECT_NE(readText(dir_ / "out/report.md").find("the transition shaders do not compile with the distance"),
-            std::string::npos);
-  EXPECT_TRUE(std::none_of(fs::directory_iterator(dir_ / "out"), fs::directory_iterator(), [](const auto& entry) {
+  // The test's shader reads matMVP, so the transition shaders read the eye
+  // and the model matrix from its world: they are written.
+  EXPECT_EQ(readText(dir_ / "out/report.md").find("do not compile"), std::string::npos);
+  EXPECT_TRUE(std::any_of(fs::directory_iterator(dir_ / "out"), fs::directory_iterator(), [](const auto& entry) {
     return entry.path().filename().string().starts_with("transition");
   }));
   // Level 0 is the original, the last level lost at least one blur: the
@@ -549,6 +547,32 @@ TEST_F(SearchRun, TransitionShadersBlendTheTwoLevelsOfEachSwitchByDistance) {
     }
     expectAPolicyOfTheChain(csvRows(dir_ / "out/chain.csv").size());
   }
+}
+
+// The default distance is the policy's, world units: on an instance scaled
+// to a hundredth, whose points are 1.2 to 1.6 units from the eye in the
+// world and a hundred times that in model space, every transition (its band
+// starts beyond 3, the policy measured from 4) draws its nearer level.
+TEST_F(SearchRun, TheDefaultTransitionDistanceIsInWorldUnits) {
+  std::string scene = sceneJson();
+  scene.replace(scene.find("\"size\": 2,"), std::string("\"size\": 2,").size(), "\"size\": 200,");
+  scene.replace(scene.find("\"material\""), std::string("\"material\"").size(),
+                "\"transform\": {\"scale\": 0.01}, \"material\"");
+  std::ofstream(dir_ / "scene.json") << scene;
+  std::ostringstream out, err;
+  ASSERT_EQ(runSearchTool(searchArgs({"--max-levels", "3", "--max-error", "0.5", "--distances", "4,8,16"}), out, err),
+            kExitSuccess)
+      << err.str() << out.str();
+  size_t written = 0;
+  for (const auto& entry : fs::directory_iterator(dir_ / "out")) {
+    size_t from = 0, to = 0;
+    if (entry.path().extension() != ".png" ||
+        std::sscanf(entry.path().filename().c_str(), "transition%zu_%zu", &from, &to) != 2)
+      continue;
+    ++written;
+    expectSameImage(entry.path(), dir_ / "out" / fmt::format("level{}.png", from));
+  }
+  EXPECT_GT(written, 0U) << out.str();
 }
 
 TEST(SearchCommandLine, RefusesWhatItCannotRun) {

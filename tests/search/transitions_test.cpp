@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <utility>
 
@@ -62,18 +63,21 @@ class TransitionsTest : public ::testing::Test {
 TEST_F(TransitionsTest, BlendEachComponentThatDiffersOverTheLastPartOfTheNearerBand) {
   lod::LodPolicy policy;
   policy.levels = {band(0, 10.0F), band(0, 20.0F), band(1, std::numeric_limits<float>::infinity())};
-  const TransitionShape shape{0.25, "length(cameraPos - vert_pos)"};
+  const TransitionShape shape{0.25, {"length(cameraPos - vert_pos)", {}}};
   auto transitions = chainTransitions(chain_, policy, *module_, "RampSearch", shape);
   ASSERT_TRUE(transitions) << transitions.error().message;
   // Bands 0 and 1 draw the same level: one switch, at 20.
-  ASSERT_EQ(transitions->size(), 1U);
-  const Transition& t = transitions->front();
+  ASSERT_EQ(transitions->list.size(), 1U);
+  const Transition& t = transitions->list.front();
   EXPECT_EQ(t.from, 0U);
   EXPECT_EQ(t.to, 1U);
   EXPECT_EQ(t.band, 1U);
   EXPECT_DOUBLE_EQ(t.farDistance, 20.0);
   EXPECT_DOUBLE_EQ(t.nearDistance, 17.5);  // the last quarter of 10..20
-  EXPECT_NE(t.definitions.find("clamp((length(cameraPos - vert_pos) - 17.5) / 2.5, 0.0, 1.0)"), std::string::npos)
+  EXPECT_NE(transitions->shared.find("float spireTransitionDistance = length(cameraPos - vert_pos);"),
+            std::string::npos)
+      << transitions->shared;
+  EXPECT_NE(t.definitions.find("clamp((spireTransitionDistance - 17.5) / 2.5, 0.0, 1.0)"), std::string::npos)
       << t.definitions;
   // Both definitions copied, blended by mix where mix applies and switched
   // halfway where it does not.
@@ -99,7 +103,7 @@ TEST_F(TransitionsTest, BlendEachComponentThatDiffersOverTheLastPartOfTheNearerB
   // The definitions compile in the derived shader, and the decision file
   // places them.
   std::string text = kModule;
-  text.insert(text.rfind('}'), t.definitions);
+  text.insert(text.rfind('}'), transitionDefinitions(*transitions));
   auto compiled = compileModule(compile_, "ramp_search.spire", text, "RampSearch");
   EXPECT_TRUE(compiled) << (compiled ? "" : compiled.error().message) << text;
   EXPECT_NE(transitionDecisionText(t, {"ramp.spire", "Ramp", "RampSearch"})
@@ -113,10 +117,10 @@ TEST_F(TransitionsTest, ThePolicyGetsABandForEachTransitionBetweenTheLevelsItBle
   chain_.levels[2].placement[1].second = "Fragment";
   lod::LodPolicy policy;
   policy.levels = {band(0, 10.0F), band(1, 30.0F), band(2, std::numeric_limits<float>::infinity())};
-  auto transitions = chainTransitions(chain_, policy, *module_, "RampSearch", {0.2, "0.0"});
+  auto transitions = chainTransitions(chain_, policy, *module_, "RampSearch", {0.2, {"0.0", {}}});
   ASSERT_TRUE(transitions) << transitions.error().message;
-  ASSERT_EQ(transitions->size(), 2U);
-  const lod::LodPolicy with = withTransitions(policy, *transitions, "RampSearch", "out");
+  ASSERT_EQ(transitions->list.size(), 2U);
+  const lod::LodPolicy with = withTransitions(policy, transitions->list, "RampSearch", "out");
   ASSERT_EQ(with.levels.size(), 5U);
   const float ends[] = {8.0F, 10.0F, 26.0F, 30.0F};
   const char* files[] = {"out/level0.decisions", "out/transition0_1.decisions", "out/level1.decisions",
@@ -130,14 +134,109 @@ TEST_F(TransitionsTest, ThePolicyGetsABandForEachTransitionBetweenTheLevelsItBle
   }
   EXPECT_TRUE(std::isinf(with.levels[4].until));
   // Only steps differs between levels 1 and 2.
-  EXPECT_EQ(transitions->back().placement[0], (std::pair<std::string, std::string>{"tint", "Fragment:level1"}));
-  EXPECT_EQ(transitions->back().placement[1], (std::pair<std::string, std::string>{"steps", "Fragment:transition1_2"}));
+  EXPECT_EQ(transitions->list.back().placement[0], (std::pair<std::string, std::string>{"tint", "Fragment:level1"}));
+  EXPECT_EQ(transitions->list.back().placement[1],
+            (std::pair<std::string, std::string>{"steps", "Fragment:transition1_2"}));
 
   // A switch between two levels that place alike blends nothing: no band.
   chain_.levels[2] = chain_.levels[1];
-  auto none = chainTransitions(chain_, policy, *module_, "RampSearch", {0.2, "0.0"});
+  auto none = chainTransitions(chain_, policy, *module_, "RampSearch", {0.2, {"0.0", {}}});
   ASSERT_TRUE(none) << none.error().message;
-  EXPECT_EQ(none->size(), 1U);
+  EXPECT_EQ(none->list.size(), 1U);
+  EXPECT_EQ(transitionDefinitions(Transitions{"shared", {}}), "");
+}
+
+// The default distance is the policy's: world units, from the engine's
+// world-space eye and model matrix, declared where the shader reads the
+// engine's other per-frame values when it does not read them.
+TEST_F(TransitionsTest, TheDefaultDistanceIsTheEyesInWorldUnits) {
+  const sem::Shader* ramp = module_->model().findShader("RampSearch");
+  ASSERT_NE(ramp, nullptr);
+  auto distance = eyeDistanceInWorld(*ramp);
+  ASSERT_TRUE(distance) << distance.error().message;
+  EXPECT_EQ(distance->expression, "length(cameraPosWorld - (matModel * vec4(vert_pos, 1.0)).xyz)");
+  EXPECT_EQ(distance->declarations, "    @FrameUniform vec3 cameraPosWorld;\n    @FrameUniform mat4 matModel;\n");
+
+  // With transitions, the module compiles.
+  lod::LodPolicy policy;
+  policy.levels = {band(0, 10.0F), band(1, std::numeric_limits<float>::infinity())};
+  auto transitions = chainTransitions(chain_, policy, *module_, "RampSearch", {0.2, *distance});
+  ASSERT_TRUE(transitions) << transitions.error().message;
+  std::string text = kModule;
+  text.insert(text.rfind('}'), transitionDefinitions(*transitions));
+  auto compiled = compileModule(compile_, "ramp_search.spire", text, "RampSearch");
+  EXPECT_TRUE(compiled) << (compiled ? "" : compiled.error().message) << text;
+}
+
+TEST_F(TransitionsTest, TheDefaultDistanceReadsWhatThePipelineAndShaderSupply) {
+  // The instanced pipeline supplies matModel per instance, and the shader
+  // reads the eye already: nothing to declare.
+  constexpr const char* kInstanced = R"(using "pipelines/instanced.spire";
+
+shader Lamp using InstancedPipeline {
+    @FrameUniform mat4 matViewProj;
+    @FrameUniform vec3 cameraPosWorld;
+    vec4 projPos = matViewProj * (matModel * vec4(vert_pos, 1.0));
+    vec4 output = vec4(1.0);
+}
+
+shader LampSearch : Lamp {
+    vec4 output:level1 = vec4(0.5);
+}
+)";
+  auto lamp = compileModule(compile_, "lamp.spire", kInstanced, "LampSearch");
+  ASSERT_TRUE(lamp) << lamp.error().message;
+  auto distance = eyeDistanceInWorld(*(*lamp)->model().findShader("LampSearch"));
+  ASSERT_TRUE(distance) << distance.error().message;
+  EXPECT_EQ(distance->declarations, "");
+  // matModel reaches only the Vertex world there: the distance is computed
+  // per vertex, and the module with its transitions compiles.
+  Chain chain;
+  chain.levels.resize(2);
+  chain.levels[0].placement = {{"output", "Fragment"}};
+  chain.levels[1].placement = {{"output", "Fragment:level1"}};
+  lod::LodPolicy policy;
+  policy.levels = {band(0, 10.0F), band(1, std::numeric_limits<float>::infinity())};
+  for (auto& level : policy.levels) level.decisions = {{"LampSearch", level.decisions.at("RampSearch")}};
+  auto transitions = chainTransitions(chain, policy, **lamp, "LampSearch", {0.2, *distance});
+  ASSERT_TRUE(transitions) << transitions.error().message;
+  ASSERT_EQ(transitions->list.size(), 1U);
+  std::string text = kInstanced;
+  text.insert(text.rfind('}'), transitionDefinitions(*transitions));
+  auto compiled = compileModule(compile_, "lamp.spire", text, "LampSearch");
+  ASSERT_TRUE(compiled) << compiled.error().message << text;
+  std::map<std::string, std::string> decisions(transitions->list[0].placement.begin(),
+                                               transitions->list[0].placement.end());
+  std::vector<std::string> skipped;
+  EXPECT_TRUE((*compiled)->buildVariant("LampSearch", decisions, &skipped));
+  EXPECT_TRUE(skipped.empty()) << skipped.front();
+
+  // A shader that reads no engine value per frame has no world to read the
+  // eye from; one that reads the eye under another type is not the engine's.
+  constexpr const char* kUnlit = R"(using "pipelines/engine.spire";
+
+shader Unlit using EnginePipeline {
+    @MaterialUniform mat4 placed;
+    vec4 projPos = placed * vec4(vert_pos, 1.0);
+    vec4 output = vec4(1.0);
+}
+
+shader Odd using EnginePipeline {
+    @FrameUniform vec4 cameraPosWorld;
+    vec4 projPos = vec4(vert_pos, 1.0) + cameraPosWorld;
+    vec4 output = vec4(1.0);
+}
+)";
+  for (const char* name : {"Unlit", "Odd"}) {
+    auto unlit = compileModule(compile_, "unlit.spire", kUnlit, name);
+    ASSERT_TRUE(unlit) << unlit.error().message;
+    auto none = eyeDistanceInWorld(*(*unlit)->model().findShader(name));
+    ASSERT_FALSE(none) << name;
+    EXPECT_NE(none.error().message.find(name == std::string("Unlit") ? "reads no per-frame engine value"
+                                                                     : "as a vec4, not the engine's vec3"),
+              std::string::npos)
+        << none.error().message;
+  }
 }
 
 }  // namespace
