@@ -53,7 +53,7 @@ std::string cell(const std::string& text) {
 
 std::string transitionImageName(const Transition& t) { return fmt::format("transition{}_{}.png", t.from, t.to); }
 
-std::string transitionSection(const OutputRequest& request) {
+std::string transitionSection(const Chain& chain, const OutputRequest& request) {
   if (!request.policy) return {};
   std::string text =
       "\n## Transitions\n\nHe et al.'s transition shaders: where the policy switches levels, a band over the "
@@ -62,12 +62,18 @@ std::string transitionSection(const OutputRequest& request) {
   const ChainTransitions& made = request.transitions;
   if (made.transitions.list.empty()) return text + fmt::format("None: {}.\n", made.note);
   text +=
-      "| from level | to level | blends from | to | decision file | from the first camera view |\n"
-      "|---|---|---|---|---|---|\n";
+      "Time is the frame time over level 0's, as for the levels: a transition computes both levels it blends, "
+      "so its band costs more than either.\n\n"
+      "| from level | to level | blends from | to | time | level A's, B's | decision file | from the first camera "
+      "view |\n"
+      "|---|---|---|---|---|---|---|---|\n";
   for (size_t i = 0; i < made.transitions.list.size(); ++i) {
     const Transition& t = made.transitions.list[i];
-    text += fmt::format("| {0} | {1} | {2:.4g} | {3:.4g} | `{4}` | ![from level {0} to level {1}]({5}) |\n", t.from,
-                        t.to, t.nearDistance, t.farDistance, transitionFileName(t), transitionImageName(t));
+    const std::string time = i < made.timeRatios.size() ? fmt::format("{:.3f}", made.timeRatios[i]) : "-";
+    text += fmt::format(
+        "| {0} | {1} | {2:.4g} | {3:.4g} | {4} | {5:.3f}, {6:.3f} | `{7}` | ![from level {0} to level {1}]({8}) |\n",
+        t.from, t.to, t.nearDistance, t.farDistance, time, chain.levels.at(t.from).timeRatio,
+        chain.levels.at(t.to).timeRatio, transitionFileName(t), transitionImageName(t));
   }
   return text;
 }
@@ -110,7 +116,7 @@ std::string report(const Chain& chain, const OutputRequest& request) {
         "per switch.\n\n{}",
         o.policyChoice.errorExponent, o.policyChoice.maxError, o.policyChoice.switchPenalty, request.policy->table);
   }
-  text += transitionSection(request);
+  text += transitionSection(chain, request);
   text += "\n## Steps\n\n```\n";
   for (const std::string& line : chain.log) text += line + "\n";
   return text + "```\n";

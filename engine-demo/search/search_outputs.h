@@ -21,7 +21,10 @@ namespace spire::search {
 struct ChainTransitions {
   Transitions transitions;
   std::vector<std::string> images;  // each from the scene's first camera view, PNG
-  std::string note;                 // without transitions, why
+  // Each one's frame time over level 0's, frame for frame: a transition
+  // computes both levels it blends, so its band costs more than either.
+  std::vector<double> timeRatios;
+  std::string note;  // without transitions, why
 };
 
 struct OutputRequest {

@@ -206,14 +206,37 @@ Expected<ChainTransitions, Failure> makeTransitions(const Chain& chain, const Ch
     return made;
   }
   for (const Transition& t : transitions->list) {
+    const auto failed = [&](const std::string& why) {
+      return Failure{fmt::format("the transition from level {} to level {}: {}", t.from, t.to, why)};
+    };
     auto png = imageOf(tuner, t.placement);
-    if (!png) {
-      return Failure{fmt::format("the transition from level {} to level {}: {}", t.from, t.to, png.error().message)};
-    }
+    if (!png) return failed(png.error().message);
     made.images.push_back(std::move(png).value());
+    tune::TunePoint point;
+    point.decisions = {t.placement.begin(), t.placement.end()};
+    const tune::VariantResult timed = tuner.measure(point);
+    if (!timed.ok()) return failed(timed.status);
+    made.timeRatios.push_back(timed.time.median);
   }
   made.transitions = std::move(transitions).value();
   return made;
+}
+
+// "transition shaders: N" and each one's band and cost, or why there are
+// none.
+void printTransitions(const Chain& chain, const ChainTransitions& made, std::ostream& out) {
+  const std::vector<Transition>& list = made.transitions.list;
+  if (list.empty()) {
+    out << "transition shaders: none: " << made.note << "\n";
+    return;
+  }
+  out << fmt::format("transition shaders: {}\n", list.size());
+  for (size_t i = 0; i < list.size() && i < made.timeRatios.size(); ++i) {
+    const Transition& t = list[i];
+    out << fmt::format("  level {} to {}, from {:.4g} to {:.4g}: time ratio {:.3f} (the levels: {:.3f}, {:.3f})\n",
+                       t.from, t.to, t.nearDistance, t.farDistance, made.timeRatios[i],
+                       chain.levels.at(t.from).timeRatio, chain.levels.at(t.to).timeRatio);
+  }
 }
 
 // The search on the renderer, then its outputs; the exit status.
@@ -244,9 +267,7 @@ int search(const SearchOptions& options, const simplify::UserRules& rules, engin
     auto made = makeTransitions(*chain, *policy, *setup, options, tuner);
     if (!made) return fail(made.error().message);
     transitions = std::move(made).value();
-    out << fmt::format("transition shaders: {}\n", transitions.transitions.list.empty()
-                                                       ? "none: " + transitions.note
-                                                       : std::to_string(transitions.transitions.list.size()));
+    printTransitions(*chain, transitions, out);
   }
   auto images = levelImages(tuner, *chain);
   if (!images) return fail(images.error().message);

@@ -544,6 +544,21 @@ TEST_F(SearchRun, TransitionShadersBlendTheTwoLevelsOfEachSwitchByDistance) {
       EXPECT_NE(placement.find(fmt::format("color = Fragment:{}\n", name)), std::string::npos) << placement;
       const size_t shown = std::string(distance) == "0.0" ? from : to;
       expectSameImage(dir_ / "out" / (name + ".png"), dir_ / "out" / fmt::format("level{}.png", shown));
+      // Each transition is timed: the console and the report give its
+      // frame time over level 0's beside its two levels'.
+      const std::string console = out.str();
+      const size_t line = console.find(fmt::format("  level {} to {}, from ", from, to));
+      ASSERT_NE(line, std::string::npos) << console;
+      double ratio = 0.0;
+      ASSERT_EQ(std::sscanf(console.c_str() + console.find("time ratio ", line), "time ratio %lf", &ratio), 1);
+      EXPECT_GT(ratio, 0.0);
+      const std::string report = readText(dir_ / "out/report.md");
+      const size_t row = report.find(fmt::format("\n| {} | {} | ", from, to));
+      ASSERT_NE(row, std::string::npos) << report;
+      double near = 0.0, far = 0.0, reported = 0.0;
+      EXPECT_EQ(std::sscanf(report.c_str() + row, "\n| %*u | %*u | %lf | %lf | %lf |", &near, &far, &reported), 3)
+          << report.substr(row, 200);
+      EXPECT_NEAR(reported, ratio, 0.0005);
     }
     expectAPolicyOfTheChain(csvRows(dir_ / "out/chain.csv").size());
   }
