@@ -255,8 +255,10 @@ int runLodDemo(const LodRunOptions& options, engine::ToolRun& run, GlfwWindow* w
   auto configs = createConfigurations(run);
   if (!configs) return run.fail(configs.error());
   // Every level is prepared now: a material value that none of them reads
-  // is worth a warning (W7101), as for variants.
+  // is worth a warning (W7101), as for variants, and so is a switch that
+  // the policy cross-fades but the level's shader cannot (W7102).
   run.renderer().reportUnreadBindings();
+  (*configs)[kLod].scene->reportSwitchesThatCannotFade(run.diagnostics());
   run.reporter().flush();
   if (!window) return run.finish(measureLod(options, run, *configs, out));
   FrameSource source;

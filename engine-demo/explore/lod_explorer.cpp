@@ -172,8 +172,10 @@ std::optional<int> LodExplorer::start() {
       });
   scene_->resetLevels(view_);
   startLevels_ = levelCounts(*scene_);
-  // Every level is prepared now, as in spire-demo: an unread value is worth a warning.
+  // Every level is prepared now, as in spire-demo: an unread value is worth
+  // a warning, and so is a switch that cannot cross-fade.
   renderer_.reportUnreadBindings();
+  scene_->reportSwitchesThatCannotFade(run_.diagnostics());
   run_.reporter().flush();
   vk::Image* color = renderer_.colorImage();
   if (color == nullptr) return run_.fail({"the scene renders no color output to show", {}, {}});

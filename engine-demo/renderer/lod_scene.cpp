@@ -407,6 +407,27 @@ Expected<void> LodScene::setBands(const lod::LodPolicy& policy, const scene::Cam
 }
 
 const lod::LodPolicy& LodScene::policy() const { return impl_->policy; }
+
+void LodScene::reportSwitchesThatCannotFade(DiagnosticList& diags) const {
+  const lod::LodPolicy& policy = impl_->policy;
+  if (policy.transitionFrames == 0) return;
+  // A switch from a blend band is seamless: at its edge the blend is the
+  // level it hands over to.
+  const auto fadesInto = [&](size_t level) {
+    const auto popsFrom = [&](size_t other) { return other < policy.levels.size() && !policy.levels[other].blend; };
+    return !policy.levels[level].blend && ((level > 0 && popsFrom(level - 1)) || popsFrom(level + 1));
+  };
+  for (const auto& group : impl_->groups) {
+    const VariantProgram& program = impl_->levels[group->level].programs[group->representative];
+    if (!fadesInto(group->level) || readsLodFade(program)) continue;
+    const lod::LodLevel& level = policy.levels[group->level];
+    diags.reportOnce(DiagCode::W7102, level.range,
+                     fmt::format("'{}' at level {} ({}) does not read lodFade, so switches into this level are drawn "
+                                 "at once, not cross-faded over the policy's {} transitionFrames; a shader fades by "
+                                 "writing lodFade into its output's alpha",
+                                 program.shader, group->level, lod::levelName(level), policy.transitionFrames));
+  }
+}
 const LodFrameStats& LodScene::lastStats() const { return impl_->stats; }
 size_t LodScene::instanceCount() const { return impl_->instances.size(); }
 const lod::DrawGroups& LodScene::drawGroups() const { return impl_->batcher->groups(); }

@@ -86,6 +86,12 @@ class LodScene {
   Expected<void> setBands(const lod::LodPolicy& policy, const scene::CameraView& view);
   // The policy the scene draws with (LodOptions applied).
   const lod::LodPolicy& policy() const;
+  // W7102, at the policy's level, for each shader whose kernels at that
+  // level do not read lodFade where switches into the level should
+  // cross-fade (transitionFrames > 0, from a neighbouring band that is not
+  // a blend band): they are drawn at once. Not reported while the scene is
+  // made, since a tool may make it on a thread of its own.
+  void reportSwitchesThatCannotFade(DiagnosticList& diags) const;
 
   const LodFrameStats& lastStats() const;
   size_t instanceCount() const;

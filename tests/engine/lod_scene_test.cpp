@@ -10,8 +10,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <future>
 #include <set>
+
+#include <unistd.h>
 
 #include "common/lod_test_scene.h"
 #include "engine/renderer_fixture.h"
@@ -181,6 +185,66 @@ TEST_F(LodSceneTest, LevelsCompiledOnAnotherThreadDrawAsTheSceneCompilesThem) {
   auto color = elsewhere.readColor();
   ASSERT_TRUE(color);
   EXPECT_EQ(color->rgba, expected->rgba);
+}
+
+// Two members, one of which writes lodFade into its alpha and one that
+// does not: a policy that cross-fades switches into the second is warned
+// about (W7102) at that level, unless it does not cross-fade (no
+// transitionFrames) or the switch comes from a blend band, which is
+// seamless.
+TEST_F(LodSceneTest, ASwitchIntoALevelThatCannotFadeIsWarnedAbout) {
+  const std::filesystem::path source =
+      std::filesystem::temp_directory_path() / fmt::format("spire_lod_fades_{}.spire", ::getpid());
+  std::ofstream(source) << R"(using "pipelines/instanced.spire";
+shader FadeBase using InstancedPipeline {
+    @FrameUniform mat4 matViewProj;
+    vec4 projPos = matViewProj * (matModel * vec4(vert_pos, 1.0));
+}
+shader Fades : FadeBase { vec4 output = vec4(1.0, 0.0, 0.0, lodFade); }
+shader Opaque : FadeBase { vec4 output = vec4(0.0, 0.0, 1.0, 1.0); }
+group Members { shader Fades; optional shader Opaque; }
+shader Thing : Members { }
+)";
+  const std::string json = fmt::format(R"({{"resolution": [32, 32], "includePaths": ["{}"],
+  "camera": {{"views": [{{"position": [0, 3, 3], "target": [0, 0, 0]}}]}},
+  "lod": {{"policy": "unused.json", "blocks": 1}},
+  "meshes": {{"box": {{"type": "box", "size": 1}}}},
+  "instances": [{{"mesh": "box", "source": "{}", "shader": "Thing"}}]}})",
+                                       SPIRE_SOURCE_DIR, source.generic_string());
+  const auto level = [](const char* member, float until) { return lod::LodLevel{member, until, {}, {}}; };
+  const float beyond = std::numeric_limits<float>::infinity();
+  lod::LodLevel blend = level("Fades", 6.0F);
+  blend.blend = true;
+  struct Case {
+    std::vector<lod::LodLevel> levels;
+    uint32_t transitionFrames;
+    std::vector<std::string> warned;  // the members warned about
+  };
+  const std::vector<Case> cases = {
+      {{level("Fades", 5.0F), level("Opaque", beyond)}, 4, {"Opaque"}},
+      {{level("Opaque", 5.0F), level("Fades", beyond)}, 4, {"Opaque"}},
+      {{level("Fades", 5.0F), level("Opaque", beyond)}, 0, {}},
+      {{level("Fades", 5.0F), blend, level("Opaque", beyond)}, 4, {}},
+  };
+  for (const Case& c : cases) {
+    lod::LodPolicy p;
+    p.levels = c.levels;
+    p.transitionFrames = c.transitionFrames;
+    auto scene = lodScene(json, {}, p);
+    ASSERT_TRUE(scene);
+    scene->reportSwitchesThatCannotFade(*diags_);
+    std::vector<std::string> warned;
+    for (const Diagnostic& d : diags_->all()) {
+      if (d.code != DiagCode::W7102) continue;
+      EXPECT_NE(d.message.find("does not read lodFade, so switches into this level are drawn at once, not "
+                               "cross-faded over the policy's 4 transitionFrames"),
+                std::string::npos)
+          << d.message;
+      warned.push_back(d.message.substr(d.message.find("(") + 1, d.message.find(")") - d.message.find("(") - 1));
+    }
+    EXPECT_EQ(warned, c.warned) << renderDiagnostics(*sources_, *diags_, DiagnosticFormat::Text);
+  }
+  std::filesystem::remove(source);
 }
 
 }  // namespace
