@@ -161,7 +161,6 @@ class Explorer {
   // A script's `save`/`load` file; without one, the Save and Load buttons' (--save-to).
   fs::path buttonsOrScriptRelative(const std::string& path) const;
   // The diagnostics reported since the list's size was `mark`, rendered.
-  std::string renderSince(size_t mark) const;
   std::optional<int> startSession();
   // One frame: script, compile results, render, panels, present.
   engine::Expected<bool> frame(const demo::WindowInput& input);
@@ -214,13 +213,6 @@ class Explorer {
   vk::HostTimer clock_;
 };
 
-std::string Explorer::renderSince(size_t mark) const {
-  std::string text;
-  const std::vector<Diagnostic>& all = run_.diagnostics().all();
-  for (size_t i = mark; i < all.size(); ++i) text += renderDiagnostic(run_.sources(), all[i]);
-  return text;
-}
-
 fs::path Explorer::scriptRelative(const std::string& path) const {
   return explore::scriptRelative(options_.script, path);
 }
@@ -252,7 +244,7 @@ engine::Expected<Explorer::FileDecisions> Explorer::readDecisions(const fs::path
   const size_t errors = diags.errorCount();
   const graph::DecisionFile decisions = graph::parseDecisionFile(run_.sources(), file, diags);
   if (diags.errorCount() > errors) {
-    return engine::Error{fmt::format("decision file '{}' has errors", path.string()), {}, renderSince(mark)};
+    return engine::Error{fmt::format("decision file '{}' has errors", path.string()), {}, run_.renderSince(mark)};
   }
   FileDecisions result;
   for (const graph::DecisionLine& line : decisions.lines) {

@@ -52,6 +52,10 @@ SceneRenderer& ToolRun::startRenderer(uint32_t defaultBakeSize) {
 std::string ToolRun::adoptDiagnostics(std::vector<Diagnostic> diagnostics) {
   const size_t mark = diags_.size();
   diags_.reportAll(std::move(diagnostics));
+  return renderSince(mark);
+}
+
+std::string ToolRun::renderSince(size_t mark) const {
   std::string text;
   for (size_t i = mark; i < diags_.size(); ++i) text += renderDiagnostic(sources_, diags_.all()[i]);
   return text;

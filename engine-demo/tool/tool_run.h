@@ -68,6 +68,8 @@ class ToolRun {
   // (it cannot report into this one while this thread may), and returns
   // them rendered.
   std::string adoptDiagnostics(std::vector<Diagnostic> diagnostics);
+  // The diagnostics reported since the list had `mark` of them, rendered.
+  std::string renderSince(size_t mark) const;
   // Prints `error` after any pending diagnostics; returns kExitInputError.
   int fail(const Error& error) { return reporter_.fail(error); }
 
