@@ -344,9 +344,11 @@ std::set<const ast::VarDeclarator*> CostModel::deadLocals(const ast::ComponentDe
   for (const ast::VarDeclarator* local : locals) {
     if (hasSideEffects(model_, *local->init)) keep(local);
   }
-  for (const auto& [local, range] : reads) {
+  // Not a structured binding: clang 14 (the fuzz preset) cannot capture one.
+  for (const auto& read : reads) {
+    const auto& range = read.second;
     if (std::none_of(locals.begin(), locals.end(), [&](const auto* l) { return within(range, l->init->range); })) {
-      keep(local);
+      keep(read.first);
     }
   }
   while (!pending.empty()) {
