@@ -123,7 +123,12 @@ class PolicyReader {
   std::filesystem::path folder_;
 };
 
-std::string jsonString(const std::string& text) { return nlohmann::json(text).dump(); }
+// A member name or decision-file path is any bytes a user gave (a script's
+// word, a file name): bytes that are not UTF-8, which JSON cannot hold, are
+// written as U+FFFD instead of throwing.
+std::string jsonString(const std::string& text) {
+  return nlohmann::json(text).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
 
 }  // namespace
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "support/diagnostic_renderer.h"
 
@@ -48,6 +49,21 @@ TEST(LodPolicyTest, FormattedPolicyReadsBackTheSame) {
   EXPECT_FALSE(again.policy->levels[0].blend);
   EXPECT_TRUE(again.policy->levels[1].blend);
   EXPECT_FALSE(again.policy->levels[1].drawsAs(again.policy->levels[0]));
+}
+
+// A member name is any bytes a user gave (an explorer script's word): bytes
+// that are not UTF-8, which JSON cannot hold, are written as U+FFFD, and the
+// file reads back to itself. (Writing them used to throw, and the explorer
+// died of it.)
+TEST(LodPolicyTest, NamesThatAreNotUtf8AreWrittenAsReplacementCharacters) {
+  LodPolicy policy;
+  policy.levels = {{"Lo\xff\xfe", 5.0F, {}, {}}, {"LodLQ", std::numeric_limits<float>::infinity(), {}, {}}};
+  std::string text;
+  ASSERT_NO_THROW(text = formatLodPolicy(policy));
+  EXPECT_NE(text.find("\"Lo\xef\xbf\xbd\xef\xbf\xbd\""), std::string::npos) << text;
+  const Parsed again = parse(text);
+  ASSERT_TRUE(again.policy) << again.diagnostics;
+  EXPECT_EQ(formatLodPolicy(*again.policy), text);
 }
 
 TEST(LodPolicyTest, BadPoliciesAreReportedAtTheirValues) {
