@@ -1,6 +1,7 @@
 #include "explore/explore_script.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <array>
 #include <charconv>
@@ -255,6 +256,11 @@ std::filesystem::path scriptRelative(const std::optional<std::filesystem::path>&
 
 std::string describeAction(const SourceManager& sources, const ScriptAction& action) {
   return std::string(sources.text(action.range));
+}
+
+Expected<void, Failure> writeSessionLog(const std::filesystem::path& path, const nlohmann::ordered_json& document) {
+  return writeFileAtomically(path.string(),
+                             document.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
 }
 
 }  // namespace spire::explore

@@ -43,7 +43,10 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "support/diagnostic.h"
+#include "support/expected.h"
 #include "support/source_manager.h"
 #include "tool/tool_run.h"
 
@@ -109,5 +112,10 @@ std::filesystem::path scriptRelative(const std::optional<std::filesystem::path>&
 
 // The action's text as written, for logs ("set Terrain.albedo = PrebakeTex").
 std::string describeAction(const SourceManager& sources, const ScriptAction& action);
+
+// --log FILE: `document` as indented JSON, written atomically. The actions
+// in it are a script's words, any bytes: what is not UTF-8, which JSON
+// cannot hold, is written as U+FFFD rather than thrown on.
+Expected<void, Failure> writeSessionLog(const std::filesystem::path& path, const nlohmann::ordered_json& document);
 
 }  // namespace spire::explore

@@ -757,11 +757,7 @@ int Explorer::finish(int status) {
   if (options_.log) {
     const nlohmann::ordered_json document{
         {"scene", options_.scenePath}, {"shader", session_->shader}, {"changes", log}};
-    // The actions are a script's words, any bytes: what is not UTF-8 is
-    // logged as U+FFFD rather than thrown on.
-    if (auto ok = writeFileAtomically(options_.log->string(),
-                                      document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-        !ok) {
+    if (auto ok = writeSessionLog(*options_.log, document); !ok) {
       return run_.fail({ok.error().message, {}, {}});
     }
   }

@@ -464,11 +464,7 @@ int LodExplorer::finish(int status) {
     const nlohmann::ordered_json document{{"scene", options_.scenePath}, {"start_levels", startLevels_},
                                           {"policy_edits", edits},       {"levels", levels},
                                           {"batches", metrics_.batches}, {"draw_calls", metrics_.drawCalls}};
-    // The actions are a script's words, any bytes: what is not UTF-8 is
-    // logged as U+FFFD rather than thrown on.
-    if (auto ok = writeFileAtomically(options_.log->string(),
-                                      document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-        !ok) {
+    if (auto ok = writeSessionLog(*options_.log, document); !ok) {
       return run_.fail({ok.error().message, {}, {}});
     }
   }

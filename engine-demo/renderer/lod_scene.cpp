@@ -417,9 +417,11 @@ void LodScene::reportSwitchesThatCannotFade(DiagnosticList& diags) const {
     const auto popsFrom = [&](size_t other) { return other < policy.levels.size() && !policy.levels[other].blend; };
     return !policy.levels[level].blend && ((level > 0 && popsFrom(level - 1)) || popsFrom(level + 1));
   };
-  for (const auto& group : impl_->groups) {
+  const lod::DrawGroups& drawGroups = impl_->batcher->groups();
+  for (uint32_t g = 0; g < impl_->groups.size(); ++g) {
+    const DrawGroup* group = impl_->groups[g].get();
+    if (!fadesInto(group->level) || drawGroups.canFade(g)) continue;
     const VariantProgram& program = impl_->levels[group->level].programs[group->representative];
-    if (!fadesInto(group->level) || readsLodFade(program)) continue;
     const lod::LodLevel& level = policy.levels[group->level];
     diags.reportOnce(DiagCode::W7102, level.range,
                      fmt::format("'{}' at level {} ({}) does not read lodFade, so switches into this level are drawn "

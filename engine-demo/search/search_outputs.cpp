@@ -69,10 +69,10 @@ std::string transitionSection(const Chain& chain, const OutputRequest& request) 
       "|---|---|---|---|---|---|---|---|\n";
   for (size_t i = 0; i < made.transitions.list.size(); ++i) {
     const Transition& t = made.transitions.list[i];
-    const std::string time = i < made.timeRatios.size() ? fmt::format("{:.3f}", made.timeRatios[i]) : "-";
     text += fmt::format(
-        "| {0} | {1} | {2:.4g} | {3:.4g} | {4} | {5:.3f}, {6:.3f} | `{7}` | ![from level {0} to level {1}]({8}) |\n",
-        t.from, t.to, t.nearDistance, t.farDistance, time, chain.levels.at(t.from).timeRatio,
+        "| {0} | {1} | {2:.4g} | {3:.4g} | {4:.3f} | {5:.3f}, {6:.3f} | `{7}` | ![from level {0} to level {1}]({8}) "
+        "|\n",
+        t.from, t.to, t.nearDistance, t.farDistance, made.drawn.at(i).timeRatio, chain.levels.at(t.from).timeRatio,
         chain.levels.at(t.to).timeRatio, transitionFileName(t), transitionImageName(t));
   }
   return text;
@@ -144,7 +144,7 @@ Expected<FileSet, Failure> searchOutputs(const Chain& chain, const OutputRequest
   for (size_t i = 0; i < made.transitions.list.size(); ++i) {
     const Transition& t = made.transitions.list[i];
     files.emplace_back(transitionFileName(t), transitionDecisionText(t, request.header));
-    if (i < made.images.size()) files.emplace_back(transitionImageName(t), made.images[i]);
+    files.emplace_back(transitionImageName(t), made.drawn.at(i).image);
   }
   files.emplace_back(moduleFileName(request.header),
                      chainModuleText(request.header, chain, transitionDefinitions(made.transitions)));

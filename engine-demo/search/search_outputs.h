@@ -18,13 +18,18 @@
 
 namespace spire::search {
 
+// A transition as the search drew and timed it.
+struct DrawnTransition {
+  std::string image;  // from the scene's first camera view, PNG
+  // Its frame time over level 0's, frame for frame: a transition computes
+  // both levels it blends, so its band costs more than either.
+  double timeRatio = 0.0;
+};
+
 struct ChainTransitions {
   Transitions transitions;
-  std::vector<std::string> images;  // each from the scene's first camera view, PNG
-  // Each one's frame time over level 0's, frame for frame: a transition
-  // computes both levels it blends, so its band costs more than either.
-  std::vector<double> timeRatios;
-  std::string note;  // without transitions, why
+  std::vector<DrawnTransition> drawn;  // one per transition, in order
+  std::string note;                    // without transitions, why
 };
 
 struct OutputRequest {

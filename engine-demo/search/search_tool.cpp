@@ -211,12 +211,11 @@ Expected<ChainTransitions, Failure> makeTransitions(const Chain& chain, const Ch
     };
     auto png = imageOf(tuner, t.placement);
     if (!png) return failed(png.error().message);
-    made.images.push_back(std::move(png).value());
     tune::TunePoint point;
     point.decisions = {t.placement.begin(), t.placement.end()};
     const tune::VariantResult timed = tuner.measure(point);
     if (!timed.ok()) return failed(timed.status);
-    made.timeRatios.push_back(timed.time.median);
+    made.drawn.push_back({std::move(png).value(), timed.time.median});
   }
   made.transitions = std::move(transitions).value();
   return made;
@@ -231,10 +230,10 @@ void printTransitions(const Chain& chain, const ChainTransitions& made, std::ost
     return;
   }
   out << fmt::format("transition shaders: {}\n", list.size());
-  for (size_t i = 0; i < list.size() && i < made.timeRatios.size(); ++i) {
+  for (size_t i = 0; i < list.size(); ++i) {
     const Transition& t = list[i];
     out << fmt::format("  level {} to {}, from {:.4g} to {:.4g}: time ratio {:.3f} (the levels: {:.3f}, {:.3f})\n",
-                       t.from, t.to, t.nearDistance, t.farDistance, made.timeRatios[i],
+                       t.from, t.to, t.nearDistance, t.farDistance, made.drawn.at(i).timeRatio,
                        chain.levels.at(t.from).timeRatio, chain.levels.at(t.to).timeRatio);
   }
 }
