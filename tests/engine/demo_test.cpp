@@ -259,25 +259,15 @@ TEST_F(DemoTest, ASwitchThatCannotCrossFadeIsWarnedAboutAtThePolicysLevel) {
   const fs::path dir = outputDir();
   const fs::path sceneDir = fs::path(dir.string() + "_scene");
   fs::create_directories(sceneDir);
-  std::ofstream(sceneDir / "fades.spire") << R"(using "pipelines/instanced.spire";
-shader FadeBase using InstancedPipeline {
-    @FrameUniform mat4 matViewProj;
-    vec4 projPos = matViewProj * (matModel * vec4(vert_pos, 1.0));
-}
-shader Fades : FadeBase { vec4 output = vec4(1.0, 0.0, 0.0, lodFade); }
-shader Opaque : FadeBase { vec4 output = vec4(0.0, 0.0, 1.0, 1.0); }
-group Members { shader Fades; optional shader Opaque; }
-shader Thing : Members { }
-)";
   std::ofstream(sceneDir / "policy.json") << R"({"levels": [{"member": "Fades", "until": 5},
             {"member": "Opaque"}], "transitionFrames": 4})";
   std::ofstream(sceneDir / "scene.json") << fmt::format(
-      R"({{"resolution": [32, 32], "frames": 2, "includePaths": ["{}"],
+      R"({{"resolution": [32, 32], "frames": 2,
   "camera": {{"views": [{{"position": [0, 3, 3], "target": [0, 0, 0]}}, {{"position": [0, 9, 9], "target": [0, 0, 0]}}]}},
   "lod": {{"policy": "policy.json", "blocks": 1}},
   "meshes": {{"box": {{"type": "box", "size": 1}}}},
-  "instances": [{{"mesh": "box", "source": "fades.spire", "shader": "Thing"}}]}})",
-      SPIRE_SOURCE_DIR);
+  "instances": [{{"mesh": "box", "source": "{}", "shader": "Thing"}}]}})",
+      (fs::path(SPIRE_SOURCE_DIR) / "tests/data/engine/lod_fades.spire").generic_string());
   std::ostringstream out;
   std::ostringstream err;
   ASSERT_EQ(runDemo({(sceneDir / "scene.json").string(), "--validation", "--frames", "2", "--warmup", "1", "-o",

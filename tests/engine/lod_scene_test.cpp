@@ -10,12 +10,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <future>
 #include <set>
-
-#include <unistd.h>
 
 #include "common/lod_test_scene.h"
 #include "engine/renderer_fixture.h"
@@ -193,24 +189,11 @@ TEST_F(LodSceneTest, LevelsCompiledOnAnotherThreadDrawAsTheSceneCompilesThem) {
 // transitionFrames) or the switch comes from a blend band, which is
 // seamless.
 TEST_F(LodSceneTest, ASwitchIntoALevelThatCannotFadeIsWarnedAbout) {
-  const std::filesystem::path source =
-      std::filesystem::temp_directory_path() / fmt::format("spire_lod_fades_{}.spire", ::getpid());
-  std::ofstream(source) << R"(using "pipelines/instanced.spire";
-shader FadeBase using InstancedPipeline {
-    @FrameUniform mat4 matViewProj;
-    vec4 projPos = matViewProj * (matModel * vec4(vert_pos, 1.0));
-}
-shader Fades : FadeBase { vec4 output = vec4(1.0, 0.0, 0.0, lodFade); }
-shader Opaque : FadeBase { vec4 output = vec4(0.0, 0.0, 1.0, 1.0); }
-group Members { shader Fades; optional shader Opaque; }
-shader Thing : Members { }
-)";
-  const std::string json = fmt::format(R"({{"resolution": [32, 32], "includePaths": ["{}"],
-  "camera": {{"views": [{{"position": [0, 3, 3], "target": [0, 0, 0]}}]}},
-  "lod": {{"policy": "unused.json", "blocks": 1}},
-  "meshes": {{"box": {{"type": "box", "size": 1}}}},
-  "instances": [{{"mesh": "box", "source": "{}", "shader": "Thing"}}]}})",
-                                       SPIRE_SOURCE_DIR, source.generic_string());
+  const std::string json = R"({"resolution": [32, 32],
+  "camera": {"views": [{"position": [0, 3, 3], "target": [0, 0, 0]}]},
+  "lod": {"policy": "unused.json", "blocks": 1},
+  "meshes": {"box": {"type": "box", "size": 1}},
+  "instances": [{"mesh": "box", "source": "lod_fades.spire", "shader": "Thing"}]})";
   const auto level = [](const char* member, float until) { return lod::LodLevel{member, until, {}, {}}; };
   const float beyond = std::numeric_limits<float>::infinity();
   lod::LodLevel blend = level("Fades", 6.0F);
@@ -244,7 +227,6 @@ shader Thing : Members { }
     }
     EXPECT_EQ(warned, c.warned) << renderDiagnostics(*sources_, *diags_, DiagnosticFormat::Text);
   }
-  std::filesystem::remove(source);
 }
 
 }  // namespace
