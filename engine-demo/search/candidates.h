@@ -63,6 +63,13 @@ struct StepRequest {
 // order, each rule's first K1 per component.
 Expected<std::vector<Candidate>, Failure> proposeCandidates(const StepRequest& request);
 
+// The moves of the step (He et al.'s move to vertex and to parameter stage,
+// in any pipeline): each selected component's current definition put in
+// another world that the level's choice file offers it in, the K1 of least
+// cost C per component among those that cost less than the level. A move
+// that makes no variant of the level (C cannot be computed) is none.
+std::vector<Candidate> proposeMoves(const StepRequest& request);
+
 // A subtree of a component's current definition (simplify/average_sites.h)
 // that Pellacini 2005's average rule or He et al. 2015's approximate common
 // subexpression elimination replaces: measured by rendering its probe, then

@@ -26,11 +26,20 @@ std::string variationOf(const std::string& placement) {
 
 std::string worldOf(const std::string& placement) { return placement.substr(0, placement.find(':')); }
 
-Placement withVariation(Placement placement, const std::string& component, const std::string& variation) {
+Placement applied(Placement placement, const Rewriting& step) {
   for (auto& [name, place] : placement) {
-    if (name == component) place = worldOf(place) + ":" + variation;
+    if (!isMove(step)) {
+      if (name == step.component) place = worldOf(place) + ":" + step.variation;
+      continue;
+    }
+    const std::string moved = placementOf(step.moved, name);
+    if (!moved.empty()) place = moved;
   }
   return placement;
+}
+
+std::string definitionName(const Rewriting& step) {
+  return step.variation.empty() ? step.component : step.component + ":" + step.variation;
 }
 
 double costOf(const Level& level, CostKind kind) { return kind == CostKind::Model ? level.modelCost : level.timeRatio; }
@@ -44,6 +53,8 @@ std::string chainModuleText(const ModuleHeader& header, const std::vector<const 
       "using \"{}\";\n\nshader {} : {} {{\n",
       header.base, header.usingPath, header.derived, header.base);
   for (const Rewriting* r : definitions) {
+    // A move adds no definition: the level's decision file places it.
+    if (isMove(*r)) continue;
     text += fmt::format("    // {}:{} = {} with {}: '{}' -> '{}'\n    {}\n", r->component, r->variation, r->from,
                         r->rule, r->before, r->after, r->text);
   }

@@ -15,24 +15,36 @@
 
 namespace spire::search {
 
-// One rewrite of a component's current definition under a variation name:
-// an accepted step (`albedo:level2`) or a candidate for one.
-struct Rewriting {
-  std::string component;  // "albedo"
-  std::string from;       // the definition it rewrites: "albedo", "albedo:level1"
-  std::string variation;  // its own name: "level2"
-  std::string rule;       // "constant-operand", ...
-  std::string before;     // the source it replaced
-  std::string after;
-  std::string text;  // the whole definition, named component:variation
-};
-
 // component -> "World" or "World:variation", every live component: a
 // variant as a decision file states it.
 using Placement = std::vector<std::pair<std::string, std::string>>;
 
-// `placement` with `component` computed in the same world, as `variation`.
-Placement withVariation(Placement placement, const std::string& component, const std::string& variation);
+// One step of a chain, or a candidate for one: a rewrite of a component's
+// current definition under a variation name (`albedo:level2`), or a move of
+// the component to another world of the pipeline with its definition as it
+// is (He et al.'s move to vertex and move to parameter stage, which in
+// Spire are world choices: any world the choice file offers), carrying the
+// components that cannot stay where they are with it.
+struct Rewriting {
+  std::string component;  // "albedo"
+  std::string from;       // the definition it rewrites or moves: "albedo", "albedo:level1"
+  std::string variation;  // its own name: "level2"; a move's is the definition's it moves
+  std::string rule;       // "constant-operand", ..., "move"
+  std::string before;     // the source it replaced; a move's: the placement it leaves
+  std::string after;      // a move's: the placement it takes, and those of what it carries
+  std::string text;       // the whole definition, named component:variation; empty for a move
+  Placement moved;        // a move's new placements, its component's first; empty for a rewrite
+};
+
+// The rule name of a move, and whether a step is one.
+inline constexpr const char* kMoveRule = "move";
+inline bool isMove(const Rewriting& r) { return !r.moved.empty(); }
+
+// `placement` after `step`: a rewrite's component as its variation in the
+// same world, or the placements a move sets.
+Placement applied(Placement placement, const Rewriting& step);
+// "albedo" or "albedo:level2": the definition a step makes or moves.
+std::string definitionName(const Rewriting& step);
 // `placement` as the decision lines of `shader`: what a level's decision
 // file says, and what its cost is computed for.
 graph::DecisionFile placementDecisions(const std::string& shader, const Placement& placement);

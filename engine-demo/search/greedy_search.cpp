@@ -211,6 +211,10 @@ Expected<std::vector<Candidate>, Failure> GreedySearch::propose(size_t level) {
                       level,           setup_.userRules};
   auto candidates = proposeCandidates(request);
   if (candidates && (options_.average || options_.acse)) addProbedCandidates(request, level, *candidates);
+  if (candidates && options_.moves) {
+    std::vector<Candidate> moves = proposeMoves(request);
+    candidates->insert(candidates->end(), std::make_move_iterator(moves.begin()), std::make_move_iterator(moves.end()));
+  }
   return candidates;
 }
 
@@ -230,7 +234,7 @@ GreedySearch::candidateAverages(size_t level, int attempt, const std::vector<Can
   std::vector<std::string> originals;  // components whose level-0 average is not known yet
   for (const Candidate& c : candidates) {
     const std::string& component = c.rewriting.component;
-    if (originalAverages_.contains(component) ||
+    if (isMove(c.rewriting) || originalAverages_.contains(component) ||
         std::find(originals.begin(), originals.end(), component) != originals.end()) {
       continue;
     }
@@ -238,16 +242,21 @@ GreedySearch::candidateAverages(size_t level, int attempt, const std::vector<Can
     values.push_back({component, setup_.original});
   }
   for (const Candidate& c : candidates) {
-    values.push_back({c.rewriting.component,
-                      withVariation(chain_.levels.back().placement, c.rewriting.component, c.rewriting.variation)});
+    if (!isMove(c.rewriting))
+      values.push_back({c.rewriting.component, applied(chain_.levels.back().placement, c.rewriting)});
   }
   const ProbeSetup setup = probeSetup(stepText(candidates), fmt::format("renormalize{}-{}.spire", level, attempt));
   auto averages = measureComponents(setup, values);
   if (!averages) return averages.error();
   for (size_t i = 0; i < originals.size(); ++i) originalAverages_[originals[i]] = (*averages)[i];
   std::vector<std::pair<std::optional<std::vector<double>>, std::optional<std::vector<double>>>> result;
-  for (size_t i = 0; i < candidates.size(); ++i) {
-    result.emplace_back(originalAverages_.at(candidates[i].rewriting.component), (*averages)[originals.size() + i]);
+  size_t next = originals.size();
+  for (const Candidate& c : candidates) {
+    if (isMove(c.rewriting)) {
+      result.emplace_back();  // a move keeps its definition: nothing to shift
+      continue;
+    }
+    result.emplace_back(originalAverages_.at(c.rewriting.component), (*averages)[next++]);
   }
   return result;
 }
@@ -317,6 +326,7 @@ void GreedySearch::renormalize(size_t level, int attempt, std::vector<Candidate>
   const sem::Shader& shader = *stepLibrary_->model().findShader(setup_.header.derived);
   for (size_t i = 0; i < candidates.size(); ++i) {
     Candidate& c = candidates[i];
+    if (isMove(c.rewriting)) continue;
     const auto& [original, own] = (*averages)[i];
     const ast::ComponentDecl* decl = simplify::definitionNamed(shader, c.rewriting.component, c.rewriting.variation);
     const sem::Component* component = shader.findComponent(c.rewriting.component);
@@ -431,7 +441,7 @@ std::vector<Trial> GreedySearch::measureCandidates(const std::vector<Candidate>&
   const Level& current = chain_.levels.back();
   std::vector<Trial> trials;
   for (const Candidate& c : candidates) {
-    const Placement placement = withVariation(current.placement, c.rewriting.component, c.rewriting.variation);
+    const Placement placement = applied(current.placement, c.rewriting);
     const std::optional<double> cost = stepModelCost(placement);
     if (!cost) {
       note(fmt::format("  skipped {} ({}): its cost C cannot be computed", c.rewriting.from, c.rewriting.rule));
@@ -465,9 +475,7 @@ Choice GreedySearch::choose(const std::vector<size_t>& order, std::vector<Trial>
   for (const size_t i : order) {
     Trial& t = trials[i];
     const Rewriting& r = t.candidate.level;
-    tune::VariantResult fresh =
-        t.fromCache ? measure(withVariation(current.placement, r.component, t.candidate.rewriting.variation))
-                    : t.result;
+    tune::VariantResult fresh = t.fromCache ? measure(applied(current.placement, t.candidate.rewriting)) : t.result;
     if (!fresh.ok() || fresh.kernels == current.kernels) continue;
     if (t.fromCache && std::abs(fresh.rmse - t.measure.error) > options_.k3 * t.measure.error) {
       note(fmt::format("  stale: {} ({}) cached RMSE {:.6f}, now {:.6f}; the cache is emptied", r.from, r.rule,
@@ -475,8 +483,8 @@ Choice GreedySearch::choose(const std::vector<size_t>& order, std::vector<Trial>
       return {std::nullopt, true};
     }
     // Liveness from the step's module, which names the rewrite as the candidate.
-    const Placement measured = live(withVariation(current.placement, r.component, t.candidate.rewriting.variation));
-    Level level = levelOf(fresh, withVariation(measured, r.component, r.variation));
+    const Placement measured = live(applied(current.placement, t.candidate.rewriting));
+    Level level = levelOf(fresh, applied(measured, r));
     const std::optional<double> cost = stepModelCost(measured);
     if (!cost) continue;
     level.modelCost = *cost;
@@ -521,11 +529,12 @@ Expected<std::optional<Accepted>, Failure> GreedySearch::step(size_t level) {
       return std::optional<Accepted>{};
     }
     const Accepted& a = *choice.accepted;
-    note(
-        fmt::format("level {}: {} candidate(s), {} ranked; {}:{} = {} with {}: '{}' -> '{}', RMSE {:.6f}, time ratio "
-                    "{:.3f}, C {:.1f}",
-                    level, candidates->size(), order.size(), a.step.component, a.step.variation, a.step.from,
-                    a.step.rule, a.step.before, a.step.after, a.level.error, a.level.timeRatio, a.level.modelCost));
+    const std::string what = isMove(a.step)
+                                 ? fmt::format("{} moved", definitionName(a.step))
+                                 : fmt::format("{} = {} with {}", definitionName(a.step), a.step.from, a.step.rule);
+    note(fmt::format("level {}: {} candidate(s), {} ranked; {}: '{}' -> '{}', RMSE {:.6f}, time ratio {:.3f}, C {:.1f}",
+                     level, candidates->size(), order.size(), what, a.step.before, a.step.after, a.level.error,
+                     a.level.timeRatio, a.level.modelCost));
     return std::move(choice.accepted);
   }
 }

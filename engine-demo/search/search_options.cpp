@@ -50,6 +50,9 @@ void defineSearchOptions(CLI::App& app, SearchOptions& options) {
   app.add_flag("--no-acse{false}", options.acse,
                "Leave out approximate common subexpression elimination (a subtree replaced by the component whose "
                "values at the scene's pixels are closest to its own, measured by rendering each)");
+  app.add_flag("--no-moves{false}", options.moves,
+               "Leave out moves: a component's current definition put in another world its choices offer (He et "
+               "al.'s move to vertex and move to parameter stage), chosen jointly with the rewrites");
   app.add_flag("--renormalize", options.renormalize,
                "Shift every candidate so that its component's average over the scene is the original's, as "
                "Pellacini 2005 renormalizes (one more render per candidate)");

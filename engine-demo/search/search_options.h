@@ -26,6 +26,7 @@ struct SearchOptions {
   std::vector<std::string> ruleFiles;   // user rule files (--rules), proposing beside the built-in rules
   bool average = true;                  // Pellacini's average rule, whose sites are measured by probes
   bool acse = true;                     // He et al.'s approximate common subexpression elimination
+  bool moves = true;                    // components moved to other worlds (He et al.'s m2v and m2p)
   bool renormalize = false;             // Pellacini's renormalization of every candidate
   size_t k1 = 2;                        // rewrites each rule proposes per component and step
   double k2 = 1.0;                      // candidates kept: error <= K2 x the median candidate error

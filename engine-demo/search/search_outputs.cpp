@@ -16,7 +16,7 @@ std::string levelFileName(size_t k) { return fmt::format("level{}.decisions", k)
 
 std::string levelDecisionText(const Chain& chain, size_t k, const ModuleHeader& header) {
   const Level& level = chain.levels[k];
-  const std::string what = k == 0 ? "the original" : fmt::format("{} rewrite(s) of the original", k);
+  const std::string what = k == 0 ? "the original" : fmt::format("{} step(s) from the original", k);
   return graph::writeDecisionFile(
       placementDecisions(header.derived, level.placement),
       fmt::format("spire-simplify --search: level {} of {}'s chain, {}.\nMeasured: RMSE {:.6f}, time "
@@ -95,8 +95,9 @@ std::string report(const Chain& chain, const OutputRequest& request) {
     std::string rewrite = "the original";
     if (k > 0) {
       const Rewriting& r = chain.steps[k - 1];
-      rewrite = fmt::format("`{}:{}` = `{}` with {}: `{}` → `{}`", r.component, r.variation, r.from, r.rule,
-                            cell(r.before), cell(r.after));
+      rewrite = isMove(r) ? fmt::format("`{}` moved: `{}` → `{}`", definitionName(r), r.before, r.after)
+                          : fmt::format("`{}` = `{}` with {}: `{}` → `{}`", definitionName(r), r.from, r.rule,
+                                        cell(r.before), cell(r.after));
     }
     text += fmt::format("| {} | {:.6f} | {:.3f} | {:.3f} | {:.1f} | {} |\n", k, level.error, level.timeRatio,
                         level.frameMs, level.modelCost, rewrite);

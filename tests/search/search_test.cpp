@@ -136,12 +136,16 @@ class SearchRun : public vk::testing::DeviceTest {
     std::ofstream(dir_ / "ramp.json") << scene;
   }
   // The search of `ramp` in the Ramp shader of ramp.json (a test writes
-  // both), with validation, into DIR, and `extra` options.
-  std::vector<std::string> rampArgs(const std::string& dir, const std::vector<std::string>& extra) const {
+  // both), with validation, into DIR, and `extra` options. Without moves
+  // unless `moves`: the tests of the rules would see a ramp moved per
+  // vertex, where it is exact, before any rewrite.
+  std::vector<std::string> rampArgs(const std::string& dir, const std::vector<std::string>& extra,
+                                    bool moves = false) const {
     std::vector<std::string> args{"--search",     "--scene", (dir_ / "ramp.json").string(),
                                   "--shader",     "Ramp",    "--component",
                                   "ramp",         "--k1",    "4",
                                   "--validation", "-o",      (dir_ / dir).string()};
+    if (!moves) args.push_back("--no-moves");
     args.insert(args.end(), extra.begin(), extra.end());
     return args;
   }
@@ -487,6 +491,58 @@ shader Ramp using EnginePipeline {
       kExitSuccess)
       << withoutErr.str();
   EXPECT_EQ(without.str().find("acse"), std::string::npos) << without.str();
+}
+
+// He et al.'s move to vertex as a step of the chain: the ramp is an affine
+// function of the texture coordinate, so per vertex it is exact, and moving
+// it there saves its per-pixel cost for no error. The next level rewrites
+// the moved definition where the move put it.
+TEST_F(SearchRun, AMoveToACheaperWorldIsAStepOfTheChain) {
+  std::ofstream(dir_ / "ramp.spire") << R"(using "pipelines/engine.spire";
+shader Ramp using EnginePipeline {
+    @FrameUniform mat4 matMVP;
+    vec4 projPos = matMVP * vec4(vert_pos, 1.0);
+    float ramp = vert_uv.x * 0.5 + 0.25;
+    vec4 output = vec4(vec3(ramp), 1.0);
+}
+)";
+  writeRampScene();
+  std::ostringstream out, err;
+  ASSERT_EQ(runSearchTool(rampArgs("out", {"--max-levels", "2", "--no-average", "--no-acse"}, true), out, err),
+            kExitSuccess)
+      << err.str() << out.str();
+  const auto rows = csvRows(dir_ / "out/chain.csv");
+  ASSERT_EQ(rows.size(), 3U) << out.str();
+  EXPECT_EQ(rows[1][5], "ramp");
+  EXPECT_EQ(rows[1][8], "move");
+  EXPECT_EQ(rows[1][9], "Fragment");
+  EXPECT_EQ(rows[1][10], "Vertex");
+  EXPECT_LT(std::stod(rows[1][1]), 0.002) << out.str();
+  EXPECT_LT(std::stod(rows[1][4]), std::stod(rows[0][4])) << "C falls";
+  EXPECT_NE(out.str().find("level 1: "), std::string::npos);
+  EXPECT_NE(out.str().find("ramp moved: 'Fragment' -> 'Vertex'"), std::string::npos) << out.str();
+  EXPECT_NE(readText(dir_ / "out/report.md").find("`ramp` moved: `Fragment` → `Vertex`"), std::string::npos)
+      << readText(dir_ / "out/report.md");
+  EXPECT_NE(readText(dir_ / "out/level1.decisions").find("RampSearch.ramp = Vertex\n"), std::string::npos)
+      << readText(dir_ / "out/level1.decisions");
+  // Level 2 rewrites the definition level 1 moved, and keeps it per vertex.
+  EXPECT_NE(rows[2][8], "move");
+  EXPECT_EQ(rows[2][6], "level2");
+  EXPECT_EQ(rows[2][7], "ramp");
+  EXPECT_NE(readText(dir_ / "out/level2.decisions").find("RampSearch.ramp = Vertex:level2\n"), std::string::npos)
+      << readText(dir_ / "out/level2.decisions");
+  const std::string module = readText(dir_ / "out/RampSearch.spire");
+  EXPECT_EQ(module.find("ramp:level1"), std::string::npos) << module;
+  EXPECT_NE(module.find("ramp:level2"), std::string::npos) << module;
+  // The transitions blend the per-pixel ramp with the per-vertex one.
+  EXPECT_EQ(readText(dir_ / "out/report.md").find("do not compile"), std::string::npos);
+
+  std::ostringstream without, withoutErr;
+  ASSERT_EQ(
+      runSearchTool(rampArgs("out-without", {"--max-levels", "1", "--no-average", "--no-acse"}), without, withoutErr),
+      kExitSuccess)
+      << withoutErr.str();
+  EXPECT_EQ(without.str().find("moved"), std::string::npos) << without.str();
 }
 
 // Two components that are each the other but for a term too small to see:
