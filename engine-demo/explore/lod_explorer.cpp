@@ -17,6 +17,7 @@
 #include "explore/policy_editor.h"
 #include "explore/window_presenter.h"
 #include "renderer/lod_scene.h"
+#include "support/diagnostic_renderer.h"
 #include "support/file_io.h"
 #include "vk/timer.h"
 
@@ -59,6 +60,10 @@ struct EditRecord {
   bool ok = false;
   double applyMs = 0.0;  // from the edit to its policy drawing
   std::string error;
+  // The drawn policy's switches that cannot cross-fade (W7102) once it was
+  // made, rendered: an edit can make one (a member that does not read
+  // lodFade) or take it away.
+  std::string warnings;
   std::vector<uint32_t> levels;       // instances per level of the drawn policy once it was made
   double compileMs = 0.0;             // the new levels' compile on the worker, when the edit needed one
   double prepareMs = 0.0;             // their bakes and pipelines, on the worker after the compile
@@ -105,9 +110,15 @@ class LodExplorer {
   void moveCamera(double nowMs);
   void updateMetrics(const engine::FrameTiming& timing);
   LodPanelState panelState() const;
-  // The message the Diagnostics panel shows: the reader's, else why the
-  // valid policy could not be drawn.
-  std::string diagnostics() const { return editor_.isValid() ? applyError_ : editor_.diagnostics(); }
+  // What is wrong with the edited policy: the reader's diagnostics, else
+  // why the valid policy could not be drawn.
+  std::string editError() const { return editor_.isValid() ? applyError_ : editor_.diagnostics(); }
+  // The message the Diagnostics panel shows: that, and while the policy is
+  // valid, the drawn one's warnings.
+  std::string diagnostics() const { return editError() + (editor_.isValid() ? warnings_ : std::string()); }
+  // The drawn policy's switches into a level that cannot cross-fade
+  // (W7102), rendered.
+  std::string fadeWarnings() const;
   engine::Expected<bool> frame();
   int finish(int status);
 
@@ -127,6 +138,7 @@ class LodExplorer {
   Metrics frameTimes_;
   LodMetrics metrics_;
   std::string applyError_;
+  std::string warnings_;  // fadeWarnings() of the drawn policy
   std::string status_;
   std::vector<EditRecord> edits_;
   std::vector<uint32_t> startLevels_;  // instances per level at the start, for the log
@@ -177,6 +189,7 @@ std::optional<int> LodExplorer::start() {
   renderer_.reportUnreadBindings();
   scene_->reportSwitchesThatCannotFade(run_.diagnostics());
   run_.reporter().flush();
+  warnings_ = fadeWarnings();
   vk::Image* color = renderer_.colorImage();
   if (color == nullptr) return run_.fail({"the scene renders no color output to show", {}, {}});
   auto presenter = WindowPresenter::create(renderer_.context(), window_, *color);
@@ -211,7 +224,7 @@ void LodExplorer::edited(std::string action, bool scripted) {
   record.startMs = clock_.elapsedMs();
   applyError_.clear();
   // An invalid edit leaves the last valid policy's levels compiling.
-  if (!editor_.isValid()) return finishEdit(std::move(record), diagnostics());
+  if (!editor_.isValid()) return finishEdit(std::move(record), editError());
   dropPending();
   pending_ = std::move(record);
   auto compiling = applyPolicy();
@@ -219,7 +232,7 @@ void LodExplorer::edited(std::string action, bool scripted) {
   if (!compiling) applyError_ = errorText(compiling.error());
   record = std::move(*pending_);
   pending_.reset();
-  finishEdit(std::move(record), diagnostics());
+  finishEdit(std::move(record), editError());
 }
 
 void LodExplorer::dropPending() {
@@ -248,17 +261,29 @@ void LodExplorer::pollLevels() {
   finishEdit(std::move(record), applyError_);
 }
 
+std::string LodExplorer::fadeWarnings() const {
+  DiagnosticList diags;
+  scene_->reportSwitchesThatCannotFade(diags);
+  std::string text;
+  for (const Diagnostic& d : diags.all()) text += renderDiagnostic(run_.sources(), d);
+  return text;
+}
+
 void LodExplorer::finishEdit(EditRecord record, std::string error) {
   record.applyMs = clock_.elapsedMs() - record.startMs;
   record.error = std::move(error);
   record.ok = record.error.empty();
   record.levels = levelCounts(*scene_);
+  record.warnings = fadeWarnings();
   if (record.scripted) {
     out_ << (record.ok ? fmt::format("spire-explore: {}: drawn in {:.0f} ms\n", record.action, record.applyMs)
                        : fmt::format("spire-explore: {}: not applied, the last valid policy keeps drawing:\n{}",
-                                     record.action, record.error))
-         << std::flush;
+                                     record.action, record.error));
+    // Said when an edit makes or changes them, not after every edit.
+    if (record.warnings != warnings_) out_ << record.warnings;
+    out_ << std::flush;
   }
+  warnings_ = record.warnings;
   edits_.push_back(std::move(record));
 }
 
@@ -455,6 +480,7 @@ int LodExplorer::finish(int status) {
                        {"prepare_ms", edit.prepareMs},
                        {"frames_while_compiling", edit.framesWhileCompiling},
                        {"error", edit.error},
+                       {"warnings", edit.warnings},
                        {"levels", edit.levels}});
     }
     nlohmann::ordered_json levels = nlohmann::ordered_json::array();

@@ -1,7 +1,8 @@
 // A small level-of-detail scene for tests that need one on the device: the
 // four materials of examples/lod_materials.spire on a 12-unit terrain, the
 // terrain itself plus copies of a barrel, a sofa and a rock (scattered, or
-// with `scatter` false one of each at a fixed place), drawn at 96 x 64.
+// with `scatter` false one of each at a fixed place), drawn at 96 x 64; and
+// a box of a group with a member that cannot cross-fade.
 #pragma once
 
 #include <fmt/format.h>
@@ -63,6 +64,19 @@ inline std::string lodTestPolicyJson(float hqUntil = 6.0F, float mqUntil = 14.0F
   return fmt::format(R"({{"levels": [{{"member": "LodHQ", "until": {}}}, {{"member": "LodMQ", "until": {}}},
   {{"member": "LodLQ"}}], "hysteresis": 0.1, "transitionFrames": 4}})",
                      hqUntil, mqUntil);
+}
+
+// A box drawn by the group of tests/data/engine/lod_fades.spire, whose
+// member Fades reads lodFade and Opaque does not, seen from two views at
+// `size` x `size`, with the policy file `policy` (relative to the scene).
+inline std::string lodFadesSceneJson(const std::string& policy, int size) {
+  return fmt::format(
+      R"({{"resolution": [{0}, {0}], "frames": 2,
+  "camera": {{"views": [{{"position": [0, 3, 3], "target": [0, 0, 0]}}, {{"position": [0, 9, 9], "target": [0, 0, 0]}}]}},
+  "lod": {{"policy": "{1}", "blocks": 1}},
+  "meshes": {{"box": {{"type": "box", "size": 1}}}},
+  "instances": [{{"mesh": "box", "source": "{2}", "shader": "Thing"}}]}})",
+      size, policy, (std::filesystem::path(SPIRE_SOURCE_DIR) / "tests/data/engine/lod_fades.spire").generic_string());
 }
 
 }  // namespace spire::testing

@@ -261,13 +261,7 @@ TEST_F(DemoTest, ASwitchThatCannotCrossFadeIsWarnedAboutAtThePolicysLevel) {
   fs::create_directories(sceneDir);
   std::ofstream(sceneDir / "policy.json") << R"({"levels": [{"member": "Fades", "until": 5},
             {"member": "Opaque"}], "transitionFrames": 4})";
-  std::ofstream(sceneDir / "scene.json") << fmt::format(
-      R"({{"resolution": [32, 32], "frames": 2,
-  "camera": {{"views": [{{"position": [0, 3, 3], "target": [0, 0, 0]}}, {{"position": [0, 9, 9], "target": [0, 0, 0]}}]}},
-  "lod": {{"policy": "policy.json", "blocks": 1}},
-  "meshes": {{"box": {{"type": "box", "size": 1}}}},
-  "instances": [{{"mesh": "box", "source": "{}", "shader": "Thing"}}]}})",
-      (fs::path(SPIRE_SOURCE_DIR) / "tests/data/engine/lod_fades.spire").generic_string());
+  std::ofstream(sceneDir / "scene.json") << spire::testing::lodFadesSceneJson("policy.json", 32);
   std::ostringstream out;
   std::ostringstream err;
   ASSERT_EQ(runDemo({(sceneDir / "scene.json").string(), "--validation", "--frames", "2", "--warmup", "1", "-o",

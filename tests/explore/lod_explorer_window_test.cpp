@@ -170,5 +170,40 @@ TEST_F(LodExplorerWindowTest, ActionsOfOneShadersDecisionsAreErrorsAtTheirLine) 
       << err_.str();
 }
 
+// A member edit that makes the policy cross-fade into a level whose shader
+// does not read lodFade is warned about (W7102) at the level it edits, in
+// the console and the log; an edit that takes the switch or its fade away
+// clears the warning, and one that brings it back says it again.
+TEST_F(LodExplorerWindowTest, AnEditThatMakesASwitchThatCannotFadeIsWarnedAbout) {
+  std::ofstream(dir_ / "fades_policy.json") << R"({"levels": [{"member": "Fades", "until": 5},
+            {"member": "Fades"}], "transitionFrames": 4})";
+  std::ofstream(dir_ / "fades.json") << spire::testing::lodFadesSceneJson("fades_policy.json", 64);
+  ASSERT_EQ(explore({(dir_ / "fades.json").string(), "--validation", "--script",
+                     script("policy member 1 Opaque\n"
+                            "policy transition 0\n"
+                            "policy transition 4\n"
+                            "policy member 1 Fades\n"
+                            "quit\n")
+                         .string(),
+                     "--log", (dir_ / "log.json").string()}),
+            0)
+      << err_.str() << out_.str();
+  EXPECT_EQ(err_.str().find("W7102"), std::string::npos) << "the scene's own policy fades: " << err_.str();
+  const nlohmann::json edits = log()["policy_edits"];
+  ASSERT_EQ(edits.size(), 4U) << out_.str();
+  for (const nlohmann::json& edit : edits) EXPECT_TRUE(edit["ok"]) << edit["action"] << ": " << edit["error"];
+  const std::string warning =
+      "fades_policy.json:2:13: warning[W7102]: 'Thing<Opaque>' at level 1 (Opaque) does not "
+      "read lodFade";
+  EXPECT_NE(edits[0]["warnings"].get<std::string>().find(warning), std::string::npos) << edits[0]["warnings"];
+  EXPECT_EQ(edits[1]["warnings"], "") << "without transition frames nothing cross-fades";
+  EXPECT_NE(edits[2]["warnings"].get<std::string>().find(warning), std::string::npos) << edits[2]["warnings"];
+  EXPECT_EQ(edits[3]["warnings"], "");
+  const std::string out = out_.str();
+  const size_t first = out.find(warning);
+  ASSERT_NE(first, std::string::npos) << out;
+  EXPECT_NE(out.find(warning, first + 1), std::string::npos) << "said again when an edit brings it back:\n" << out;
+}
+
 }  // namespace
 }  // namespace spire::explore
