@@ -24,7 +24,8 @@ void defineTuneOptions(CLI::App& app, TuneOptions& options) {
                                 "The shader to tune (an instance of the scene must use it; or --lod-policy)")
                      ->type_name("NAME");
   app.add_option("--components", options.components,
-                 "Components to explore (default: every choice); NAME@World keeps one world for NAME")
+                 "Components to explore (default: every choice); NAME@World keeps only World's placements for NAME "
+                 "(repeat it for more worlds)")
       ->delimiter(',')
       ->type_name("A,B,...");
   app.add_option("--only", options.only, "Keep placements in these worlds or with these variation names")

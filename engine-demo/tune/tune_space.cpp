@@ -41,20 +41,28 @@ TunePoint pointAt(const std::vector<Axis>& axes, uint64_t index) {
 
 Expected<TuneSpace, Failure> buildTuneSpace(const std::vector<graph::Choice>& choices, const SpaceRequest& request) {
   TuneSpace space;
-  std::map<std::string, std::string> selected;  // component -> the one world it is restricted to, or ""
+  // component -> the worlds it is restricted to; empty: every world. A
+  // component named with several worlds keeps them all, and named without
+  // one keeps every world, whatever else names it.
+  std::map<std::string, std::set<std::string>> selected;
+  std::set<std::string> everyWorld;
   for (const std::string& entry : request.components) {
     const size_t at = entry.find('@');
-    selected[entry.substr(0, at)] = at == std::string::npos ? "" : entry.substr(at + 1);
+    std::set<std::string>& worlds = selected[entry.substr(0, at)];
+    if (at == std::string::npos) everyWorld.insert(entry);
+    if (at != std::string::npos) worlds.insert(entry.substr(at + 1));
   }
+  for (const std::string& component : everyWorld) selected[component].clear();
   std::set<std::string> missing;
-  for (const auto& [component, world] : selected) missing.insert(component);
+  for (const auto& [component, worlds] : selected) missing.insert(component);
   for (const graph::Choice& choice : choices) {
     const std::string component = componentOf(choice.key);
     if (!selected.empty() && !missing.erase(component)) continue;
-    const std::string onlyWorld = selected.empty() ? "" : selected.at(component);
+    const std::set<std::string> none;
+    const std::set<std::string>& onlyWorlds = selected.empty() ? none : selected.at(component);
     Axis axis{component, {}};
     for (const std::string& name : choice.names) {
-      const bool inWorld = onlyWorld.empty() || name.substr(0, name.find(':')) == onlyWorld;
+      const bool inWorld = onlyWorlds.empty() || onlyWorlds.contains(name.substr(0, name.find(':')));
       if (inWorld && kept(name, request.only)) axis.placements.push_back(name);
     }
     if (axis.placements.empty()) {

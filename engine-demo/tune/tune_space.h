@@ -37,7 +37,9 @@ struct TuneSpace {
 struct SpaceRequest {
   // Components to explore; empty means every choice of the shader. An entry
   // `name@World` keeps only that component's placements in World (so
-  // `specular@Fragment` explores the specular models per fragment only).
+  // `specular@Fragment` explores the specular models per fragment only);
+  // several such entries for one component keep each of their worlds, and
+  // the plain `name` every world.
   std::vector<std::string> components;
   // When non-empty, keep only placements whose world or variation name is
   // listed ("PrebakeTex", "ggx"): listing variation names explores

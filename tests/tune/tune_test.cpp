@@ -85,6 +85,17 @@ TEST(TuneSpace, SelectsComponentsWorldsAndVariations) {
   ASSERT_TRUE(perWorld) << perWorld.error().message;
   EXPECT_EQ(perWorld->axes[1].placements, (std::vector<std::string>{"Fragment:basic", "Fragment:ggx"}));
   EXPECT_EQ(perWorld->productSize, 6U);
+  // A component named with two worlds keeps both; named without one, every
+  // world, whatever else names it.
+  request.components = {"albedo@Fragment", "albedo@PrebakeTex", "lighting@Vertex"};
+  const auto twoWorlds = buildTuneSpace(terrainChoices(), request);
+  ASSERT_TRUE(twoWorlds) << twoWorlds.error().message;
+  EXPECT_EQ(twoWorlds->axes[0].placements, (std::vector<std::string>{"PrebakeTex", "Fragment"}));
+  EXPECT_EQ(twoWorlds->axes[1].placements, (std::vector<std::string>{"Vertex:basic", "Vertex:ggx"}));
+  request.components = {"albedo@Fragment", "albedo"};
+  const auto everyWorld = buildTuneSpace(terrainChoices(), request);
+  ASSERT_TRUE(everyWorld) << everyWorld.error().message;
+  EXPECT_EQ(everyWorld->axes[0].placements, (std::vector<std::string>{"PrebakeTex", "Vertex", "Fragment"}));
   request.components = {"albdo"};
   request.only = {};
   const auto misspelt = buildTuneSpace(terrainChoices(), request);
