@@ -264,9 +264,7 @@ void LodExplorer::pollLevels() {
 std::string LodExplorer::fadeWarnings() const {
   DiagnosticList diags;
   scene_->reportSwitchesThatCannotFade(diags);
-  std::string text;
-  for (const Diagnostic& d : diags.all()) text += renderDiagnostic(run_.sources(), d);
-  return text;
+  return renderDiagnostics(run_.sources(), diags, DiagnosticFormat::Text);
 }
 
 void LodExplorer::finishEdit(EditRecord record, std::string error) {

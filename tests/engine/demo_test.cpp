@@ -34,6 +34,18 @@ class DemoTest : public vk::testing::DeviceTest {
     const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
     return fs::temp_directory_path() / (std::string("spire_demo_") + info->name() + "_" + std::to_string(::getpid()));
   }
+  // A folder beside outputDir() for the scene files a test writes, made
+  // on first use.
+  fs::path sceneFolder() const {
+    const fs::path dir(outputDir().string() + "_scene");
+    fs::create_directories(dir);
+    return dir;
+  }
+  // Both folders, once a test passed: a failed one's stay to be read.
+  void removeOutputs() const {
+    fs::remove_all(outputDir());
+    fs::remove_all(outputDir().string() + "_scene");
+  }
 };
 
 std::string readFile(const fs::path& path) {
@@ -208,8 +220,7 @@ TEST_F(DemoTest, ASceneVariantNamesTheShadersOfEverySource) {
 
 TEST_F(DemoTest, LodSceneWritesImagesReportAndSummary) {
   const fs::path dir = outputDir();
-  const fs::path sceneDir = fs::path(dir.string() + "_scene");
-  fs::create_directories(sceneDir);
+  const fs::path sceneDir = sceneFolder();
   // LodHQ only within 0.5 units: the cameras are 5 units or more above the
   // ground, so the copies draw LodMQ (up to 8) or LodLQ in lod, and lod
   // differs from full quality wherever a copy is seen.
@@ -249,16 +260,14 @@ TEST_F(DemoTest, LodSceneWritesImagesReportAndSummary) {
   }
   // Every level of the library writes lodFade: nothing to warn about.
   EXPECT_EQ(err.str().find("W7102"), std::string::npos) << err.str();
-  fs::remove_all(dir);
-  fs::remove_all(sceneDir);
+  removeOutputs();
 }
 
 // A level whose shader does not read lodFade, which the policy cross-fades
 // into, is warned about at the policy's level (W7102), and the run goes on.
 TEST_F(DemoTest, ASwitchThatCannotCrossFadeIsWarnedAboutAtThePolicysLevel) {
   const fs::path dir = outputDir();
-  const fs::path sceneDir = fs::path(dir.string() + "_scene");
-  fs::create_directories(sceneDir);
+  const fs::path sceneDir = sceneFolder();
   std::ofstream(sceneDir / "policy.json") << R"({"levels": [{"member": "Fades", "until": 5},
             {"member": "Opaque"}], "transitionFrames": 4})";
   std::ofstream(sceneDir / "scene.json") << spire::testing::lodFadesSceneJson("policy.json", 32);
@@ -274,16 +283,14 @@ TEST_F(DemoTest, ASwitchThatCannotCrossFadeIsWarnedAboutAtThePolicysLevel) {
             std::string::npos)
       << err.str();
   EXPECT_NE(out.str().find("lod: speedup"), std::string::npos) << out.str();
-  fs::remove_all(dir);
-  fs::remove_all(sceneDir);
+  removeOutputs();
 }
 
 // A policy file that cannot be read fails the run before anything is
 // rendered, naming the file, and leaves no output behind.
 TEST_F(DemoTest, LodSceneWithoutItsPolicyFileFails) {
   const fs::path dir = outputDir();
-  const fs::path sceneDir = fs::path(dir.string() + "_scene");
-  fs::create_directories(sceneDir);
+  const fs::path sceneDir = sceneFolder();
   std::ofstream(sceneDir / "scene.json") << smallLodScene("no_such_policy.json");
   std::ostringstream out;
   std::ostringstream err;
@@ -299,8 +306,7 @@ TEST_F(DemoTest, LodSceneWithoutItsPolicyFileFails) {
 // for variants (W7101), and the run goes on.
 TEST_F(DemoTest, LodSceneWarnsAboutAValueNoLevelReads) {
   const fs::path dir = outputDir();
-  const fs::path sceneDir = fs::path(dir.string() + "_scene");
-  fs::create_directories(sceneDir);
+  const fs::path sceneDir = sceneFolder();
   std::ofstream(sceneDir / "policy.json") << spire::testing::lodTestPolicyJson();
   std::string json = smallLodScene("policy.json");
   const std::string stave = R"("staveCount": 16)";
@@ -314,8 +320,7 @@ TEST_F(DemoTest, LodSceneWarnsAboutAValueNoLevelReads) {
       << err.str();
   EXPECT_NE(err.str().find("W7101"), std::string::npos) << err.str();
   EXPECT_NE(err.str().find("unreadByAnyLevel"), std::string::npos) << err.str();
-  fs::remove_all(dir);
-  fs::remove_all(sceneDir);
+  removeOutputs();
 }
 
 }  // namespace
