@@ -48,6 +48,7 @@ Expected<const Result*> cached(std::map<std::string, Result>& results, std::map<
 Expected<BakedInputs> BakeCache::bake(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
                                       const GpuMesh& mesh, const std::string& meshKey, const MaterialValues& material,
                                       HazardCollector* hazards) {
+  const PipelineCaches caches{modules, pipelines_};
   BakedInputs baked;
   BindingSources sources;
   sources.mesh = &mesh;
@@ -60,23 +61,22 @@ Expected<BakedInputs> BakeCache::bake(const vk::Context& ctx, ModuleCache& modul
     const std::string key = bakeKey(*kernel, meshKey, material, upstream);
     switch (pass.kind) {
       case WorldRole::UniformBake: {
-        auto result = cached(uniform_, milliseconds_, key, baked, kernel->world, [&](BakeTiming& timing) {
-          return runUniformBake(ctx, modules, *kernel, sources, timing);
-        });
+        auto result = cached(uniform_, milliseconds_, key, baked, kernel->world,
+                             [&](BakeTiming& timing) { return runUniformBake(ctx, caches, *kernel, sources, timing); });
         if (!result) return result.error();
         baked.uniform = sources.uniformBake = *result;
         break;
       }
       case WorldRole::VertexBake: {
         auto result = cached(vertex_, milliseconds_, key, baked, kernel->world,
-                             [&](BakeTiming& timing) { return runVertexBake(ctx, modules, *kernel, sources, timing); });
+                             [&](BakeTiming& timing) { return runVertexBake(ctx, caches, *kernel, sources, timing); });
         if (!result) return result.error();
         baked.vertex = sources.vertexBake = *result;
         break;
       }
       case WorldRole::TextureBake: {
         auto result = cached(texture_, milliseconds_, key, baked, kernel->world, [&](BakeTiming& timing) {
-          return runTextureBake(ctx, modules, *kernel, sources, textureOptions_, timing);
+          return runTextureBake(ctx, caches, *kernel, sources, textureOptions_, timing);
         });
         if (!result) return result.error();
         baked.texture = sources.textureBake = *result;

@@ -33,15 +33,21 @@ class BakeCache {
   // Runs (or reuses) every bake kernel of `program` in world-table order for
   // one instance: `meshKey` names the mesh, `material` its resolved values.
   // Instrumented bake kernels give their records to `hazards`.
+  // Shader modules come from `modules`; pipelines from the cache's own
+  // PipelineCache, apart from the draws' so that the renderer's pipeline
+  // counts stay those of its draws, and kept by the results (one per kernel
+  // and state, whatever the mesh).
   Expected<BakedInputs> bake(const vk::Context& ctx, ModuleCache& modules, const VariantProgram& program,
                              const GpuMesh& mesh, const std::string& meshKey, const MaterialValues& material,
                              HazardCollector* hazards = nullptr);
 
   size_t size() const { return uniform_.size() + vertex_.size() + texture_.size(); }
+  const PipelineCounts& pipelineCounts() const { return pipelines_.counts(); }
   const TextureBakeOptions& textureOptions() const { return textureOptions_; }
 
  private:
   TextureBakeOptions textureOptions_;
+  PipelineCache pipelines_;
   std::map<std::string, UniformBakeResult> uniform_;
   std::map<std::string, VertexBakeResult> vertex_;
   std::map<std::string, TextureBakeResult> texture_;

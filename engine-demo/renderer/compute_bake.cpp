@@ -21,9 +21,10 @@ struct ComputeOutput {
   BoundKernel bound;
   const Block* layout = nullptr;
   vk::Buffer* records = nullptr;
+  SharedPipeline pipeline;
 };
 
-Expected<ComputeOutput> dispatch(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
+Expected<ComputeOutput> dispatch(const vk::Context& ctx, PipelineCaches caches, const KernelProgram& kernel,
                                  const BindingSources& sources, BakeTiming& timing) {
   timing.world = kernel.world;
   auto bound = bindKernel(ctx, kernel, sources);
@@ -39,17 +40,17 @@ Expected<ComputeOutput> dispatch(const vk::Context& ctx, ModuleCache& modules, c
   const BoundKernel* kernels[] = {&*bound};
   auto descriptors = createDescriptors(ctx, kernels);
   if (!descriptors) return descriptors.error();
-  auto module = modules.get(ctx, kernel.hash, kernel.spirv);
+  auto module = caches.modules.get(ctx, kernel.hash, kernel.spirv);
   if (!module) return module.error();
-  auto pipeline = vk::createComputePipeline(ctx, *module, descriptors->layoutHandles());
-  if (!pipeline) return Error::fromVk(pipeline.error());
+  auto pipeline = caches.pipelines.getCompute(ctx, *module, kernel.hash, *descriptors);
+  if (!pipeline) return pipeline.error();
 
   const auto invocations = static_cast<uint32_t>(sources.recordVertices()->size());
   const uint32_t groups = (invocations + kWorkgroupSize - 1) / kWorkgroupSize;
   const vk::HostTimer timer;
   auto submitted = ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline->pipeline.get());
-    bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline->layout.get(), *descriptors);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, (*pipeline)->pipeline.get());
+    bindDescriptors(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, (*pipeline)->layout.get(), *descriptors);
     vkCmdDispatch(cmd, groups, 1, 1);
     VkMemoryBarrier toHost{};
     toHost.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
@@ -60,23 +61,24 @@ Expected<ComputeOutput> dispatch(const vk::Context& ctx, ModuleCache& modules, c
   });
   timing.milliseconds = timer.elapsedMs();
   if (!submitted) return Error::fromVk(submitted.error());
-  return ComputeOutput{std::move(bound).value(), layout, records};
+  return ComputeOutput{std::move(bound).value(), layout, records, std::move(pipeline).value()};
 }
 
 }  // namespace
 
-Expected<UniformBakeResult> runUniformBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
+Expected<UniformBakeResult> runUniformBake(const vk::Context& ctx, PipelineCaches caches, const KernelProgram& kernel,
                                            const BindingSources& sources, BakeTiming& timing) {
   // The kernel runs once per surface sample, which it reads as a vertex.
   const SurfaceSamples samples = sampleSurface(sources.mesh->mesh, kSurfaceSamples);
   BindingSources overSamples = sources;
   overSamples.computeVertices = &samples.points;
-  auto output = dispatch(ctx, modules, kernel, overSamples, timing);
+  auto output = dispatch(ctx, caches, kernel, overSamples, timing);
   if (!output) return output.error();
   const Block& layout = *output->layout;
   const std::span<const std::byte> memory(static_cast<const std::byte*>(output->records->mapped()),
                                           static_cast<size_t>(output->records->size()));
   UniformBakeResult result;
+  result.pipeline = output->pipeline;
   for (const BlockMember& member : layout.members) {
     if (!member.type.isNumeric()) {
       return Error{
@@ -92,13 +94,13 @@ Expected<UniformBakeResult> runUniformBake(const vk::Context& ctx, ModuleCache& 
   return result;
 }
 
-Expected<VertexBakeResult> runVertexBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
+Expected<VertexBakeResult> runVertexBake(const vk::Context& ctx, PipelineCaches caches, const KernelProgram& kernel,
                                          const BindingSources& sources, BakeTiming& timing) {
-  auto output = dispatch(ctx, modules, kernel, sources, timing);
+  auto output = dispatch(ctx, caches, kernel, sources, timing);
   if (!output) return output.error();
   // Keep the record buffer; the rest of the kernel's bindings die here.
   for (auto& buffer : output->bound.buffers) {
-    if (buffer.get() == output->records) return VertexBakeResult{std::move(buffer), *output->layout};
+    if (buffer.get() == output->records) return VertexBakeResult{std::move(buffer), *output->layout, output->pipeline};
   }
   return Error{fmt::format("the {} kernel's record buffer was lost", kernel.world), {}, {}};
 }

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "renderer/kernel_bindings.h"
-#include "renderer/module_cache.h"
+#include "renderer/pipeline_cache.h"
 
 namespace spire::engine {
 
@@ -15,10 +15,11 @@ struct BakeTiming {
   double milliseconds = 0.0;
 };
 
-Expected<UniformBakeResult> runUniformBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
+// Pipelines come from `caches` and stay with the result.
+Expected<UniformBakeResult> runUniformBake(const vk::Context& ctx, PipelineCaches caches, const KernelProgram& kernel,
                                            const BindingSources& sources, BakeTiming& timing);
 
-Expected<VertexBakeResult> runVertexBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
+Expected<VertexBakeResult> runVertexBake(const vk::Context& ctx, PipelineCaches caches, const KernelProgram& kernel,
                                          const BindingSources& sources, BakeTiming& timing);
 
 }  // namespace spire::engine

@@ -35,19 +35,27 @@ struct BakedTexture {
   std::vector<std::byte> texels;  // the baked texels as stored, when TextureBakeOptions::forceFormat asked to keep them
 };
 
+// A bake result keeps the pipeline it was made with: the renderer's
+// pipeline caches hold pipelines only while something uses them, and the
+// same kernel baked on other meshes (a terrain's tiles, every object type
+// of a level) then reuses it instead of having lavapipe compile it again.
+
 struct UniformBakeResult {
   std::map<std::string, std::vector<double>, std::less<>> values;  // component -> average over the surface
+  std::shared_ptr<const vk::Pipeline> pipeline;
 };
 
 struct VertexBakeResult {
   std::unique_ptr<vk::Buffer> buffer;  // one record per vertex
   Block layout;                        // the producer's record layout
+  std::shared_ptr<const vk::Pipeline> pipeline;
 };
 
 struct TextureBakeResult {
   std::map<std::string, BakedTexture, std::less<>> textures;  // component -> its texture
   uint32_t size = 0;                                          // width and height of every texture
   std::vector<uint8_t> coverage;                              // 1 for texels a triangle covered (before dilation)
+  std::shared_ptr<const vk::Pipeline> pipeline;
 };
 
 // A texture rendered earlier in the frame by a per-frame pass

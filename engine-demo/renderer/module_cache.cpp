@@ -12,4 +12,9 @@ Expected<VkShaderModule> ModuleCache::get(const vk::Context& ctx, const std::str
   return modules_.emplace(key, std::move(module).value()).first->second.get();
 }
 
+VkShaderModule ModuleCache::find(const std::string& key) const {
+  const auto it = modules_.find(key);
+  return it == modules_.end() ? VK_NULL_HANDLE : it->second.get();
+}
+
 }  // namespace spire::engine

@@ -16,6 +16,9 @@ class ModuleCache {
  public:
   // The module for `key`, created from `words` the first time the key is seen.
   Expected<VkShaderModule> get(const vk::Context& ctx, const std::string& key, std::span<const uint32_t> words);
+  // The module for `key` if one was created, so that a caller that must
+  // compile the words first can skip that: VK_NULL_HANDLE otherwise.
+  VkShaderModule find(const std::string& key) const;
   size_t size() const { return modules_.size(); }
 
  private:

@@ -4,16 +4,15 @@
 
 namespace spire::engine {
 
-Expected<SharedPipeline> PipelineCache::get(const vk::Context& ctx, const vk::GraphicsPipelineBuilder& builder,
-                                            const std::string& shaders, const DescriptorBundle& descriptors) {
-  const std::string key = fmt::format("{}|{}|{}", shaders, descriptors.layoutKey, builder.stateKey());
+template <class Build>
+Expected<SharedPipeline> PipelineCache::lookup(const std::string& key, Build&& build) {
   if (const auto it = pipelines_.find(key); it != pipelines_.end()) {
     if (SharedPipeline pipeline = it->second.lock()) {
       ++counts_.reused;
       return pipeline;
     }
   }
-  auto built = builder.build(ctx);
+  auto built = build();
   if (!built) return Error::fromVk(built.error());
   // Entries of pipelines no scene holds any more are dropped here, so the
   // map grows with the pipelines in use, not with every variant prepared.
@@ -22,6 +21,18 @@ Expected<SharedPipeline> PipelineCache::get(const vk::Context& ctx, const vk::Gr
   pipelines_[key] = pipeline;
   ++counts_.created;
   return SharedPipeline(std::move(pipeline));
+}
+
+Expected<SharedPipeline> PipelineCache::get(const vk::Context& ctx, const vk::GraphicsPipelineBuilder& builder,
+                                            const std::string& shaders, const DescriptorBundle& descriptors) {
+  return lookup(fmt::format("{}|{}|{}", shaders, descriptors.layoutKey, builder.stateKey()),
+                [&] { return builder.build(ctx); });
+}
+
+Expected<SharedPipeline> PipelineCache::getCompute(const vk::Context& ctx, VkShaderModule module,
+                                                   const std::string& shaders, const DescriptorBundle& descriptors) {
+  return lookup(fmt::format("compute {}|{}", shaders, descriptors.layoutKey),
+                [&] { return vk::createComputePipeline(ctx, module, descriptors.layoutHandles()); });
 }
 
 }  // namespace spire::engine

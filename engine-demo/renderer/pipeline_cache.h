@@ -42,10 +42,17 @@ class PipelineCache {
   // `descriptors`'.
   Expected<SharedPipeline> get(const vk::Context& ctx, const vk::GraphicsPipelineBuilder& builder,
                                const std::string& shaders, const DescriptorBundle& descriptors);
+  // The compute pipeline of `module` (content `shaders`) over `descriptors`'
+  // layouts, the same way.
+  Expected<SharedPipeline> getCompute(const vk::Context& ctx, VkShaderModule module, const std::string& shaders,
+                                      const DescriptorBundle& descriptors);
   // Since the renderer was made.
   const PipelineCounts& counts() const { return counts_; }
 
  private:
+  template <class Build>
+  Expected<SharedPipeline> lookup(const std::string& key, Build&& build);
+
   std::map<std::string, std::weak_ptr<const vk::Pipeline>> pipelines_;
   PipelineCounts counts_;
 };

@@ -170,6 +170,8 @@ class SceneRenderer {
   const scene::SceneFile& scene() const { return scene_; }
   size_t shaderModuleCount() const { return modules_.size(); }
   size_t bakeCount() const { return bakes_.size(); }
+  // The bakes' pipelines, apart from the draws' (pipelineCounts).
+  const PipelineCounts& bakePipelineCounts() const { return bakes_.pipelineCounts(); }
   size_t textureCount() const { return assets_->textures.size(); }
 
   // The frame state for `view` at `time` seconds.

@@ -138,24 +138,33 @@ uint32_t bakeUvLocation(const KernelProgram& kernel) {
 struct BakeModules {
   VkShaderModule vertex = VK_NULL_HANDLE;
   VkShaderModule fragment = VK_NULL_HANDLE;
+  std::string key;  // the pipeline cache's: both shaders' content
 };
+
+// The engine's vertex shader is compiled only the first time its text is
+// seen: glslang costs milliseconds per compile, and every bake of a kernel
+// (one per mesh) asks for the same text.
+Expected<VkShaderModule> bakeVertexModule(const vk::Context& ctx, ModuleCache& modules, const std::string& source) {
+  const std::string key = "bake-vertex:" + source;
+  if (VkShaderModule module = modules.find(key); module != VK_NULL_HANDLE) return module;
+  codegen::SpirvResult spirv = codegen::compileGlslToSpirv(codegen::ShaderStage::Vertex, source, "bake.vert");
+  if (!spirv.ok()) return Error{"the engine's bake vertex shader does not compile", {}, spirv.log};
+  return modules.get(ctx, key, spirv.words);
+}
 
 Expected<BakeModules> loadBakeModules(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
                                       uint32_t uvLocation) {
   const std::string vertexSource = bakeVertexShader(kernel, uvLocation);
-  codegen::SpirvResult vertexSpirv =
-      codegen::compileGlslToSpirv(codegen::ShaderStage::Vertex, vertexSource, "bake.vert");
-  if (!vertexSpirv.ok()) return Error{"the engine's bake vertex shader does not compile", {}, vertexSpirv.log};
-  auto vertexModule = modules.get(ctx, "bake-vertex:" + vertexSource, vertexSpirv.words);
+  auto vertexModule = bakeVertexModule(ctx, modules, vertexSource);
   if (!vertexModule) return vertexModule.error();
   auto fragmentModule = modules.get(ctx, kernel.hash, kernel.spirv);
   if (!fragmentModule) return fragmentModule.error();
-  return BakeModules{*vertexModule, *fragmentModule};
+  return BakeModules{*vertexModule, *fragmentModule, "bake-vertex:" + vertexSource + " " + kernel.hash};
 }
 
-Expected<vk::Pipeline> buildBakePipeline(const vk::Context& ctx, const BakeModules& modules,
-                                         const VertexInputs& vertexInputs, const std::vector<BakeTarget>& targets,
-                                         const DescriptorBundle& descriptors) {
+Expected<SharedPipeline> bakePipeline(const vk::Context& ctx, PipelineCache& pipelines, const BakeModules& modules,
+                                      const VertexInputs& vertexInputs, const std::vector<BakeTarget>& targets,
+                                      const DescriptorBundle& descriptors) {
   vk::GraphicsPipelineBuilder builder;
   builder.vertexShader(modules.vertex).fragmentShader(modules.fragment);
   vertexInputs.applyTo(builder);
@@ -163,9 +172,7 @@ Expected<vk::Pipeline> buildBakePipeline(const vk::Context& ctx, const BakeModul
   // The engine's vertex shader binds nothing, so the sets are the kernel's
   // (set 0 stays empty when the kernel's resources are in set 1).
   builder.depthFormat(VK_FORMAT_D32_SFLOAT).descriptorSetLayouts(descriptors.layoutHandles());
-  auto pipeline = builder.build(ctx);
-  if (!pipeline) return Error::fromVk(pipeline.error());
-  return std::move(pipeline).value();
+  return pipelines.get(ctx, builder, modules.key, descriptors);
 }
 
 Expected<std::vector<vk::Image>> createTargetImages(const vk::Context& ctx, const std::vector<BakeTarget>& targets,
@@ -255,7 +262,7 @@ Expected<BakeTargets> collectBakeTargets(const vk::Context& ctx, const KernelPro
   return result;
 }
 
-Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
+Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, PipelineCaches caches, const KernelProgram& kernel,
                                            const BindingSources& sources, const TextureBakeOptions& options,
                                            BakeTiming& timing) {
   timing.world = kernel.world;
@@ -265,7 +272,7 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
   const uint32_t size = collected->size;
 
   const uint32_t uvLocation = bakeUvLocation(kernel);
-  auto shaderModules = loadBakeModules(ctx, modules, kernel, uvLocation);
+  auto shaderModules = loadBakeModules(ctx, caches.modules, kernel, uvLocation);
   if (!shaderModules) return shaderModules.error();
 
   BindingSources bakeSources = sources;
@@ -279,7 +286,7 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
   auto vertexInput = vertexInputs(kernel, sources);
   if (!vertexInput) return vertexInput.error();
   vertexInput->addMeshAttribute(uvLocation, VK_FORMAT_R32G32_SFLOAT, offsetof(scene::Vertex, uv));
-  auto pipeline = buildBakePipeline(ctx, *shaderModules, *vertexInput, targets, *descriptors);
+  auto pipeline = bakePipeline(ctx, caches.pipelines, *shaderModules, *vertexInput, targets, *descriptors);
   if (!pipeline) return pipeline.error();
 
   auto images = createTargetImages(ctx, targets, size);
@@ -290,7 +297,7 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
 
   const vk::HostTimer timer;
   auto submitted = ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    recordBake(ctx, cmd, *images, *depth, size, *pipeline, *descriptors, *vertexInput, *sources.mesh);
+    recordBake(ctx, cmd, *images, *depth, size, **pipeline, *descriptors, *vertexInput, *sources.mesh);
   });
   if (!submitted) return Error::fromVk(submitted.error());
 
@@ -299,6 +306,7 @@ Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& 
   const std::vector<uint8_t> covered = depthCoverage(*depthTexels);
 
   TextureBakeResult result;
+  result.pipeline = std::move(pipeline).value();
   result.size = size;
   result.coverage = covered;
   for (size_t t = 0; t < targets.size(); ++t) {

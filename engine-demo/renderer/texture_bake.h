@@ -7,7 +7,7 @@
 
 #include "renderer/compute_bake.h"
 #include "renderer/kernel_bindings.h"
-#include "renderer/module_cache.h"
+#include "renderer/pipeline_cache.h"
 
 namespace spire::engine {
 
@@ -45,7 +45,8 @@ struct BakeTargets {
 Expected<BakeTargets> collectBakeTargets(const vk::Context& ctx, const KernelProgram& kernel,
                                          const TextureBakeOptions& options);
 
-Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
+// Pipelines come from `caches` and stay with the result.
+Expected<TextureBakeResult> runTextureBake(const vk::Context& ctx, PipelineCaches caches, const KernelProgram& kernel,
                                            const BindingSources& sources, const TextureBakeOptions& options,
                                            BakeTiming& timing);
 

@@ -383,7 +383,7 @@ void main() { albedo = scale + vec4(0.0 * vert_uv, 0.0, 0.0); }
   options.defaultSize = 4;
   options.forceFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
   BakeTiming timing;
-  auto baked = runTextureBake(ctx(), modules_, program->kernels[0], sources(), options, timing);
+  auto baked = runTextureBake(ctx(), {modules_, pipelines_}, program->kernels[0], sources(), options, timing);
   ASSERT_TRUE(baked) << baked.error().message;
   const std::vector<std::byte>& texels = baked->textures.at("albedo").texels;
   ASSERT_EQ(texels.size(), size_t{4} * 4 * 16);

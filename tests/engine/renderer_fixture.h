@@ -102,6 +102,19 @@ class RendererTest : public vk::testing::DeviceTest {
     return Rendered{std::move(capture).value(), std::move(prepared).value(), diagnostics, *programs};
   }
 
+  // Two planes of tex_bake.spire's TexBake with its texture bake (64
+  // texels), the first with colorMap "checker", the second with `second`.
+  std::optional<Rendered> bakeTwoPlanes(const std::string& second) {
+    std::string scene = planeScene("tex_bake.spire", "TexBake", R"({"colorMap": "checker"})");
+    const std::string instance = R"({"mesh": "plane", "source": "tex_bake.spire", "shader": "TexBake",
+    "transform": {"translate": [0.5, 0, 0]}, "material": {"colorMap": ")" +
+                                 second + R"("}})";
+    scene.replace(scene.rfind("}]"), 2, "}, " + instance + "]");
+    TextureBakeOptions options;
+    options.defaultSize = 64;
+    return render(scene, "tex_bake_prebake.decisions", options);
+  }
+
   // The error of `test` against `reference` over pixels either covers.
   static measure::ImageError compare(const Capture& reference, const Capture& test) {
     auto error = engine::viewError(reference, test);

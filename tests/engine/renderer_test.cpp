@@ -309,18 +309,25 @@ TEST_F(RendererTest, PrebakeVertexEqualsVertex) {
 
 // Two instances with the same mesh, material and kernel share one bake.
 TEST_F(RendererTest, IdenticalBakesRunOnce) {
-  std::string scene = planeScene("tex_bake.spire", "TexBake", R"({"colorMap": "checker"})");
-  const std::string instance = R"({"mesh": "plane", "source": "tex_bake.spire", "shader": "TexBake",
-    "transform": {"translate": [0.5, 0, 0]}, "material": {"colorMap": "checker"}})";
-  scene.replace(scene.rfind("}]"), 2, "}, " + instance + "]");
-  TextureBakeOptions options;
-  options.defaultSize = 64;
-  const auto rendered = render(scene, "tex_bake_prebake.decisions", options);
+  const auto rendered = bakeTwoPlanes("checker");
   ASSERT_TRUE(rendered);
   ASSERT_EQ(rendered->prepared.bakes.size(), 2U);
   EXPECT_FALSE(rendered->prepared.bakes[0].reused);
   EXPECT_TRUE(rendered->prepared.bakes[1].reused);
   EXPECT_EQ(renderer_->bakeCount(), 1U);
+}
+
+// Bakes of one kernel with different inputs are different results, but
+// share one pipeline, so lavapipe compiles the bake kernel once (a terrain
+// in tiles bakes the same kernel on every tile's mesh).
+TEST_F(RendererTest, BakesOfOneKernelShareItsPipeline) {
+  const auto rendered = bakeTwoPlanes("noise");
+  ASSERT_TRUE(rendered);
+  ASSERT_EQ(rendered->prepared.bakes.size(), 2U);
+  EXPECT_FALSE(rendered->prepared.bakes[1].reused);
+  EXPECT_EQ(renderer_->bakeCount(), 2U);
+  EXPECT_EQ(renderer_->bakePipelineCounts().created, 1U);
+  EXPECT_EQ(renderer_->bakePipelineCounts().reused, 1U);
 }
 
 // spirec's output directory (the file path) renders exactly what the
