@@ -3,14 +3,17 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <map>
 #include <optional>
+#include <set>
 
 #include "renderer/supplied_values.h"
 #include "search/candidates.h"
 #include "search/search_outputs.h"
 #include "simplify/average_sites.h"
+#include "simplify/syntax_walk.h"
 
 namespace spire::search {
 namespace {
@@ -46,6 +49,55 @@ std::optional<size_t> chainLevel(const lod::LodLevel& band, const std::string& d
   return k;
 }
 
+// The name of the copy of `component`'s definition at one side of a
+// transition.
+std::string copyName(const Transition& t, const std::string& component, size_t side) {
+  return fmt::format("spireTransition{}_{}_{}_{}", t.from, t.to, component, side == 0 ? "near" : "far");
+}
+
+// `decl`'s definition from `after` (past its name) to its end, with each
+// reference to a component that `copies` names replaced by its copy on the
+// same side. A copy must read its side's copies, not the blend: a move
+// carries the components its component reads into its world (albedo to
+// PrebakeTex takes mixFactor along), and the far copy of albedo, computed
+// in PrebakeTex, cannot read mixFactor's blend, which is in Fragment.
+Expected<std::string, Failure> copiedBody(const SourceManager& sources, const ast::ComponentDecl& decl, uint32_t after,
+                                          const std::map<std::string, std::string>& copies) {
+  std::vector<std::pair<SourceRange, const std::string*>> uses;
+  std::set<std::string> locals;
+  simplify::SyntaxWalker walker(
+      [&](const ast::Expr& e) {
+        if (e.kind != ast::ExprKind::Name) return;
+        if (const auto it = copies.find(ast::cast<ast::NameExpr>(e).name); it != copies.end()) {
+          uses.emplace_back(e.range, &it->second);
+        }
+      },
+      [&](const ast::Stmt& st) {
+        if (st.kind != ast::StmtKind::VarDecl) return;
+        for (const ast::VarDeclarator& d : ast::cast<ast::VarDeclStmt>(st).declarators) locals.insert(d.name);
+      },
+      simplify::SyntaxWalker::Immutable::Visit);
+  walker.expr(decl.init.get());
+  walker.stmt(decl.body.get());
+  for (const auto& [name, copy] : copies) {
+    if (locals.contains(name)) {
+      return Failure{
+          fmt::format("'{}' declares a local '{}', which hides the component of that name that the "
+                      "transition blends; rename the local",
+                      decl.name, name)};
+    }
+  }
+  std::sort(uses.begin(), uses.end(), [](const auto& a, const auto& b) { return a.first.begin < b.first.begin; });
+  std::string text;
+  uint32_t at = after;
+  for (const auto& [range, copy] : uses) {
+    text += sources.text(SourceRange{decl.range.file, at, range.begin});
+    text += *copy;
+    at = range.end;
+  }
+  return text + std::string(sources.text(SourceRange{decl.range.file, at, decl.range.end}));
+}
+
 // One transition's definitions and placement, from the chain's module.
 class TransitionWriter {
  public:
@@ -58,11 +110,18 @@ class TransitionWriter {
         "from {3:.9g}.\n    float {4} = clamp(({5} - {2:.9g}) / {6:.9g}, 0.0, 1.0);\n",
         t.from, t.to, t.nearDistance, t.farDistance, fade, kDistance, t.farDistance - t.nearDistance);
     t.placement = near.placement;
+    // The components blended, each side's copy of each.
+    std::map<std::string, std::string> copies[2];
+    for (const auto& [component, where] : t.placement) {
+      const std::string other = placementOf(far.placement, component);
+      if (other.empty() || other == where) continue;
+      for (size_t side = 0; side < 2; ++side) copies[side].emplace(component, copyName(t, component, side));
+    }
     Placement helpers;
     for (auto& [component, where] : t.placement) {
       const std::string other = placementOf(far.placement, component);
       if (other.empty() || other == where) continue;
-      auto blended = blend(component, where, other, t, fade, helpers);
+      auto blended = blend(component, {&where, &other}, copies, t, fade, helpers);
       if (!blended) return blended.error();
       where = worldOf(where) + ":" + *blended;
     }
@@ -75,30 +134,31 @@ class TransitionWriter {
   }
 
  private:
-  // Defines `component:transitionA_B` from copies of its definitions at
-  // `near` and `far`; its variation name.
-  Expected<std::string, Failure> blend(const std::string& component, const std::string& near, const std::string& far,
-                                       Transition& t, const std::string& fade, Placement& helpers) {
+  // Defines `component:transitionA_B` from copies of its definitions at its
+  // near and far placements (`where`), each reading its side's `copies` of
+  // the other blended components; its variation name.
+  Expected<std::string, Failure> blend(const std::string& component, std::array<const std::string*, 2> where,
+                                       const std::map<std::string, std::string> (&copies)[2], Transition& t,
+                                       const std::string& fade, Placement& helpers) {
     const sem::Component* c = shader_.findComponent(component);
     if (!c || !c->type) return Failure{fmt::format("the chain's shader has no component '{}'", component)};
     const std::string type = c->type->name();
-    std::string copies[2];
-    const std::string* where[2] = {&near, &far};
+    const std::string* copy[2] = {&copies[0].at(component), &copies[1].at(component)};
     for (size_t side = 0; side < 2; ++side) {
-      copies[side] = fmt::format("spireTransition{}_{}_{}_{}", t.from, t.to, component, side == 0 ? "near" : "far");
       const ast::ComponentDecl* decl = currentDecl(shader_, *c, *where[side]);
       if (!decl)
         return Failure{fmt::format("the chain's shader has no definition of '{}' at '{}'", component, *where[side])};
       const uint32_t after = decl->variation.empty() ? decl->nameRange.end : decl->variationRange.end;
-      const std::string_view body = module_.sources().text(SourceRange{decl->range.file, after, decl->range.end});
+      auto body = copiedBody(module_.sources(), *decl, after, copies[side]);
+      if (!body) return body.error();
       t.definitions +=
-          fmt::format("    {}{} {}{}\n", decl->world ? "@" + *decl->world + " " : "", type, copies[side], body);
-      helpers.emplace_back(copies[side], worldOf(*where[side]));
+          fmt::format("    {}{} {}{}\n", decl->world ? "@" + *decl->world + " " : "", type, *copy[side], *body);
+      helpers.emplace_back(*copy[side], worldOf(*where[side]));
     }
     const std::string variation = fmt::format("transition{}_{}", t.from, t.to);
     const std::string value = simplify::floatScalarCount(type)
-                                  ? fmt::format("mix({}, {}, {})", copies[0], copies[1], fade)
-                                  : fmt::format("{} < 0.5 ? {} : {}", fade, copies[0], copies[1]);
+                                  ? fmt::format("mix({}, {}, {})", *copy[0], *copy[1], fade)
+                                  : fmt::format("{} < 0.5 ? {} : {}", fade, *copy[0], *copy[1]);
     t.definitions += fmt::format("    {} {}:{} = {};\n", type, component, variation, value);
     return variation;
   }

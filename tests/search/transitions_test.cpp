@@ -146,6 +146,66 @@ TEST_F(TransitionsTest, ThePolicyGetsABandForEachTransitionBetweenTheLevelsItBle
   EXPECT_EQ(transitionDefinitions(Transitions{"shared", {}}), "");
 }
 
+// A move carries what its component reads into its world: level 1 moves
+// `tint` to Vertex with `shade`, which it reads. Both are blended, and each
+// copy reads its own side's copy of `shade`: the far copy of `tint`, in
+// Vertex, could not read `shade`'s blend, which is in Fragment.
+TEST_F(TransitionsTest, EachCopyReadsItsSidesCopiesOfWhatAMoveCarries) {
+  constexpr const char* kShade = R"(using "pipelines/engine.spire";
+
+shader Shade using EnginePipeline {
+    @FrameUniform mat4 matMVP;
+    @FrameUniform vec3 cameraPos;
+    vec3 shade = vec3(vert_uv, 1.0);
+    vec3 tint { vec3 half = shade * 0.5; return half + shade.zyx * 0.25; }
+    vec4 projPos = matMVP * vec4(vert_pos, 1.0);
+    vec4 output = vec4(tint, 1.0);
+}
+
+shader ShadeSearch : Shade {
+}
+)";
+  auto shade = compileModule(compile_, "shade.spire", kShade, "ShadeSearch");
+  ASSERT_TRUE(shade) << shade.error().message;
+  Chain chain;
+  chain.levels.resize(2);
+  chain.levels[0].placement = {{"shade", "Fragment"}, {"tint", "Fragment"}, {"output", "Fragment"}};
+  chain.levels[1].placement = {{"shade", "Vertex"}, {"tint", "Vertex"}, {"output", "Fragment"}};
+  lod::LodPolicy policy;
+  policy.levels = {band(0, 10.0F), band(1, std::numeric_limits<float>::infinity())};
+  for (auto& level : policy.levels) level.decisions = {{"ShadeSearch", level.decisions.at("RampSearch")}};
+  const TransitionShape shape{0.25, {"length(cameraPos - vert_pos)", {}}};
+  auto transitions = chainTransitions(chain, policy, **shade, "ShadeSearch", shape);
+  ASSERT_TRUE(transitions) << transitions.error().message;
+  ASSERT_EQ(transitions->list.size(), 1U);
+  const std::string& text = transitions->list[0].definitions;
+  for (const char* side : {"near", "far"}) {
+    EXPECT_NE(text.find(fmt::format("vec3 spireTransition0_1_tint_{0} {{ vec3 half = spireTransition0_1_shade_{0} "
+                                    "* 0.5; return half + spireTransition0_1_shade_{0}.zyx * 0.25; }}",
+                                    side)),
+              std::string::npos)
+        << text;
+  }
+  std::string module = kShade;
+  module.insert(module.rfind('}'), transitionDefinitions(*transitions));
+  auto compiled = compileModule(compile_, "shade.spire", module, "ShadeSearch");
+  ASSERT_TRUE(compiled) << compiled.error().message << module;
+  const Placement& placement = transitions->list[0].placement;
+  std::vector<std::string> skipped;
+  EXPECT_TRUE((*compiled)->buildVariant("ShadeSearch", {placement.begin(), placement.end()}, &skipped));
+  EXPECT_TRUE(skipped.empty()) << skipped.front();
+
+  // A local that hides a blended component cannot be told from it.
+  std::string hiding = kShade;
+  hiding.replace(hiding.find("vec3 half"), 9, "vec3 shade");
+  hiding.replace(hiding.find("return half"), 11, "return shade");
+  auto hidden = compileModule(compile_, "shade.spire", hiding, "ShadeSearch");
+  ASSERT_TRUE(hidden) << hidden.error().message;
+  auto refused = chainTransitions(chain, policy, **hidden, "ShadeSearch", shape);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("declares a local 'shade'"), std::string::npos) << refused.error().message;
+}
+
 // The default distance is the policy's: world units, from the engine's
 // world-space eye and model matrix, declared where the shader reads the
 // engine's other per-frame values when it does not read them.
