@@ -52,16 +52,18 @@ std::vector<SceneInstance> makeInstances(uint32_t count) {
   const float cell = kSceneSize / kBlocksPerSide;
   for (uint32_t i = 0; i < count; ++i) {
     SceneInstance instance;
-    instance.center = {(unitRandom(state) - 0.5F) * kSceneSize, 1.0F, (unitRandom(state) - 0.5F) * kSceneSize};
-    instance.radius = 0.5F + unitRandom(state);
+    const glm::vec3 center{(unitRandom(state) - 0.5F) * kSceneSize, 1.0F, (unitRandom(state) - 0.5F) * kSceneSize};
+    instance.bounds = spire::lod::ObjectBounds::sphere(center, 0.5F + unitRandom(state));
     instance.prototype = i == 0 ? 0 : 1 + i % (kPrototypes - 1);
-    const auto bx = static_cast<uint32_t>((instance.center.x + kSceneSize / 2) / cell);
-    const auto bz = static_cast<uint32_t>((instance.center.z + kSceneSize / 2) / cell);
+    const auto bx = static_cast<uint32_t>((center.x + kSceneSize / 2) / cell);
+    const auto bz = static_cast<uint32_t>((center.z + kSceneSize / 2) / cell);
     instance.block = std::min(bz, kBlocksPerSide - 1) * kBlocksPerSide + std::min(bx, kBlocksPerSide - 1);
     instances.push_back(instance);
   }
   // The terrain: one instance covering everything.
-  instances[0] = {{0.0F, 0.0F, 0.0F}, kSceneSize * 0.71F, 0, 0};
+  instances[0] = {spire::lod::ObjectBounds::box({-kSceneSize / 2, -5.0F, -kSceneSize / 2},
+                                                {kSceneSize / 2, 5.0F, kSceneSize / 2}, kSceneSize * 0.71F),
+                  0, 0};
   return instances;
 }
 
@@ -89,12 +91,8 @@ LodPolicy makePolicy() {
 void BM_LodFrame(benchmark::State& state) {
   const auto count = static_cast<uint32_t>(state.range(0));
   const std::vector<SceneInstance> instances = makeInstances(count);
-  std::vector<glm::vec3> centers;
-  std::vector<float> radii;
-  for (const SceneInstance& i : instances) {
-    centers.push_back(i.center);
-    radii.push_back(i.radius);
-  }
+  std::vector<spire::lod::ObjectBounds> bounds;
+  for (const SceneInstance& i : instances) bounds.push_back(i.bounds);
   LodSelector selector(makePolicy(), instances.size());
   InstanceBatcher batcher(makeGroups(), kBlocksPerSide * kBlocksPerSide);
   FrameBatches batches;
@@ -106,7 +104,7 @@ void BM_LodFrame(benchmark::State& state) {
     const float t = static_cast<float>(frame++ % 600) / 600.0F;
     const glm::vec3 eye(-70.0F + 140.0F * t, 3.0F, -50.0F + 100.0F * t);
     const glm::mat4 viewProj = projection * glm::lookAt(eye, eye + glm::vec3(1.0F, -0.05F, 0.7F), {0.0F, 1.0F, 0.0F});
-    selector.update(centers, eye, radii);
+    selector.update(bounds, eye);
     batcher.build(instances, selector, viewProj, batches);
     visible += batches.visibleInstances;
     benchmark::DoNotOptimize(batches.draws.data());

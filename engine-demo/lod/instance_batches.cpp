@@ -45,7 +45,7 @@ void InstanceBatcher::build(std::span<const SceneInstance> instances, const LodS
   entries_.clear();
   out.visibleInstances = 0;
   const auto consider = [&](uint32_t i) {
-    if (!sphereVisible(planes, instances[i].center, instances[i].radius)) return;
+    if (!sphereVisible(planes, instances[i].bounds.center, instances[i].bounds.radius)) return;
     ++out.visibleInstances;
     add(instances[i], i, selector);
   };

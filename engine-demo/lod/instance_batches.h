@@ -18,12 +18,12 @@
 #include <vector>
 
 #include "lod/lod_selection.h"
+#include "lod/object_bounds.h"
 
 namespace spire::lod {
 
 struct SceneInstance {
-  glm::vec3 center{0.0F};  // of the bounding sphere, world space
-  float radius = 0.0F;
+  ObjectBounds bounds;  // world space; culled by its sphere
   uint32_t prototype = 0;
   uint32_t block = 0;
 };

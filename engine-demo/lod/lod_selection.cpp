@@ -1,7 +1,5 @@
 #include "lod/lod_selection.h"
 
-#include <glm/geometric.hpp>
-
 #include <algorithm>
 
 namespace spire::lod {
@@ -12,18 +10,6 @@ namespace {
 // whose pixels at the edge are the neighbour's exactly.
 float hysteresisAt(const LodPolicy& policy, uint32_t band) {
   return policy.levels[band].blend || policy.levels[band + 1].blend ? 0.0F : policy.hysteresis;
-}
-
-float distanceTo(std::span<const glm::vec3> centers, std::span<const float> radii, size_t i, const glm::vec3& camera) {
-  const float d = glm::distance(centers[i], camera);
-  return radii.empty() ? d : std::max(0.0F, d - radii[i]);
-}
-
-// To the farthest point of the bounding sphere.
-float farthestFrom(std::span<const glm::vec3> centers, std::span<const float> radii, size_t i,
-                   const glm::vec3& camera) {
-  const float d = glm::distance(centers[i], camera);
-  return radii.empty() ? d : d + radii[i];
 }
 
 }  // namespace
@@ -41,24 +27,22 @@ uint32_t levelFor(const LodPolicy& policy, float distance, uint32_t current, flo
 
 LodSelector::LodSelector(LodPolicy policy, size_t instances) : policy_(std::move(policy)), states_(instances) {}
 
-void LodSelector::reset(std::span<const glm::vec3> centers, const glm::vec3& camera, std::span<const float> radii) {
+void LodSelector::reset(std::span<const ObjectBounds> bounds, const glm::vec3& camera) {
   // Without hysteresis: the band the distance is in.
   LodPolicy exact = policy_;
   exact.hysteresis = 0.0F;
   for (size_t i = 0; i < states_.size(); ++i) {
-    const uint32_t level =
-        levelFor(exact, distanceTo(centers, radii, i, camera), 0, farthestFrom(centers, radii, i, camera));
+    const uint32_t level = levelFor(exact, bounds[i].nearest(camera), 0, bounds[i].farthest(camera));
     states_[i] = {static_cast<uint8_t>(level), static_cast<uint8_t>(level), 0};
   }
 }
 
-void LodSelector::update(std::span<const glm::vec3> centers, const glm::vec3& camera, std::span<const float> radii) {
+void LodSelector::update(std::span<const ObjectBounds> bounds, const glm::vec3& camera) {
   const auto frames = static_cast<uint16_t>(policy_.transitionFrames);
   for (size_t i = 0; i < states_.size(); ++i) {
     LodState& s = states_[i];
     if (s.fadeLeft > 0) --s.fadeLeft;
-    const uint32_t level =
-        levelFor(policy_, distanceTo(centers, radii, i, camera), s.level, farthestFrom(centers, radii, i, camera));
+    const uint32_t level = levelFor(policy_, bounds[i].nearest(camera), s.level, bounds[i].farthest(camera));
     if (level == s.level) continue;
     if (s.fadeLeft == 0) {
       s.from = s.level;

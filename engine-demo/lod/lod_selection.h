@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "lod/lod_policy.h"
+#include "lod/object_bounds.h"
 
 namespace spire::lod {
 
@@ -45,14 +46,15 @@ class LodSelector {
   LodSelector(LodPolicy policy, size_t instances);
 
   // An instance's distance is from the camera to the nearest point of its
-  // bounding sphere (`centers`, `radii`; no radii: points), so that a large
-  // object the camera is near or inside, a terrain, is near.
+  // bounds (ObjectBounds::nearest), so that a large object the camera is
+  // near, a terrain tile, is near, and one the camera is only inside the
+  // bounding sphere of, high above a flat tile, is not.
   //
   // Starts every instance at the level of its distance, without fading (the
   // first frame of a camera path).
-  void reset(std::span<const glm::vec3> centers, const glm::vec3& camera, std::span<const float> radii = {});
+  void reset(std::span<const ObjectBounds> bounds, const glm::vec3& camera);
   // One frame: each instance's level from its distance, fades advanced.
-  void update(std::span<const glm::vec3> centers, const glm::vec3& camera, std::span<const float> radii = {});
+  void update(std::span<const ObjectBounds> bounds, const glm::vec3& camera);
 
   const LodState& state(size_t instance) const { return states_[instance]; }
   // The draws of `instance` this frame: one, or two while it fades (the

@@ -33,23 +33,16 @@ struct DrawGroup {
   std::map<uint32_t, VertexInputs> inputs;  // by mesh index
 };
 
-struct Bounds {
-  glm::vec3 center{0.0F};
-  float radius = 0.0F;
-};
-
-Bounds meshBounds(const scene::Mesh& mesh) {
+lod::ObjectBounds meshBounds(const scene::Mesh& mesh) {
   glm::vec3 lo(std::numeric_limits<float>::max());
   glm::vec3 hi(std::numeric_limits<float>::lowest());
   for (const scene::Vertex& v : mesh.vertices) {
     lo = glm::min(lo, v.position);
     hi = glm::max(hi, v.position);
   }
-  Bounds bounds{(lo + hi) * 0.5F, 0.0F};
-  for (const scene::Vertex& v : mesh.vertices) {
-    bounds.radius = std::max(bounds.radius, glm::distance(v.position, bounds.center));
-  }
-  return bounds;
+  float radius = 0.0F;
+  for (const scene::Vertex& v : mesh.vertices) radius = std::max(radius, glm::distance(v.position, (lo + hi) * 0.5F));
+  return lod::ObjectBounds::box(lo, hi, radius);
 }
 
 // Whether the program's kernels read the cross-fade weight (lod::DrawGroups::fades).
@@ -89,8 +82,7 @@ struct LodScene::Impl {
   std::vector<bool> doubleSided;       // per prototype
   std::vector<lod::SceneInstance> instances;
   std::vector<glm::mat4> models;
-  std::vector<glm::vec3> centers;
-  std::vector<float> radii;
+  std::vector<lod::ObjectBounds> bounds;  // of each instance, as the selector reads them
   std::vector<std::unique_ptr<DrawGroup>> groups;
   uint32_t blockCount = 1;
   std::vector<uint32_t> meshOfPrototype;
@@ -147,25 +139,21 @@ Expected<void> LodScene::Impl::compileLevels(LevelPrograms* compiled) {
 Expected<void> LodScene::Impl::placeInstances(uint32_t blocksPerSide) {
   const scene::SceneFile& scene = renderer.scene();
   std::map<const GpuMesh*, uint32_t> meshIndex;
-  std::vector<Bounds> bounds;
+  std::vector<lod::ObjectBounds> meshBoxes;
   std::vector<uint32_t> meshOf;
   for (size_t p = 0; p < scene.instances.size(); ++p) {
     const DrawItem& item = levels.front().prepared.items[p];
     const auto [it, fresh] = meshIndex.emplace(item.mesh, static_cast<uint32_t>(meshes.size()));
     if (fresh) {
       meshes.push_back(item.mesh);
-      bounds.push_back(meshBounds(item.mesh->mesh));
+      meshBoxes.push_back(meshBounds(item.mesh->mesh));
     }
     meshOf.push_back(it->second);
     doubleSided.push_back(scene.instances[p].doubleSided.value_or(item.mesh->mesh.doubleSided));
     auto placements = scene::placementsOf(scene.instances[p], scene);
     if (!placements) return Error{placements.error().message, scene.instances[p].range, {}};
-    const Bounds& b = bounds[it->second];
     for (const glm::mat4& model : *placements) {
-      const float scale = std::max(
-          {glm::length(glm::vec3(model[0])), glm::length(glm::vec3(model[1])), glm::length(glm::vec3(model[2]))});
-      instances.push_back(
-          {glm::vec3(model * glm::vec4(b.center, 1.0F)), b.radius * scale, static_cast<uint32_t>(p), 0});
+      instances.push_back({meshBoxes[it->second].transformed(model), static_cast<uint32_t>(p), 0});
       models.push_back(model);
     }
   }
@@ -173,16 +161,15 @@ Expected<void> LodScene::Impl::placeInstances(uint32_t blocksPerSide) {
   glm::vec2 lo(std::numeric_limits<float>::max());
   glm::vec2 hi(std::numeric_limits<float>::lowest());
   for (const lod::SceneInstance& i : instances) {
-    lo = glm::min(lo, glm::vec2(i.center.x, i.center.z));
-    hi = glm::max(hi, glm::vec2(i.center.x, i.center.z));
+    lo = glm::min(lo, glm::vec2(i.bounds.center.x, i.bounds.center.z));
+    hi = glm::max(hi, glm::vec2(i.bounds.center.x, i.bounds.center.z));
   }
   const glm::vec2 cell = glm::max((hi - lo) / static_cast<float>(blocksPerSide), glm::vec2(1e-6F));
   for (lod::SceneInstance& i : instances) {
-    const auto bx = std::min(static_cast<uint32_t>((i.center.x - lo.x) / cell.x), blocksPerSide - 1);
-    const auto bz = std::min(static_cast<uint32_t>((i.center.z - lo.y) / cell.y), blocksPerSide - 1);
+    const auto bx = std::min(static_cast<uint32_t>((i.bounds.center.x - lo.x) / cell.x), blocksPerSide - 1);
+    const auto bz = std::min(static_cast<uint32_t>((i.bounds.center.z - lo.y) / cell.y), blocksPerSide - 1);
     i.block = bz * blocksPerSide + bx;
-    centers.push_back(i.center);
-    radii.push_back(i.radius);
+    bounds.push_back(i.bounds);
   }
   meshOfPrototype = std::move(meshOf);
   blockCount = blocksPerSide * blocksPerSide;
@@ -350,13 +337,9 @@ Expected<std::unique_ptr<LodScene>> LodScene::make(SceneRenderer& renderer, lod:
 LodScene::LodScene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 LodScene::~LodScene() = default;
 
-void LodScene::resetLevels(const scene::CameraView& view) {
-  impl_->selector->reset(impl_->centers, view.position, impl_->radii);
-}
+void LodScene::resetLevels(const scene::CameraView& view) { impl_->selector->reset(impl_->bounds, view.position); }
 
-void LodScene::updateLevels(const scene::CameraView& view) {
-  impl_->selector->update(impl_->centers, view.position, impl_->radii);
-}
+void LodScene::updateLevels(const scene::CameraView& view) { impl_->selector->update(impl_->bounds, view.position); }
 
 Expected<FrameTiming> LodScene::render(const scene::CameraView& view, float time) {
   updateLevels(view);

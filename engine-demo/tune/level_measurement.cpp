@@ -44,15 +44,25 @@ std::vector<Probe> findProbes(const engine::LodScene& scene, const scene::SceneF
   return probes;
 }
 
-// `distance` from the object's bounding sphere, looking at its centre along
-// the scene's first view direction (so at the elevation the scene is seen).
+// `distance` from the object's bounds as selection measures it (their
+// nearest point), looking at its centre along the scene's first view
+// direction (so at the elevation the scene is seen).
 scene::CameraView probeView(const lod::SceneInstance& object, const scene::CameraDesc& camera, float distance) {
   const scene::CameraView& first = camera.views.front();
   glm::vec3 back = first.position - first.target;
   back = glm::length(back) > 1e-6F ? glm::normalize(back) : glm::vec3(0.0F, 0.0F, 1.0F);
+  const lod::ObjectBounds& bounds = object.bounds;
+  // Along the ray from the centre the distance to the bounds only grows;
+  // at the sphere's radius plus `distance` it is at least `distance`.
+  float inside = 0.0F;
+  float outside = bounds.radius + distance;
+  for (int step = 0; step < 40; ++step) {
+    const float t = 0.5F * (inside + outside);
+    (bounds.nearest(bounds.center + back * t) < distance ? inside : outside) = t;
+  }
   scene::CameraView view;
-  view.position = object.center + back * (object.radius + distance);
-  view.target = object.center;
+  view.position = bounds.center + back * outside;
+  view.target = bounds.center;
   return view;
 }
 

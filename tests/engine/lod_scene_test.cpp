@@ -132,8 +132,7 @@ TEST_F(LodSceneTest, LevelsFollowThePolicyWithHysteresisAsTheCameraMoves) {
     view.target = glm::vec3(0.0F, 0.0F, -40.0F);
     ASSERT_TRUE(scene->render(view, static_cast<float>(frame) / 60.0F));
     for (size_t i = 0; i < scene->instanceCount(); ++i) {
-      const float d =
-          std::max(0.0F, glm::distance(scene->instance(i).center, view.position) - scene->instance(i).radius);
+      const float d = scene->instance(i).bounds.nearest(view.position);
       const uint32_t level = scene->levelOf(i);
       seen.insert(level);
       const float lo = level == 0 ? 0.0F : p.levels[level - 1].until * (1.0F - p.hysteresis);

@@ -19,6 +19,12 @@ LodPolicy twoLevels() {
   return policy;
 }
 
+std::vector<ObjectBounds> boundsOf(const std::vector<SceneInstance>& instances) {
+  std::vector<ObjectBounds> bounds;
+  for (const SceneInstance& i : instances) bounds.push_back(i.bounds);
+  return bounds;
+}
+
 glm::mat4 viewProj(const glm::vec3& eye, const glm::vec3& target) {
   glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(60.0F), 1.0F, 0.1F, 1000.0F);
   projection[1][1] *= -1.0F;
@@ -45,13 +51,12 @@ TEST(InstanceBatchesTest, PrototypesSharingAGroupLandInOneBatchPerBlock) {
   std::vector<SceneInstance> instances;
   for (uint32_t block = 0; block < 2; ++block) {
     for (uint32_t p = 0; p < 3; ++p) {
-      for (int k = 0; k < 4; ++k) instances.push_back({{float(k), 0, -50.0F - float(block)}, 1.0F, p, block});
+      for (int k = 0; k < 4; ++k)
+        instances.push_back({ObjectBounds::sphere({float(k), 0, -50.0F - float(block)}, 1.0F), p, block});
     }
   }
   LodSelector selector(twoLevels(), instances.size());
-  std::vector<glm::vec3> centers;
-  for (const auto& i : instances) centers.push_back(i.center);
-  selector.reset(centers, glm::vec3(0));
+  selector.reset(boundsOf(instances), glm::vec3(0));
   InstanceBatcher batcher(groups, 2);
   FrameBatches out;
   batcher.build(instances, selector, viewProj(glm::vec3(0), glm::vec3(0, 0, -1)), out);
@@ -84,13 +89,12 @@ TEST(InstanceBatchesTest, ASwitchIntoAGroupThatCannotFadeIsDrawnAtOnce) {
     groups.meshOf = {0};
     groups.groupCount = 2;
     groups.fades = {1, canFade ? uint8_t{1} : uint8_t{0}};
-    const std::vector<SceneInstance> instances{{{0, 0, -5.0F}, 0.5F, 0, 0}};
+    const std::vector<SceneInstance> instances{{ObjectBounds::sphere({0, 0, -5.0F}, 0.5F), 0, 0}};
     LodPolicy policy = twoLevels();
     policy.transitionFrames = 4;
     LodSelector selector(policy, 1);
-    const std::vector<glm::vec3> centers{instances[0].center};
-    selector.reset(centers, glm::vec3(0));
-    selector.update(centers, glm::vec3(0, 0, 20.0F));  // now 25 away: switching to LQ
+    selector.reset(boundsOf(instances), glm::vec3(0));
+    selector.update(boundsOf(instances), glm::vec3(0, 0, 20.0F));  // now 25 away: switching to LQ
     InstanceBatcher batcher(groups, 1);
     FrameBatches out;
     batcher.build(instances, selector, viewProj(glm::vec3(0, 0, 20.0F), glm::vec3(0, 0, -1)), out);
@@ -109,11 +113,10 @@ TEST(InstanceBatchesTest, ASubsetDrawsOnlyTheInstancesItLists) {
   groups.meshOf = {0, 1};
   groups.groupCount = 2;
   std::vector<SceneInstance> instances;
-  for (uint32_t k = 0; k < 6; ++k) instances.push_back({{0.4F * float(k), 0, -5.0F}, 0.2F, k % 2, 0});
+  for (uint32_t k = 0; k < 6; ++k)
+    instances.push_back({ObjectBounds::sphere({0.4F * float(k), 0, -5.0F}, 0.2F), k % 2, 0});
   LodSelector selector(twoLevels(), instances.size());
-  std::vector<glm::vec3> centers;
-  for (const auto& i : instances) centers.push_back(i.center);
-  selector.reset(centers, glm::vec3(0));
+  selector.reset(boundsOf(instances), glm::vec3(0));
   InstanceBatcher batcher(groups, 1);
   FrameBatches out;
   const std::vector<uint32_t> subset{3};
@@ -145,16 +148,12 @@ TEST(InstanceBatchesTest, RandomScenesDrawEveryVisibleInstanceOnceInItsGroup) {
     }
     std::uniform_real_distribution<float> pos(-40.0F, 40.0F);
     std::vector<SceneInstance> instances(200 + rng() % 300);
-    std::vector<glm::vec3> centers;
     for (auto& i : instances) {
-      i = {{pos(rng), 0.0F, pos(rng)},
-           1.0F,
-           static_cast<uint32_t>(rng() % prototypes),
+      i = {ObjectBounds::sphere({pos(rng), 0.0F, pos(rng)}, 1.0F), static_cast<uint32_t>(rng() % prototypes),
            static_cast<uint32_t>(rng() % blocks)};
-      centers.push_back(i.center);
     }
     LodSelector selector(twoLevels(), instances.size());
-    selector.reset(centers, glm::vec3(0, 5, 30));
+    selector.reset(boundsOf(instances), glm::vec3(0, 5, 30));
     const glm::mat4 vp = viewProj(glm::vec3(0, 5, 30), glm::vec3(0));
     InstanceBatcher batcher(groups, blocks);
     FrameBatches out;
@@ -177,7 +176,7 @@ TEST(InstanceBatchesTest, RandomScenesDrawEveryVisibleInstanceOnceInItsGroup) {
       }
     }
     for (uint32_t i = 0; i < instances.size(); ++i) {
-      const bool visible = sphereVisible(planes, instances[i].center, instances[i].radius);
+      const bool visible = sphereVisible(planes, instances[i].bounds.center, instances[i].bounds.radius);
       ASSERT_EQ(drawn.count(i), visible ? 1U : 0U) << "instance " << i;
     }
   }

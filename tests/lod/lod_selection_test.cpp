@@ -53,12 +53,13 @@ TEST(LodSelectionTest, ABlendBandIsDrawnByEveryObjectReachingIntoItAndItsEdgesHa
 
   // Starting a path: the same choice, from the bounding spheres.
   LodSelector selector(policy, 2);
-  const std::array<glm::vec3, 2> centers{glm::vec3(7.0F, 0.0F, 0.0F), glm::vec3(5.0F, 0.0F, 0.0F)};
-  const std::array<float, 2> radii{1.5F, 1.5F};  // nearest 5.5 and 3.5, farthest 8.5 and 6.5
-  selector.reset(centers, glm::vec3(0.0F), radii);
+  // Nearest 5.5 and 3.5, farthest 8.5 and 6.5.
+  const std::array<ObjectBounds, 2> objects{ObjectBounds::sphere(glm::vec3(7.0F, 0.0F, 0.0F), 1.5F),
+                                            ObjectBounds::sphere(glm::vec3(5.0F, 0.0F, 0.0F), 1.5F)};
+  selector.reset(objects, glm::vec3(0.0F));
   EXPECT_EQ(selector.state(0).level, 1U);
   EXPECT_EQ(selector.state(1).level, 0U);
-  selector.update(centers, glm::vec3(0.0F), radii);
+  selector.update(objects, glm::vec3(0.0F));
   EXPECT_EQ(selector.state(0).level, 1U);
   EXPECT_EQ(selector.state(1).level, 0U);
 }
@@ -94,15 +95,15 @@ TEST(LodSelectionTest, RandomWalksSwitchOnlyBeyondTheMargin) {
 
 TEST(LodSelectionTest, ASwitchCrossFadesFromTheOldLevelToTheNew) {
   LodSelector selector(threeLevels(0.0F, 3), 1);
-  std::vector<glm::vec3> centers = {{0.0F, 0.0F, 5.0F}};
-  selector.reset(centers, glm::vec3(0.0F));
+  std::vector<ObjectBounds> objects = {ObjectBounds::sphere({0.0F, 0.0F, 5.0F}, 0.0F)};
+  selector.reset(objects, glm::vec3(0.0F));
   LevelDraw draws[2];
   ASSERT_EQ(selector.draws(0, draws), 1U);
   EXPECT_EQ(draws[0].level, 0U);
-  centers[0].z = 20.0F;  // into MQ
+  objects[0] = ObjectBounds::sphere({0.0F, 0.0F, 20.0F}, 0.0F);  // into MQ
   std::vector<float> fades;
   for (int frame = 0; frame < 5; ++frame) {
-    selector.update(centers, glm::vec3(0.0F));
+    selector.update(objects, glm::vec3(0.0F));
     const uint32_t n = selector.draws(0, draws);
     if (n == 1) {
       EXPECT_EQ(draws[0].level, 1U);
@@ -147,13 +148,13 @@ TEST(LodSelectionTest, RandomWalksNeverChangeALevelsShareByMoreThanOneStep) {
   size_t reversals = 0;
   for (int walk = 0; walk < 40; ++walk) {
     LodSelector selector(policy, 1);
-    std::vector<glm::vec3> centers = {{0.0F, 0.0F, 20.0F}};
-    selector.reset(centers, glm::vec3(0.0F));
+    float z = 20.0F;
+    selector.reset(std::array{ObjectBounds::sphere({0.0F, 0.0F, z}, 0.0F)}, glm::vec3(0.0F));
     std::array<float, 3> before = levelWeights(selector);
     for (int frame = 0; frame < 400; ++frame) {
-      centers[0].z = std::clamp(centers[0].z + move(rng), 0.0F, 60.0F);
+      z = std::clamp(z + move(rng), 0.0F, 60.0F);
       const LodState previous = selector.state(0);
-      selector.update(centers, glm::vec3(0.0F));
+      selector.update(std::array{ObjectBounds::sphere({0.0F, 0.0F, z}, 0.0F)}, glm::vec3(0.0F));
       const LodState& now = selector.state(0);
       reversals += previous.fadeLeft > 1 && now.level == previous.from && now.from == previous.level ? 1 : 0;
       const std::array<float, 3> weights = levelWeights(selector);
