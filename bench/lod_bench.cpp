@@ -91,8 +91,6 @@ LodPolicy makePolicy() {
 void BM_LodFrame(benchmark::State& state) {
   const auto count = static_cast<uint32_t>(state.range(0));
   const std::vector<SceneInstance> instances = makeInstances(count);
-  std::vector<spire::lod::ObjectBounds> bounds;
-  for (const SceneInstance& i : instances) bounds.push_back(i.bounds);
   LodSelector selector(makePolicy(), instances.size());
   InstanceBatcher batcher(makeGroups(), kBlocksPerSide * kBlocksPerSide);
   FrameBatches batches;
@@ -104,7 +102,7 @@ void BM_LodFrame(benchmark::State& state) {
     const float t = static_cast<float>(frame++ % 600) / 600.0F;
     const glm::vec3 eye(-70.0F + 140.0F * t, 3.0F, -50.0F + 100.0F * t);
     const glm::mat4 viewProj = projection * glm::lookAt(eye, eye + glm::vec3(1.0F, -0.05F, 0.7F), {0.0F, 1.0F, 0.0F});
-    selector.update(bounds, eye);
+    selector.update(instances, eye);
     batcher.build(instances, selector, viewProj, batches);
     visible += batches.visibleInstances;
     benchmark::DoNotOptimize(batches.draws.data());

@@ -18,15 +18,9 @@
 #include <vector>
 
 #include "lod/lod_selection.h"
-#include "lod/object_bounds.h"
+#include "lod/scene_instance.h"
 
 namespace spire::lod {
-
-struct SceneInstance {
-  ObjectBounds bounds;  // world space; culled by its sphere
-  uint32_t prototype = 0;
-  uint32_t block = 0;
-};
 
 // What the batcher knows of the object types: the group of each
 // (prototype, level), and each prototype's mesh.

@@ -27,22 +27,24 @@ uint32_t levelFor(const LodPolicy& policy, float distance, uint32_t current, flo
 
 LodSelector::LodSelector(LodPolicy policy, size_t instances) : policy_(std::move(policy)), states_(instances) {}
 
-void LodSelector::reset(std::span<const ObjectBounds> bounds, const glm::vec3& camera) {
+void LodSelector::reset(std::span<const SceneInstance> instances, const glm::vec3& camera) {
   // Without hysteresis: the band the distance is in.
   LodPolicy exact = policy_;
   exact.hysteresis = 0.0F;
   for (size_t i = 0; i < states_.size(); ++i) {
-    const uint32_t level = levelFor(exact, bounds[i].nearest(camera), 0, bounds[i].farthest(camera));
+    const ObjectBounds& bounds = instances[i].bounds;
+    const uint32_t level = levelFor(exact, bounds.nearest(camera), 0, bounds.farthest(camera));
     states_[i] = {static_cast<uint8_t>(level), static_cast<uint8_t>(level), 0};
   }
 }
 
-void LodSelector::update(std::span<const ObjectBounds> bounds, const glm::vec3& camera) {
+void LodSelector::update(std::span<const SceneInstance> instances, const glm::vec3& camera) {
   const auto frames = static_cast<uint16_t>(policy_.transitionFrames);
   for (size_t i = 0; i < states_.size(); ++i) {
     LodState& s = states_[i];
     if (s.fadeLeft > 0) --s.fadeLeft;
-    const uint32_t level = levelFor(policy_, bounds[i].nearest(camera), s.level, bounds[i].farthest(camera));
+    const ObjectBounds& bounds = instances[i].bounds;
+    const uint32_t level = levelFor(policy_, bounds.nearest(camera), s.level, bounds.farthest(camera));
     if (level == s.level) continue;
     if (s.fadeLeft == 0) {
       s.from = s.level;

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "lod/lod_policy.h"
-#include "lod/object_bounds.h"
+#include "lod/scene_instance.h"
 
 namespace spire::lod {
 
@@ -52,9 +52,9 @@ class LodSelector {
   //
   // Starts every instance at the level of its distance, without fading (the
   // first frame of a camera path).
-  void reset(std::span<const ObjectBounds> bounds, const glm::vec3& camera);
+  void reset(std::span<const SceneInstance> instances, const glm::vec3& camera);
   // One frame: each instance's level from its distance, fades advanced.
-  void update(std::span<const ObjectBounds> bounds, const glm::vec3& camera);
+  void update(std::span<const SceneInstance> instances, const glm::vec3& camera);
 
   const LodState& state(size_t instance) const { return states_[instance]; }
   // The draws of `instance` this frame: one, or two while it fades (the

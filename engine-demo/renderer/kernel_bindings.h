@@ -35,11 +35,11 @@ struct BakedTexture {
   std::vector<std::byte> texels;  // the baked texels as stored, when TextureBakeOptions::forceFormat asked to keep them
 };
 
-// A bake result keeps the pipeline it was made with: the renderer's
-// pipeline caches hold pipelines only while something uses them, and the
-// same kernel baked on other meshes (a terrain's tiles, every object type
-// of a level) then reuses it instead of having lavapipe compile it again.
-
+// Each bake result below keeps the pipeline it was made with: the
+// renderer's pipeline caches hold pipelines only while something uses them,
+// and the same kernel baked on other meshes (a terrain's tiles, every object
+// type of a level) then reuses it instead of having lavapipe compile it
+// again.
 struct UniformBakeResult {
   std::map<std::string, std::vector<double>, std::less<>> values;  // component -> average over the surface
   std::shared_ptr<const vk::Pipeline> pipeline;

@@ -82,7 +82,6 @@ struct LodScene::Impl {
   std::vector<bool> doubleSided;       // per prototype
   std::vector<lod::SceneInstance> instances;
   std::vector<glm::mat4> models;
-  std::vector<lod::ObjectBounds> bounds;  // of each instance, as the selector reads them
   std::vector<std::unique_ptr<DrawGroup>> groups;
   uint32_t blockCount = 1;
   std::vector<uint32_t> meshOfPrototype;
@@ -169,7 +168,6 @@ Expected<void> LodScene::Impl::placeInstances(uint32_t blocksPerSide) {
     const auto bx = std::min(static_cast<uint32_t>((i.bounds.center.x - lo.x) / cell.x), blocksPerSide - 1);
     const auto bz = std::min(static_cast<uint32_t>((i.bounds.center.z - lo.y) / cell.y), blocksPerSide - 1);
     i.block = bz * blocksPerSide + bx;
-    bounds.push_back(i.bounds);
   }
   meshOfPrototype = std::move(meshOf);
   blockCount = blocksPerSide * blocksPerSide;
@@ -337,9 +335,9 @@ Expected<std::unique_ptr<LodScene>> LodScene::make(SceneRenderer& renderer, lod:
 LodScene::LodScene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 LodScene::~LodScene() = default;
 
-void LodScene::resetLevels(const scene::CameraView& view) { impl_->selector->reset(impl_->bounds, view.position); }
+void LodScene::resetLevels(const scene::CameraView& view) { impl_->selector->reset(impl_->instances, view.position); }
 
-void LodScene::updateLevels(const scene::CameraView& view) { impl_->selector->update(impl_->bounds, view.position); }
+void LodScene::updateLevels(const scene::CameraView& view) { impl_->selector->update(impl_->instances, view.position); }
 
 Expected<FrameTiming> LodScene::render(const scene::CameraView& view, float time) {
   updateLevels(view);

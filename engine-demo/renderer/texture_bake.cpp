@@ -144,8 +144,8 @@ struct BakeModules {
 // The engine's vertex shader is compiled only the first time its text is
 // seen: glslang costs milliseconds per compile, and every bake of a kernel
 // (one per mesh) asks for the same text.
-Expected<VkShaderModule> bakeVertexModule(const vk::Context& ctx, ModuleCache& modules, const std::string& source) {
-  const std::string key = "bake-vertex:" + source;
+Expected<VkShaderModule> bakeVertexModule(const vk::Context& ctx, ModuleCache& modules, const std::string& key,
+                                          const std::string& source) {
   if (VkShaderModule module = modules.find(key); module != VK_NULL_HANDLE) return module;
   codegen::SpirvResult spirv = codegen::compileGlslToSpirv(codegen::ShaderStage::Vertex, source, "bake.vert");
   if (!spirv.ok()) return Error{"the engine's bake vertex shader does not compile", {}, spirv.log};
@@ -155,11 +155,12 @@ Expected<VkShaderModule> bakeVertexModule(const vk::Context& ctx, ModuleCache& m
 Expected<BakeModules> loadBakeModules(const vk::Context& ctx, ModuleCache& modules, const KernelProgram& kernel,
                                       uint32_t uvLocation) {
   const std::string vertexSource = bakeVertexShader(kernel, uvLocation);
-  auto vertexModule = bakeVertexModule(ctx, modules, vertexSource);
+  const std::string vertexKey = "bake-vertex:" + vertexSource;
+  auto vertexModule = bakeVertexModule(ctx, modules, vertexKey, vertexSource);
   if (!vertexModule) return vertexModule.error();
   auto fragmentModule = modules.get(ctx, kernel.hash, kernel.spirv);
   if (!fragmentModule) return fragmentModule.error();
-  return BakeModules{*vertexModule, *fragmentModule, "bake-vertex:" + vertexSource + " " + kernel.hash};
+  return BakeModules{*vertexModule, *fragmentModule, vertexKey + " " + kernel.hash};
 }
 
 Expected<SharedPipeline> bakePipeline(const vk::Context& ctx, PipelineCache& pipelines, const BakeModules& modules,

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
-#include <map>
 #include <optional>
 #include <set>
 
@@ -55,22 +54,22 @@ std::string copyName(const Transition& t, const std::string& component, size_t s
   return fmt::format("spireTransition{}_{}_{}_{}", t.from, t.to, component, side == 0 ? "near" : "far");
 }
 
-// `decl`'s definition from `after` (past its name) to its end, with each
-// reference to a component that `copies` names replaced by its copy on the
-// same side. A copy must read its side's copies, not the blend: a move
-// carries the components its component reads into its world (albedo to
-// PrebakeTex takes mixFactor along), and the far copy of albedo, computed
-// in PrebakeTex, cannot read mixFactor's blend, which is in Fragment.
+// `decl`'s definition from `after` (past its name) to its end, copied to
+// side `side` of `t`: each reference to a `blended` component is replaced by
+// that component's copy on the same side. A copy must read its side's
+// copies, not the blend: a move carries the components its component reads
+// into its world (albedo to PrebakeTex takes mixFactor along), and the far
+// copy of albedo, computed in PrebakeTex, cannot read mixFactor's blend,
+// which is in Fragment.
 Expected<std::string, Failure> copiedBody(const SourceManager& sources, const ast::ComponentDecl& decl, uint32_t after,
-                                          const std::map<std::string, std::string>& copies) {
-  std::vector<std::pair<SourceRange, const std::string*>> uses;
+                                          const Transition& t, size_t side, const std::set<std::string>& blended) {
+  std::vector<std::pair<SourceRange, std::string>> uses;
   std::set<std::string> locals;
   simplify::SyntaxWalker walker(
       [&](const ast::Expr& e) {
         if (e.kind != ast::ExprKind::Name) return;
-        if (const auto it = copies.find(ast::cast<ast::NameExpr>(e).name); it != copies.end()) {
-          uses.emplace_back(e.range, &it->second);
-        }
+        const std::string& name = ast::cast<ast::NameExpr>(e).name;
+        if (blended.contains(name)) uses.emplace_back(e.range, copyName(t, name, side));
       },
       [&](const ast::Stmt& st) {
         if (st.kind != ast::StmtKind::VarDecl) return;
@@ -79,7 +78,7 @@ Expected<std::string, Failure> copiedBody(const SourceManager& sources, const as
       simplify::SyntaxWalker::Immutable::Visit);
   walker.expr(decl.init.get());
   walker.stmt(decl.body.get());
-  for (const auto& [name, copy] : copies) {
+  for (const std::string& name : blended) {
     if (locals.contains(name)) {
       return Failure{
           fmt::format("'{}' declares a local '{}', which hides the component of that name that the "
@@ -92,7 +91,7 @@ Expected<std::string, Failure> copiedBody(const SourceManager& sources, const as
   uint32_t at = after;
   for (const auto& [range, copy] : uses) {
     text += sources.text(SourceRange{decl.range.file, at, range.begin});
-    text += *copy;
+    text += copy;
     at = range.end;
   }
   return text + std::string(sources.text(SourceRange{decl.range.file, at, decl.range.end}));
@@ -110,20 +109,18 @@ class TransitionWriter {
         "from {3:.9g}.\n    float {4} = clamp(({5} - {2:.9g}) / {6:.9g}, 0.0, 1.0);\n",
         t.from, t.to, t.nearDistance, t.farDistance, fade, kDistance, t.farDistance - t.nearDistance);
     t.placement = near.placement;
-    // The components blended, each side's copy of each.
-    std::map<std::string, std::string> copies[2];
+    // What both levels compute, each its own way.
+    std::set<std::string> blended;
     for (const auto& [component, where] : t.placement) {
       const std::string other = placementOf(far.placement, component);
-      if (other.empty() || other == where) continue;
-      for (size_t side = 0; side < 2; ++side) copies[side].emplace(component, copyName(t, component, side));
+      if (!other.empty() && other != where) blended.insert(component);
     }
     Placement helpers;
     for (auto& [component, where] : t.placement) {
-      const std::string other = placementOf(far.placement, component);
-      if (other.empty() || other == where) continue;
-      auto blended = blend(component, {&where, &other}, copies, t, fade, helpers);
-      if (!blended) return blended.error();
-      where = worldOf(where) + ":" + *blended;
+      if (!blended.contains(component)) continue;
+      auto variation = blend(component, {where, placementOf(far.placement, component)}, blended, t, fade, helpers);
+      if (!variation) return variation.error();
+      where = worldOf(where) + ":" + *variation;
     }
     // What only the farther level computes keeps its placement.
     for (const auto& [component, where] : far.placement) {
@@ -135,30 +132,30 @@ class TransitionWriter {
 
  private:
   // Defines `component:transitionA_B` from copies of its definitions at its
-  // near and far placements (`where`), each reading its side's `copies` of
-  // the other blended components; its variation name.
-  Expected<std::string, Failure> blend(const std::string& component, std::array<const std::string*, 2> where,
-                                       const std::map<std::string, std::string> (&copies)[2], Transition& t,
-                                       const std::string& fade, Placement& helpers) {
+  // near and far placements (`where`), each reading its side's copies of
+  // the other `blended` components; its variation name.
+  Expected<std::string, Failure> blend(const std::string& component, const std::array<std::string, 2>& where,
+                                       const std::set<std::string>& blended, Transition& t, const std::string& fade,
+                                       Placement& helpers) {
     const sem::Component* c = shader_.findComponent(component);
     if (!c || !c->type) return Failure{fmt::format("the chain's shader has no component '{}'", component)};
     const std::string type = c->type->name();
-    const std::string* copy[2] = {&copies[0].at(component), &copies[1].at(component)};
+    const std::string copy[2] = {copyName(t, component, 0), copyName(t, component, 1)};
     for (size_t side = 0; side < 2; ++side) {
-      const ast::ComponentDecl* decl = currentDecl(shader_, *c, *where[side]);
+      const ast::ComponentDecl* decl = currentDecl(shader_, *c, where[side]);
       if (!decl)
-        return Failure{fmt::format("the chain's shader has no definition of '{}' at '{}'", component, *where[side])};
+        return Failure{fmt::format("the chain's shader has no definition of '{}' at '{}'", component, where[side])};
       const uint32_t after = decl->variation.empty() ? decl->nameRange.end : decl->variationRange.end;
-      auto body = copiedBody(module_.sources(), *decl, after, copies[side]);
+      auto body = copiedBody(module_.sources(), *decl, after, t, side, blended);
       if (!body) return body.error();
       t.definitions +=
-          fmt::format("    {}{} {}{}\n", decl->world ? "@" + *decl->world + " " : "", type, *copy[side], *body);
-      helpers.emplace_back(*copy[side], worldOf(*where[side]));
+          fmt::format("    {}{} {}{}\n", decl->world ? "@" + *decl->world + " " : "", type, copy[side], *body);
+      helpers.emplace_back(copy[side], worldOf(where[side]));
     }
     const std::string variation = fmt::format("transition{}_{}", t.from, t.to);
     const std::string value = simplify::floatScalarCount(type)
-                                  ? fmt::format("mix({}, {}, {})", *copy[0], *copy[1], fade)
-                                  : fmt::format("{} < 0.5 ? {} : {}", fade, *copy[0], *copy[1]);
+                                  ? fmt::format("mix({}, {}, {})", copy[0], copy[1], fade)
+                                  : fmt::format("{} < 0.5 ? {} : {}", fade, copy[0], copy[1]);
     t.definitions += fmt::format("    {} {}:{} = {};\n", type, component, variation, value);
     return variation;
   }

@@ -19,12 +19,6 @@ LodPolicy twoLevels() {
   return policy;
 }
 
-std::vector<ObjectBounds> boundsOf(const std::vector<SceneInstance>& instances) {
-  std::vector<ObjectBounds> bounds;
-  for (const SceneInstance& i : instances) bounds.push_back(i.bounds);
-  return bounds;
-}
-
 glm::mat4 viewProj(const glm::vec3& eye, const glm::vec3& target) {
   glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(60.0F), 1.0F, 0.1F, 1000.0F);
   projection[1][1] *= -1.0F;
@@ -56,7 +50,7 @@ TEST(InstanceBatchesTest, PrototypesSharingAGroupLandInOneBatchPerBlock) {
     }
   }
   LodSelector selector(twoLevels(), instances.size());
-  selector.reset(boundsOf(instances), glm::vec3(0));
+  selector.reset(instances, glm::vec3(0));
   InstanceBatcher batcher(groups, 2);
   FrameBatches out;
   batcher.build(instances, selector, viewProj(glm::vec3(0), glm::vec3(0, 0, -1)), out);
@@ -93,8 +87,8 @@ TEST(InstanceBatchesTest, ASwitchIntoAGroupThatCannotFadeIsDrawnAtOnce) {
     LodPolicy policy = twoLevels();
     policy.transitionFrames = 4;
     LodSelector selector(policy, 1);
-    selector.reset(boundsOf(instances), glm::vec3(0));
-    selector.update(boundsOf(instances), glm::vec3(0, 0, 20.0F));  // now 25 away: switching to LQ
+    selector.reset(instances, glm::vec3(0));
+    selector.update(instances, glm::vec3(0, 0, 20.0F));  // now 25 away: switching to LQ
     InstanceBatcher batcher(groups, 1);
     FrameBatches out;
     batcher.build(instances, selector, viewProj(glm::vec3(0, 0, 20.0F), glm::vec3(0, 0, -1)), out);
@@ -116,7 +110,7 @@ TEST(InstanceBatchesTest, ASubsetDrawsOnlyTheInstancesItLists) {
   for (uint32_t k = 0; k < 6; ++k)
     instances.push_back({ObjectBounds::sphere({0.4F * float(k), 0, -5.0F}, 0.2F), k % 2, 0});
   LodSelector selector(twoLevels(), instances.size());
-  selector.reset(boundsOf(instances), glm::vec3(0));
+  selector.reset(instances, glm::vec3(0));
   InstanceBatcher batcher(groups, 1);
   FrameBatches out;
   const std::vector<uint32_t> subset{3};
@@ -153,7 +147,7 @@ TEST(InstanceBatchesTest, RandomScenesDrawEveryVisibleInstanceOnceInItsGroup) {
            static_cast<uint32_t>(rng() % blocks)};
     }
     LodSelector selector(twoLevels(), instances.size());
-    selector.reset(boundsOf(instances), glm::vec3(0, 5, 30));
+    selector.reset(instances, glm::vec3(0, 5, 30));
     const glm::mat4 vp = viewProj(glm::vec3(0, 5, 30), glm::vec3(0));
     InstanceBatcher batcher(groups, blocks);
     FrameBatches out;

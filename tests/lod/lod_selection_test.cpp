@@ -12,6 +12,9 @@
 namespace spire::lod {
 namespace {
 
+// An instance whose bounds are a sphere (a point by default) at `center`.
+SceneInstance at(const glm::vec3& center, float radius = 0.0F) { return {ObjectBounds::sphere(center, radius), 0, 0}; }
+
 LodPolicy threeLevels(float hysteresis = 0.1F, uint32_t transitionFrames = 0) {
   LodPolicy policy;
   policy.levels = {
@@ -54,8 +57,7 @@ TEST(LodSelectionTest, ABlendBandIsDrawnByEveryObjectReachingIntoItAndItsEdgesHa
   // Starting a path: the same choice, from the bounding spheres.
   LodSelector selector(policy, 2);
   // Nearest 5.5 and 3.5, farthest 8.5 and 6.5.
-  const std::array<ObjectBounds, 2> objects{ObjectBounds::sphere(glm::vec3(7.0F, 0.0F, 0.0F), 1.5F),
-                                            ObjectBounds::sphere(glm::vec3(5.0F, 0.0F, 0.0F), 1.5F)};
+  const std::array objects{at({7.0F, 0.0F, 0.0F}, 1.5F), at({5.0F, 0.0F, 0.0F}, 1.5F)};
   selector.reset(objects, glm::vec3(0.0F));
   EXPECT_EQ(selector.state(0).level, 1U);
   EXPECT_EQ(selector.state(1).level, 0U);
@@ -95,12 +97,12 @@ TEST(LodSelectionTest, RandomWalksSwitchOnlyBeyondTheMargin) {
 
 TEST(LodSelectionTest, ASwitchCrossFadesFromTheOldLevelToTheNew) {
   LodSelector selector(threeLevels(0.0F, 3), 1);
-  std::vector<ObjectBounds> objects = {ObjectBounds::sphere({0.0F, 0.0F, 5.0F}, 0.0F)};
+  std::array objects{at({0.0F, 0.0F, 5.0F})};
   selector.reset(objects, glm::vec3(0.0F));
   LevelDraw draws[2];
   ASSERT_EQ(selector.draws(0, draws), 1U);
   EXPECT_EQ(draws[0].level, 0U);
-  objects[0] = ObjectBounds::sphere({0.0F, 0.0F, 20.0F}, 0.0F);  // into MQ
+  objects[0] = at({0.0F, 0.0F, 20.0F});  // into MQ
   std::vector<float> fades;
   for (int frame = 0; frame < 5; ++frame) {
     selector.update(objects, glm::vec3(0.0F));
@@ -149,12 +151,12 @@ TEST(LodSelectionTest, RandomWalksNeverChangeALevelsShareByMoreThanOneStep) {
   for (int walk = 0; walk < 40; ++walk) {
     LodSelector selector(policy, 1);
     float z = 20.0F;
-    selector.reset(std::array{ObjectBounds::sphere({0.0F, 0.0F, z}, 0.0F)}, glm::vec3(0.0F));
+    selector.reset(std::array{at({0.0F, 0.0F, z})}, glm::vec3(0.0F));
     std::array<float, 3> before = levelWeights(selector);
     for (int frame = 0; frame < 400; ++frame) {
       z = std::clamp(z + move(rng), 0.0F, 60.0F);
       const LodState previous = selector.state(0);
-      selector.update(std::array{ObjectBounds::sphere({0.0F, 0.0F, z}, 0.0F)}, glm::vec3(0.0F));
+      selector.update(std::array{at({0.0F, 0.0F, z})}, glm::vec3(0.0F));
       const LodState& now = selector.state(0);
       reversals += previous.fadeLeft > 1 && now.level == previous.from && now.from == previous.level ? 1 : 0;
       const std::array<float, 3> weights = levelWeights(selector);
