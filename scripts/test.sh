@@ -30,6 +30,12 @@ if [[ -z "${DISPLAY:-}" && -z "${WAYLAND_DISPLAY:-}" ]] && command -v xvfb-run >
   runner=(xvfb-run --auto-servernum --server-args="-screen 0 1280x1024x24 -noreset")
 fi
 
+# The tests' spirec runs start a compile server (docs/integration.md); it
+# lives in a folder of the tests' own, and stops when the folder goes.
+SPIRE_SERVER_DIR="$(mktemp -d "${TMPDIR:-/tmp}/spire-test-server.XXXXXX")"
+export SPIRE_SERVER_DIR
+trap 'rm -rf "$SPIRE_SERVER_DIR"' EXIT
+
 failed=()
 for preset in default asan; do
   echo "==> [$preset] configure and build"

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <ostream>
@@ -40,6 +41,7 @@ struct Options {
   bool warningsAsErrors = false;
   std::vector<std::string> warningFlags;  // `-Werror` is `-W error`
   bool quiet = false;
+  bool noServer = false;
   std::string depfile;
   std::string depfileTarget;
   SpirvCache* spirvCache = nullptr;  // SpirecEnvironment's
@@ -171,6 +173,9 @@ CLI::Option* addOptions(CLI::App& app, Options& options) {
       ->type_name("error")
       ->allow_extra_args(false);
   app.add_flag("-q,--quiet", options.quiet, "Print errors only: no warnings and their notes");
+  app.add_flag("--no-server", options.noServer,
+               "Compile in this process, not on the compile server that keeps glslang's tables between runs "
+               "(also SPIRE_SERVER=off; docs/integration.md)");
   auto* depfile = app.add_option("--depfile", options.depfile,
                                  "Write a Make-syntax depfile to FILE listing every file read: the sources, each "
                                  "'using' file, the decision file")
@@ -322,7 +327,7 @@ std::optional<int> parseSpirecArguments(const std::vector<std::string>& args, co
   app.add_option("--batch", batchFile,
                  "Run each line of FILE as a separate spirec run (its arguments; '#' comments, \"...\" and '...' "
                  "quoting, \\ escapes: docs/integration.md) in this one process, -j N runs at a time (default: one "
-                 "per hardware thread); takes no other arguments but -j")
+                 "per hardware thread); takes no other arguments but -j and --no-server")
       ->type_name("FILE");
   if (!environment.libraryDir.empty()) {
     app.footer("'using' files found neither next to their includer nor under -I are searched in the Spire library, " +
@@ -388,6 +393,14 @@ SpirecFinish prepareSpirecJob(const std::vector<std::string>& args, const Spirec
 }
 
 }  // namespace
+
+bool spirecWantsCompileServer(const std::vector<std::string>& args) {
+  if (namesBatchMode(args)) return std::ranges::find(args, "--no-server") == args.end();
+  Options options;
+  std::ostringstream ignored;
+  if (parseSpirecArguments(args, {}, options, ignored, ignored)) return false;
+  return !options.noServer && !options.outputDir.empty() && options.emit != "glsl";
+}
 
 int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
               const SpirecEnvironment& environment) {

@@ -28,4 +28,10 @@ struct SpirecEnvironment {
 int runSpirec(const std::vector<std::string>& args, std::ostream& out, std::ostream& err,
               const SpirecEnvironment& environment = {});
 
+// Whether a run of `args` is worth sending to the compile server
+// (driver/compile_server.h): it makes SPIR-V (a batch may), and --no-server
+// is not given. A command line spirec would reject runs in the process
+// that prints the usage error.
+bool spirecWantsCompileServer(const std::vector<std::string>& args);
+
 }  // namespace spire

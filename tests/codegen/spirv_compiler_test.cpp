@@ -1,6 +1,7 @@
 #include "codegen/spirv_compiler.h"
 
 #include <gtest/gtest.h>
+#include <spirv-tools/libspirv.hpp>
 
 #include <cstdint>
 #include <string>
@@ -253,6 +254,34 @@ TEST(SpirvCompilerTest, ValidatorRejectsStructurallyInvalidModule) {
   const auto problem = validateSpirv(broken);
   ASSERT_FALSE(problem);
   EXPECT_FALSE(problem.error().message.empty());
+}
+
+// Validation runs without friendly names first (they cost most of a valid
+// module's validation); a module that fails is named in its message all the
+// same.
+TEST(SpirvCompilerTest, ValidatorNamesTheIdsOfAFailingModule) {
+  const char* text = R"(
+    OpCapability Shader
+    OpMemoryModel Logical GLSL450
+    OpEntryPoint Fragment %main "main"
+    OpExecutionMode %main OriginUpperLeft
+    OpName %main "main"
+    OpName %ghost "ghost"
+    %void = OpTypeVoid
+    %fn = OpTypeFunction %void
+    %float = OpTypeFloat 32
+    %main = OpFunction %void None %fn
+    %entry = OpLabel
+    %sum = OpFAdd %float %ghost %ghost
+    OpReturn
+    OpFunctionEnd
+  )";
+  std::vector<uint32_t> words;
+  ASSERT_TRUE(spvtools::SpirvTools(SPV_ENV_VULKAN_1_2).Assemble(text, &words));
+  const auto problem = validateSpirv(words);
+  ASSERT_FALSE(problem);
+  // The message's own text, not only the disassembled instruction under it.
+  EXPECT_TRUE(contains(problem.error().message, "ID '2[%ghost]' has not been defined")) << problem.error().message;
 }
 
 }  // namespace
