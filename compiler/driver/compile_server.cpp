@@ -251,7 +251,10 @@ int serveCompiles(const std::filesystem::path& socketPath, const ServerHooks& ho
   // open (a build tool's pipes and jobserver); holding them would keep that
   // parent waiting.
   ::close_range(3, ~0U, 0);
-  Server server(socketPath, hooks, idleLimit);
+  // Nor keep the first client's working directory busy (an unmount, a
+  // removed build folder): every run enters its own.
+  if (::chdir("/") != 0) return kExitInputError;
+  Server server(std::filesystem::absolute(socketPath), hooks, idleLimit);
   return server.serve();
 }
 

@@ -169,7 +169,14 @@ std::optional<std::filesystem::path> privateFolder(const std::filesystem::path& 
 }
 
 std::optional<std::filesystem::path> socketFolder() {
-  if (const char* dir = std::getenv("SPIRE_SERVER_DIR"); dir != nullptr && *dir != '\0') return privateFolder(dir);
+  // Absolute, so that clients in other working directories find the same
+  // socket.
+  if (const char* dir = std::getenv("SPIRE_SERVER_DIR"); dir != nullptr && *dir != '\0') {
+    std::error_code error;
+    const std::filesystem::path absolute = std::filesystem::absolute(dir, error);
+    if (error) return std::nullopt;
+    return privateFolder(absolute.lexically_normal());
+  }
   if (const char* runtime = std::getenv("XDG_RUNTIME_DIR"); runtime != nullptr && *runtime == '/') {
     return privateFolder(std::filesystem::path(runtime) / "spire");
   }

@@ -60,7 +60,7 @@ std::optional<int> receiveStatus(int socket);
 // Where the server of `executable` listens: DIR/spirec-HASH.sock, HASH from
 // the executable's path, size, inode and modification time, so that a
 // rebuilt or moved spirec never talks to an older one's server. DIR is
-// $SPIRE_SERVER_DIR, else $XDG_RUNTIME_DIR/spire, else /tmp/spire-UID; it is
+// $SPIRE_SERVER_DIR (made absolute), else $XDG_RUNTIME_DIR/spire, else /tmp/spire-UID; it is
 // created private (0700) and must be owned by this user and not writable by
 // others. nullopt when no such folder can be had or the path is too long for
 // a socket address.

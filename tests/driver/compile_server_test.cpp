@@ -199,6 +199,21 @@ TEST_F(CompileServerTest, AStaleSocketIsReplacedByANewServer) {
   EXPECT_NE(second, first);
 }
 
+TEST_F(CompileServerTest, ARelativeServerFolderNamesOneFolderFromAnyWorkingDirectory) {
+  const pid_t server = startServer();
+  ASSERT_NE(server, 0);
+  const fs::path relative = fs::relative(serverDir(), temp_.path());
+  const std::string command = "cd '" + temp_.path().string() + "' && SPIRE_SERVER_DIR='" + relative.string() + "' '" +
+                              kSpirec + "' '" + kCouch + "' -o out >/dev/null 2>&1";
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_EQ(serverPid(), server) << "a second server";
+  const auto entries = fs::directory_iterator(temp_.path() / relative);
+  EXPECT_EQ(std::distance(fs::begin(entries), fs::end(entries)), 2) << "the socket and its lock, nothing more";
+  EXPECT_EQ(fs::read_symlink(fs::path("/proc") / std::to_string(server) / "cwd"), fs::path("/"))
+      << "the server keeps a working directory busy";
+}
+
 TEST_F(CompileServerTest, AFolderOthersCanWriteIsNeverUsed) {
   ASSERT_EQ(::chmod(serverDir().c_str(), 0777), 0);
   const Run run = spirec("'" + kCouch + "' -o out", "open", false);
