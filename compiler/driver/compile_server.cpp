@@ -72,9 +72,7 @@ int listenOn(const std::filesystem::path& socketPath) {
   ::unlink(socketPath.c_str());
   const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
   if (fd < 0) return -1;
-  sockaddr_un address{};
-  address.sun_family = AF_UNIX;
-  std::strncpy(address.sun_path, socketPath.c_str(), sizeof address.sun_path - 1);
+  const sockaddr_un address = socketAddress(socketPath);
   const mode_t previous = ::umask(0177);
   const bool bound = ::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0;
   ::umask(previous);

@@ -7,6 +7,7 @@
 #include <sys/un.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -137,9 +138,16 @@ Expected<uint32_t, Failure> receiveLengthAndDescriptors(int socket, std::array<i
     got = ::recvmsg(socket, &message, MSG_CMSG_CLOEXEC | MSG_WAITALL);
   } while (got < 0 && errno == EINTR);
   for (cmsghdr* header = CMSG_FIRSTHDR(&message); header != nullptr; header = CMSG_NXTHDR(&message, header)) {
-    if (header->cmsg_level == SOL_SOCKET && header->cmsg_type == SCM_RIGHTS &&
-        header->cmsg_len == CMSG_LEN(sizeof(int) * 3)) {
-      std::memcpy(fds.data(), CMSG_DATA(header), sizeof(int) * 3);
+    if (header->cmsg_level != SOL_SOCKET || header->cmsg_type != SCM_RIGHTS) continue;
+    const size_t count = (header->cmsg_len - CMSG_LEN(0)) / sizeof(int);
+    std::vector<int> passed(count);
+    std::memcpy(passed.data(), CMSG_DATA(header), count * sizeof(int));
+    // Descriptors that are not the three a request carries are the server's
+    // to close, or they would stay open in it.
+    if (count == 3 && fds[0] < 0) {
+      std::copy(passed.begin(), passed.end(), fds.begin());
+    } else {
+      for (int fd : passed) ::close(fd);
     }
   }
   if (got != static_cast<ssize_t>(sizeof length) || (message.msg_flags & MSG_CTRUNC) != 0 || fds[2] < 0) {
@@ -252,6 +260,13 @@ std::optional<std::filesystem::path> serverSocketPath(const std::filesystem::pat
   const std::filesystem::path path = *folder / fmt::format("spirec-{}.sock", reflection::contentHash(identity));
   if (path.native().size() >= sizeof(sockaddr_un::sun_path)) return std::nullopt;
   return path;
+}
+
+sockaddr_un socketAddress(const std::filesystem::path& path) {
+  sockaddr_un address{};
+  address.sun_family = AF_UNIX;
+  std::strncpy(address.sun_path, path.c_str(), sizeof address.sun_path - 1);
+  return address;
 }
 
 bool serverDisabledByEnvironment() {

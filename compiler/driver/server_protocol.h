@@ -9,6 +9,7 @@
 #pragma once
 
 #include <sys/types.h>
+#include <sys/un.h>
 
 #include <array>
 #include <chrono>
@@ -65,6 +66,10 @@ std::optional<int> receiveStatus(int socket);
 // others. nullopt when no such folder can be had or the path is too long for
 // a socket address.
 std::optional<std::filesystem::path> serverSocketPath(const std::filesystem::path& executable);
+
+// The address of the socket at `path` (which serverSocketPath keeps short
+// enough).
+sockaddr_un socketAddress(const std::filesystem::path& path);
 
 // Whether the environment turns the server off: SPIRE_SERVER=off (or 0, no,
 // false).
