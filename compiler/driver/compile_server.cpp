@@ -141,12 +141,15 @@ bool Server::start() {
   sigprocmask(SIG_BLOCK, &handled, nullptr);
   signals_ = ::signalfd(-1, &handled, SFD_CLOEXEC | SFD_NONBLOCK);
   std::signal(SIGPIPE, SIG_IGN);
-  // Before listening: a client that finds no socket yet compiles for itself
-  // instead of waiting for the tables.
-  if (hooks_.warmUp) hooks_.warmUp();
   listener_ = listenOn(socketPath_);
   socketInode_ = inodeOf(socketPath_);
-  return signals_ >= 0 && listener_ >= 0;
+  if (signals_ < 0 || listener_ < 0) return false;
+  // After listening: where no socket can be made (a file system without
+  // them), the server gives up before spending the tables' CPU. A client
+  // that connects meanwhile waits for them, about as long as it would take
+  // to build them itself.
+  if (hooks_.warmUp) hooks_.warmUp();
+  return true;
 }
 
 void Server::accept() {
