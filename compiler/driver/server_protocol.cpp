@@ -75,7 +75,7 @@ Expected<void, Failure> sendAll(int socket, const char* data, size_t size) {
   while (size > 0) {
     const ssize_t sent = ::send(socket, data, size, MSG_NOSIGNAL);
     if (sent < 0 && errno == EINTR) continue;
-    if (sent <= 0) return systemFailure("cannot send to the compile server");
+    if (sent <= 0) return systemFailure("cannot send on the compile server's socket");
     data += sent;
     size -= static_cast<size_t>(sent);
   }
@@ -124,7 +124,8 @@ Expected<void, Failure> sendWithDescriptors(int socket, const std::string& bytes
   do {
     sent = ::sendmsg(socket, &message, MSG_NOSIGNAL);
   } while (sent < 0 && errno == EINTR);
-  if (sent != static_cast<ssize_t>(sizeof(uint32_t))) return systemFailure("cannot send to the compile server");
+  if (sent != static_cast<ssize_t>(sizeof(uint32_t)))
+    return systemFailure("cannot send on the compile server's socket");
   return sendAll(socket, bytes.data() + sizeof(uint32_t), bytes.size() - sizeof(uint32_t));
 }
 
