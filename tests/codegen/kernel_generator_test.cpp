@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <unordered_set>
 
 #include "codegen/spirv_compiler.h"
 #include "codegen/strategies/strategy_support.h"
@@ -22,13 +23,23 @@ std::string render(ShaderLibrary& library) {
   return renderDiagnostics(library.sources(), library.diagnostics(), DiagnosticFormat::Text);
 }
 
-// Generates and checks every kernel of a variant; returns them.
+// The kernels a test has compiled and validated, by stage and text: the
+// variants of a choice space share most of their kernels, and whether a text
+// compiles and validates depends on nothing else.
+using CheckedKernels = std::unordered_set<std::string>;
+
+// Generates and checks every kernel of a variant (those not in `checked`,
+// which then holds them too); returns them.
 std::vector<Kernel> compileAndValidate(ShaderLibrary& library, const graph::Variant& variant,
+                                       CheckedKernels* checked = nullptr,
                                        const StrategyRegistry& registry = StrategyRegistry::builtin()) {
   const auto generated = generateKernels(library.model(), library.sources(), variant, registry, library.diagnostics());
   EXPECT_TRUE(generated.has_value()) << render(library);
   if (!generated) return {};
   for (const Kernel& kernel : generated->kernels) {
+    if (checked != nullptr && !checked->insert(std::string(stageName(kernel.stage)) + '\n' + kernel.glsl).second) {
+      continue;
+    }
     const SpirvResult spirv = compileGlslToSpirv(kernel.stage, kernel.glsl, kernel.world + ".glsl");
     EXPECT_TRUE(spirv.ok()) << variant.placementText() << spirv.log << "\n" << kernel.glsl;
     if (!spirv.ok()) continue;
@@ -45,24 +56,37 @@ const Kernel* findKernel(const std::vector<Kernel>& kernels, const std::string& 
   return nullptr;
 }
 
-TEST(KernelGenerator, EveryVariantOfEveryExampleCompilesAndValidates) {
+// Every variant of every example, in shards that CTest runs side by side
+// (under the sanitizers the whole would take ten minutes on one core): shard
+// k takes the decision maps whose index over all shaders is k modulo
+// kShards. Each shard compiles and validates each distinct kernel once.
+constexpr int kShards = 4;
+
+class EveryExampleVariant : public ::testing::TestWithParam<int> {};
+
+TEST_P(EveryExampleVariant, KernelsCompileAndValidate) {
   ShaderLibrary library;
   for (const auto& entry : fs::directory_iterator(fs::path(SPIRE_SOURCE_DIR) / "examples")) {
     if (entry.path().extension() == ".spire") library.addFile(entry.path().string());
   }
   ASSERT_TRUE(library.compile()) << render(library);
-  size_t variants = 0;
+  size_t variants = 0, mine = 0;
+  CheckedKernels checked;
   for (const std::string& shader : library.shaderNames()) {
     const graph::ChoiceSpace& space = *library.choiceSpace(shader);
-    variants +=
-        testing_util::forEachDecisionMap(space, [&](const std::vector<graph::DecisionRequest>& requests, size_t) {
-          const auto result = graph::buildVariant(space, requests);
-          ASSERT_TRUE(result.variant);
-          compileAndValidate(library, *result.variant);
-        });
+    testing_util::forEachDecisionMap(space, [&](const std::vector<graph::DecisionRequest>& requests, size_t) {
+      if (static_cast<int>(variants++ % kShards) != GetParam()) return;
+      ++mine;
+      const auto result = graph::buildVariant(space, requests);
+      ASSERT_TRUE(result.variant);
+      compileAndValidate(library, *result.variant, &checked);
+    });
   }
   EXPECT_GE(variants, 72u);
+  EXPECT_GE(mine, variants / kShards);
 }
+
+INSTANTIATE_TEST_SUITE_P(Shard, EveryExampleVariant, ::testing::Range(0, kShards));
 
 TEST(KernelGenerator, BakedAlbedoIsWrittenByPrebakeAndSampledByFragment) {
   ShaderLibrary library;
@@ -221,7 +245,7 @@ shader S using Push {
   const auto reread = reflection::fromJson(reflection::toJson(generated->reflection(*variant)));
   ASSERT_TRUE(reread) << reread.error();
   EXPECT_EQ(*reread, generated->reflection(*variant));
-  compileAndValidate(library, *variant, registry);
+  compileAndValidate(library, *variant, nullptr, registry);
 }
 
 TEST(KernelGenerator, ComputeWorldsWriteAndReadBuffers) {

@@ -53,8 +53,11 @@ void expectRoundTrip(const graph::Variant& v, const graph::ChoiceSpace& space, c
   }
 }
 
-void walkChoiceSpace(const graph::ChoiceSpace& space) {
+// Checks the decision maps of `space` whose running number (`next`, counted
+// over every space walked) is `shard` modulo `shards`.
+void walkChoiceSpace(const graph::ChoiceSpace& space, size_t& next, int shard, int shards) {
   testing_util::forEachDecisionMap(space, [&](const std::vector<graph::DecisionRequest>& requests, size_t index) {
+    if (static_cast<int>(next++ % static_cast<size_t>(shards)) != shard) return;
     const std::string context = space.graph().shader().name + " decision map #" + std::to_string(index);
     const auto result = graph::buildVariant(space, requests);
     ASSERT_TRUE(result.variant) << context;
@@ -71,8 +74,14 @@ void walkChoiceSpace(const graph::ChoiceSpace& space) {
   });
 }
 
-TEST(ChoiceSpaceProperty, EveryDecisionMapOfEveryExampleYieldsAValidVariant) {
-  size_t shaders = 0;
+// In shards that CTest runs side by side (under the sanitizers the whole
+// takes minutes on one core).
+constexpr int kShards = 4;
+
+class EveryExampleDecisionMap : public ::testing::TestWithParam<int> {};
+
+TEST_P(EveryExampleDecisionMap, YieldsAValidVariant) {
+  size_t shaders = 0, maps = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(SPIRE_SOURCE_DIR) / "examples")) {
     if (entry.path().extension() != ".spire") continue;
     FrontEnd frontEnd;
@@ -84,12 +93,15 @@ TEST(ChoiceSpaceProperty, EveryDecisionMapOfEveryExampleYieldsAValidVariant) {
       ASSERT_TRUE(g) << shader->name;
       graph::ChoiceSpace space(*g);
       ASSERT_TRUE(space.consistent()) << shader->name;
-      walkChoiceSpace(space);
+      walkChoiceSpace(space, maps, GetParam(), kShards);
       ++shaders;
     }
   }
   EXPECT_GE(shaders, 3u);
+  EXPECT_GE(maps, static_cast<size_t>(kShards));
 }
+
+INSTANTIATE_TEST_SUITE_P(Shard, EveryExampleDecisionMap, ::testing::Range(0, kShards));
 
 }  // namespace
 }  // namespace spire
