@@ -24,6 +24,9 @@ PACKAGES=(
   # xvfb and xauth, which xvfb-run needs but xvfb only recommends: the
   # window tests without a display)
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth python3-jsonschema
+  # CompileServerTest runs spirec under strace: a traced run stays in its
+  # own process
+  strace
   # libFuzzer targets (fuzz preset); llvm: llvm-symbolizer, which
   # bench/fuzz-all's coverage report (-print_coverage) needs
   clang libclang-rt-14-dev llvm

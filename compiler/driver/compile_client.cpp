@@ -10,7 +10,9 @@
 
 #include <cerrno>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <iostream>
 
 #include "driver/exit_codes.h"
@@ -93,9 +95,23 @@ std::optional<int> runOn(int fd, const std::vector<std::string>& args) {
   return kExitInputError;
 }
 
+// Whether the run must stay in this process: when it is traced (a debugger,
+// strace), the tracer would see nothing of a run on the server; when
+// libraries are preloaded (valgrind, heaptrack, another allocator), a
+// worker forked from the server would run without them.
+bool mustRunHere() {
+  if (const char* preload = std::getenv("LD_PRELOAD"); preload != nullptr && *preload != '\0') return true;
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.starts_with("TracerPid:")) return std::strtol(line.c_str() + 10, nullptr, 10) != 0;
+  }
+  return false;
+}
+
 }  // namespace
 
 std::optional<int> runOnCompileServer(const std::filesystem::path& executable, const std::vector<std::string>& args) {
+  if (mustRunHere()) return std::nullopt;
   const auto path = serverSocketPath(executable);
   if (!path) return std::nullopt;
   const int fd = connectTo(*path);

@@ -214,6 +214,24 @@ TEST_F(CompileServerTest, ARelativeServerFolderNamesOneFolderFromAnyWorkingDirec
       << "the server keeps a working directory busy";
 }
 
+// A tracer or a preloaded library sees or changes only the client's own
+// process, so such a run stays there.
+TEST_F(CompileServerTest, TracedRunsAndRunsWithPreloadedLibrariesStayInTheirProcess) {
+  const fs::path dir = temp_.path() / "traced";
+  fs::create_directories(dir);
+  const std::string server = "SPIRE_SERVER_DIR='" + serverDir().string() + "' ";
+  const std::string run = "'" + kSpirec + "' '" + kCouch + "' -o '" + (dir / "out").string() + "' >/dev/null 2>&1";
+  const std::string preloaded = server + "LD_PRELOAD=libm.so.6 " + run;
+  EXPECT_EQ(std::system(preloaded.c_str()), 0) << preloaded;
+  const std::string traced = server + "strace -f -o /dev/null " + run;
+  EXPECT_EQ(std::system(traced.c_str()), 0) << traced << " (strace comes with scripts/install-deps.sh)";
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_EQ(serverPid(), 0) << "a server was started";
+  EXPECT_TRUE(fs::is_empty(serverDir()));
+  // The same run untraced starts one, so the test above can fail.
+  EXPECT_NE(startServer(), 0);
+}
+
 TEST_F(CompileServerTest, AFolderOthersCanWriteIsNeverUsed) {
   ASSERT_EQ(::chmod(serverDir().c_str(), 0777), 0);
   const Run run = spirec("'" + kCouch + "' -o out", "open", false);
