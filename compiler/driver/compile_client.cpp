@@ -1,11 +1,9 @@
 #include "driver/compile_client.h"
 
 #include <fcntl.h>
-#include <signal.h>
 #include <spawn.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
-#include <sys/un.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -14,6 +12,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <string_view>
 
 #include "driver/exit_codes.h"
 #include "driver/server_protocol.h"
@@ -95,11 +94,16 @@ std::optional<int> runOn(int fd, const std::vector<std::string>& args) {
   return kExitInputError;
 }
 
-// Whether the run must stay in this process: when it is traced (a debugger,
-// strace), the tracer would see nothing of a run on the server; when
-// libraries are preloaded (valgrind, heaptrack, another allocator), a
+// Whether the run must stay in this process: when the user says so
+// (SPIRE_SERVER=off, 0, no or false); when it is traced (a debugger,
+// strace), since the tracer would see nothing of a run on the server; when
+// libraries are preloaded (valgrind, heaptrack, another allocator), since a
 // worker forked from the server would run without them.
 bool mustRunHere() {
+  if (const char* setting = std::getenv("SPIRE_SERVER")) {
+    const std::string_view value(setting);
+    if (value == "off" || value == "0" || value == "no" || value == "false") return true;
+  }
   if (const char* preload = std::getenv("LD_PRELOAD"); preload != nullptr && *preload != '\0') return true;
   std::ifstream status("/proc/self/status");
   for (std::string line; std::getline(status, line);) {

@@ -14,9 +14,10 @@ namespace spire::server {
 // server took the run, and the caller runs it itself: when none was
 // running (one is then started for the runs after this one, and outlives
 // this process), when the server cannot be reached or did not answer in
-// time, and when the run must stay in this process: it is traced (gdb,
-// strace) or has libraries preloaded (LD_PRELOAD: valgrind, heaptrack),
-// which a worker of the server would not have.
+// time, and when the run must stay in this process: SPIRE_SERVER=off (or 0,
+// no, false) says so, or it is traced (gdb, strace) or has libraries
+// preloaded (LD_PRELOAD: valgrind, heaptrack), which a worker of the server
+// would not have.
 std::optional<int> runOnCompileServer(const std::filesystem::path& executable, const std::vector<std::string>& args);
 
 // The argument that makes spirec a compile server: `spirec --serve-compiles

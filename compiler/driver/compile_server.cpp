@@ -126,7 +126,7 @@ Server::~Server() {
   if (lock_ >= 0) ::close(lock_);
 }
 
-// Takes the lock, builds the tables and listens; false when another server
+// Takes the lock, listens and builds the tables; false when another server
 // holds the lock or the socket cannot be made.
 bool Server::start() {
   const std::string lockPath = socketPath_.string() + ".lock";

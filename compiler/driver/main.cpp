@@ -6,7 +6,6 @@
 #include "driver/compile_server.h"
 #include "driver/library_location.h"
 #include "driver/process_memory.h"
-#include "driver/server_protocol.h"
 #include "driver/spirec.h"
 
 namespace {
@@ -49,7 +48,7 @@ int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
   if (argc == 3 && std::string_view(argv[1]) == spire::server::kServeCompilesFlag) return serve(argv[2]);
   const std::vector<std::string> args(argv + 1, argv + argc);
-  if (!spire::server::serverDisabledByEnvironment() && spire::spirecWantsCompileServer(args)) {
+  if (spire::spirecWantsCompileServer(args)) {
     if (const auto self = spire::runningExecutable()) {
       if (const auto status = spire::server::runOnCompileServer(*self, args)) return *status;
     }

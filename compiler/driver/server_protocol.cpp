@@ -270,11 +270,4 @@ sockaddr_un socketAddress(const std::filesystem::path& path) {
   return address;
 }
 
-bool serverDisabledByEnvironment() {
-  const char* value = std::getenv("SPIRE_SERVER");
-  if (value == nullptr) return false;
-  const std::string_view setting(value);
-  return setting == "off" || setting == "0" || setting == "no" || setting == "false";
-}
-
 }  // namespace spire::server

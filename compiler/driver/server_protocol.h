@@ -71,8 +71,4 @@ std::optional<std::filesystem::path> serverSocketPath(const std::filesystem::pat
 // enough).
 sockaddr_un socketAddress(const std::filesystem::path& path);
 
-// Whether the environment turns the server off: SPIRE_SERVER=off (or 0, no,
-// false).
-bool serverDisabledByEnvironment();
-
 }  // namespace spire::server

@@ -98,7 +98,9 @@ int runSpirecBatch(const std::vector<std::string>& args, SpirecJobPreparer prepa
   app.add_option("-j,--jobs", request.jobs, "Runs compiled at once (default: one per hardware thread)")
       ->check(CLI::Range(1U, 4096U))
       ->type_name("N");
-  bool noServer = false;  // read by spirecWantsCompileServer; a batch run here is in this process already
+  // spirecWantsCompileServer finds the flag in the arguments before a batch
+  // runs; here the batch runs in this process already.
+  bool noServer = false;
   app.add_flag("--no-server", noServer, "Run the batch in this process, not on the compile server");
   if (const auto status = parseToolArguments(app, args, out, err)) return *status;
   return runBatchFile(request, prepare, out, err, environment);

@@ -5,11 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <unordered_set>
 
 #include "codegen/spirv_compiler.h"
 #include "codegen/strategies/strategy_support.h"
 #include "driver/shader_library.h"
+#include "driver/spirv_cache.h"
 #include "graph/graph_test_util.h"
 #include "reflection/reflection_json.h"
 #include "support/diagnostic_renderer.h"
@@ -23,28 +23,25 @@ std::string render(ShaderLibrary& library) {
   return renderDiagnostics(library.sources(), library.diagnostics(), DiagnosticFormat::Text);
 }
 
-// The kernels a test has compiled and validated, by stage and text: the
-// variants of a choice space share most of their kernels, and whether a text
-// compiles and validates depends on nothing else.
-using CheckedKernels = std::unordered_set<std::string>;
-
-// Generates and checks every kernel of a variant (those not in `checked`,
-// which then holds them too); returns them.
+// Generates and checks every kernel of a variant; returns them. With a
+// cache, a kernel whose text it holds (one that compiled and validated, the
+// same stage and name) is not compiled again: the variants of a choice
+// space share most of their kernels.
 std::vector<Kernel> compileAndValidate(ShaderLibrary& library, const graph::Variant& variant,
-                                       CheckedKernels* checked = nullptr,
+                                       SpirvCache* checked = nullptr,
                                        const StrategyRegistry& registry = StrategyRegistry::builtin()) {
   const auto generated = generateKernels(library.model(), library.sources(), variant, registry, library.diagnostics());
   EXPECT_TRUE(generated.has_value()) << render(library);
   if (!generated) return {};
   for (const Kernel& kernel : generated->kernels) {
-    if (checked != nullptr && !checked->insert(std::string(stageName(kernel.stage)) + '\n' + kernel.glsl).second) {
-      continue;
-    }
-    const SpirvResult spirv = compileGlslToSpirv(kernel.stage, kernel.glsl, kernel.world + ".glsl");
+    const std::string name = kernel.world + ".glsl";
+    if (checked != nullptr && checked->find(kernel.stage, name, kernel.glsl)) continue;
+    const SpirvResult spirv = compileGlslToSpirv(kernel.stage, kernel.glsl, name);
     EXPECT_TRUE(spirv.ok()) << variant.placementText() << spirv.log << "\n" << kernel.glsl;
     if (!spirv.ok()) continue;
     const auto valid = validateSpirv(spirv.words);
     EXPECT_TRUE(valid) << valid.error().message << "\n" << kernel.glsl;
+    if (valid && checked != nullptr) checked->add(kernel.stage, name, kernel.glsl, spirv.words);
   }
   return generated->kernels;
 }
@@ -59,7 +56,8 @@ const Kernel* findKernel(const std::vector<Kernel>& kernels, const std::string& 
 // Every variant of every example, in shards that CTest runs side by side
 // (under the sanitizers the whole would take ten minutes on one core): shard
 // k takes the decision maps whose index over all shaders is k modulo
-// kShards. Each shard compiles and validates each distinct kernel once.
+// kShards. Each shard compiles and validates each distinct kernel once
+// (driver/spirv_cache.h, as spirec --batch).
 constexpr int kShards = 4;
 
 class EveryExampleVariant : public ::testing::TestWithParam<int> {};
@@ -71,7 +69,7 @@ TEST_P(EveryExampleVariant, KernelsCompileAndValidate) {
   }
   ASSERT_TRUE(library.compile()) << render(library);
   size_t variants = 0, mine = 0;
-  CheckedKernels checked;
+  SpirvCache checked;
   for (const std::string& shader : library.shaderNames()) {
     const graph::ChoiceSpace& space = *library.choiceSpace(shader);
     testing_util::forEachDecisionMap(space, [&](const std::vector<graph::DecisionRequest>& requests, size_t) {

@@ -13,10 +13,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <thread>
 
 #include "scene/temp_dir.h"
+#include "support/file_io.h"
 
 namespace {
 
@@ -26,12 +26,7 @@ using spire::scene::testing::TempDir;
 const std::string kSpirec = SPIRE_SPIREC_EXE;
 const std::string kCouch = std::string(SPIRE_SOURCE_DIR) + "/examples/couch.spire";
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string readText(const fs::path& path) { return spire::readWholeFile(path.string()).value_or(""); }
 
 // Every file under `dir` with its bytes, by relative path.
 std::map<std::string, std::string> filesUnder(const fs::path& dir) {
@@ -214,24 +209,27 @@ TEST_F(CompileServerTest, ARelativeServerFolderNamesOneFolderFromAnyWorkingDirec
       << "the server keeps a working directory busy";
 }
 
-// A tracer or a preloaded library sees or changes only the client's own
-// process, so such a run stays there.
-TEST_F(CompileServerTest, TracedRunsAndRunsWithPreloadedLibrariesStayInTheirProcess) {
-  const fs::path dir = temp_.path() / "traced";
+// A run stays in its own process when the user says so (--no-server,
+// SPIRE_SERVER=off), and when a tracer or a preloaded library would see or
+// change only that process.
+TEST_F(CompileServerTest, RunsThatMustStayInTheirProcessStartNoServer) {
+  const fs::path dir = temp_.path() / "here";
   fs::create_directories(dir);
   // In a sanitizer build, LeakSanitizer cannot run under ptrace and
   // AddressSanitizer's runtime must otherwise come first among preloads.
   const std::string server =
       "SPIRE_SERVER_DIR='" + serverDir().string() + "' ASAN_OPTIONS=detect_leaks=0:verify_asan_link_order=0 ";
-  const std::string run = "'" + kSpirec + "' '" + kCouch + "' -o '" + (dir / "out").string() + "' >/dev/null 2>&1";
-  const std::string preloaded = server + "LD_PRELOAD=libm.so.6 " + run;
-  EXPECT_EQ(std::system(preloaded.c_str()), 0) << preloaded;
-  const std::string traced = server + "strace -f -o /dev/null " + run;
-  EXPECT_EQ(std::system(traced.c_str()), 0) << traced << " (strace comes with scripts/install-deps.sh)";
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  EXPECT_EQ(serverPid(), 0) << "a server was started";
-  EXPECT_TRUE(fs::is_empty(serverDir()));
-  // The same run untraced starts one, so the test above can fail.
+  const std::string spirec = "'" + kSpirec + "' '" + kCouch + "' -o '" + (dir / "out").string() + "'";
+  for (const std::string& command :
+       {server + spirec + " --no-server", server + "SPIRE_SERVER=off " + spirec,
+        server + "LD_PRELOAD=libm.so.6 " + spirec, server + "strace -f -o /dev/null " + spirec}) {
+    EXPECT_EQ(std::system((command + " >/dev/null 2>&1").c_str()), 0)
+        << command << " (strace comes with scripts/install-deps.sh)";
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_EQ(serverPid(), 0) << "a server was started by " << command;
+    EXPECT_TRUE(fs::is_empty(serverDir())) << command;
+  }
+  // The same run as it is starts one, so the checks above can fail.
   EXPECT_NE(startServer(), 0);
 }
 
