@@ -438,7 +438,7 @@ int runDemo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   // and must be destroyed first.
   std::optional<GlfwWindow> window;
   engine::ToolRun run(kTool, err);
-  if (const auto status = run.loadScene(options.scenePath)) return *status;
+  if (const auto status = run.loadScene(options.scenePath, options.engine.resolution)) return *status;
   // The policy is read before the device opens, so a bad one costs no start-up.
   if (run.scene().lod) {
     if (const auto status = run.loadLodPolicy()) return *status;

@@ -80,7 +80,7 @@ int runExploreTool(const std::vector<std::string>& args, std::ostream& out, std:
   // and must be destroyed first.
   std::optional<demo::GlfwWindow> window;
   engine::ToolRun run(kTool, err);
-  if (const auto status = run.loadScene(options.explore.scenePath)) return *status;
+  if (const auto status = run.loadScene(options.explore.scenePath, options.engine.resolution)) return *status;
   if (run.scene().lod) {
     if (const auto status = run.loadLodPolicy()) return *status;
   }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "driver/tool_arguments.h"
+#include "tool/engine_options.h"
 #include "tune/tune_options.h"
 
 namespace spire::search {
@@ -17,6 +18,7 @@ void defineMeasurement(CLI::App& app, SearchOptions& options) {
       ->check(CLI::Range(3U, 1000U))
       ->type_name("N");
   tune::addWarmupAndBakeSizeOptions(app, options.warmup, options.bakeSize);
+  engine::addResolutionOption(app, options.resolution);
   app.add_option("--param", options.params,
                  "Measure error over samples of a material parameter's range (repeatable), as spire-tune does")
       ->type_name("NAME=MIN:MAX");

@@ -46,7 +46,8 @@ struct SearchOptions {
   uint32_t frames = 5;  // pairs of frames timed per candidate
   uint32_t warmup = 1;
   uint32_t bakeSize = 512;
-  std::vector<std::string> params;  // NAME=MIN:MAX parameter ranges
+  std::optional<engine::ImageSize> resolution;  // --resolution: replaces the scene's
+  std::vector<std::string> params;              // NAME=MIN:MAX parameter ranges
   uint32_t paramSamples = 1;
   uint64_t seed = 1;
   std::string device;

@@ -304,7 +304,7 @@ int runSearchTool(const std::vector<std::string>& args, std::ostream& out, std::
   simplify::UserRules rules;
   if (!simplify::readRuleFiles(options.ruleFiles, rules, kTool, err)) return kExitInputError;
   engine::ToolRun run(kTool, err);
-  if (const auto status = run.loadScene(options.scenePath)) return *status;
+  if (const auto status = run.loadScene(options.scenePath, options.resolution)) return *status;
   const auto instance = findInstance(run.scene(), options.shader);
   if (!instance) {
     return run.fail(engine::Error{

@@ -13,8 +13,12 @@ ToolRun::ToolRun(std::string tool, std::ostream& err)
   stabilizeHostAllocator();
 }
 
-std::optional<int> ToolRun::loadScene(const std::string& path) {
+std::optional<int> ToolRun::loadScene(const std::string& path, std::optional<ImageSize> resolution) {
   scene_ = scene::loadSceneFile(path, sources_, diags_);
+  if (scene_ && resolution) {
+    scene_->width = resolution->width;
+    scene_->height = resolution->height;
+  }
   if (scene_) return std::nullopt;
   reporter_.flush();
   return kExitInputError;

@@ -20,6 +20,7 @@
 #include "scene/scene_file.h"
 #include "support/diagnostic.h"
 #include "support/source_manager.h"
+#include "tool/engine_options.h"
 #include "tool/error_report.h"
 #include "vk/context.h"
 
@@ -42,8 +43,9 @@ class ToolRun {
   ToolRun(const ToolRun&) = delete;
   ToolRun& operator=(const ToolRun&) = delete;
 
-  // Exit 1 after printing the scene's diagnostics.
-  std::optional<int> loadScene(const std::string& path);
+  // Exit 1 after printing the scene's diagnostics. `resolution` replaces the
+  // scene's own (--resolution).
+  std::optional<int> loadScene(const std::string& path, std::optional<ImageSize> resolution = std::nullopt);
   // The scene's level-of-detail policy ("lod"); exit 1 after printing its
   // diagnostics, or when the scene has none.
   std::optional<int> loadLodPolicy();

@@ -19,7 +19,7 @@ constexpr const char* kTool = "spire-tune";
 int runLodPolicyTune(const TuneOptions& options, std::ostream& out, std::ostream& err) {
   if (const auto problem = distancesProblem(options.policyChoice.distances)) return usageError(kTool, *problem, err);
   engine::ToolRun run(kTool, err);
-  if (const auto status = run.loadScene(options.scenePath)) return *status;
+  if (const auto status = run.loadScene(options.scenePath, options.resolution)) return *status;
   if (const auto status = run.loadLodPolicy()) return *status;
   if (const auto status = run.openDevice({options.device, options.validation, {}, {}})) return *status;
   run.startRenderer(options.bakeSize);

@@ -44,6 +44,7 @@ void defineTuneOptions(CLI::App& app, TuneOptions& options) {
       ->check(CLI::Range(3U, 1000U))
       ->type_name("N");
   addWarmupAndBakeSizeOptions(app, options.warmup, options.bakeSize);
+  engine::addResolutionOption(app, options.resolution);
   app.add_option("-j,--jobs", options.jobs, "Worker processes (default: one per core)")
       ->check(CLI::Range(1U, 64U))
       ->type_name("N");

@@ -11,6 +11,8 @@
 #include <thread>
 #include <vector>
 
+#include "tool/engine_options.h"
+
 namespace spire::tune {
 
 // How a level-of-detail policy is chosen from measurements (docs/lod.md,
@@ -41,7 +43,8 @@ struct TuneOptions {
   std::string reference;
   std::string device;
   bool validation = false;
-  int worker = -1;  // a worker process (--worker K); -1 in the coordinator
+  std::optional<engine::ImageSize> resolution;  // --resolution: replaces the scene's
+  int worker = -1;                              // a worker process (--worker K); -1 in the coordinator
   std::string shaderCache = "run";
   std::vector<std::string> params;  // NAME=MIN:MAX
   uint32_t paramSamples = 1;

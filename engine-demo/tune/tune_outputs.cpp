@@ -179,7 +179,8 @@ std::string reportHeader(const TuneOptions& options, const engine::ToolRun& run,
   std::string separators;
   for (size_t i = 0; i < session.components.size(); ++i) separators += "---|";
   return fmt::format(
-      "# spire-tune report\n\nShader `{}` on `{}` ({}), {} variants of {} components{}; error is RMSE against the "
+      "# spire-tune report\n\nShader `{}` on `{}` ({}) at {}x{}, {} variants of {} components{}; error is RMSE against "
+      "the "
       "reference over {} camera view(s) and every parameter sample together; worst RMSE the largest under one "
       "sample. Time: the variant's and the reference's frames are rendered in turn, "
       "after {} unmeasured ones (the captures of the camera views first), and a variant's time is the median of "
@@ -191,10 +192,10 @@ std::string reportHeader(const TuneOptions& options, const engine::ToolRun& run,
       "| variant | {} | frame ms | 95% interval (ms) | pairs | RMSE | worst RMSE | image "
       "|\n|---|{}---|---|---|---|---|---|"
       "\n",
-      options.shader, options.scenePath, run.context().selectedDevice().name, variants, session.components.size(),
-      session.space.sampled ? " (sampled)" : "", run.scene().camera.views.size(), session.tuner->unmeasuredFrames(),
-      options.frames, options.maxFrames, session.tuner->referenceMs(), fmt::join(session.components, " | "),
-      separators);
+      options.shader, options.scenePath, run.context().selectedDevice().name, run.scene().width, run.scene().height,
+      variants, session.components.size(), session.space.sampled ? " (sampled)" : "", run.scene().camera.views.size(),
+      session.tuner->unmeasuredFrames(), options.frames, options.maxFrames, session.tuner->referenceMs(),
+      fmt::join(session.components, " | "), separators);
 }
 
 // A row per variant of the front, with its image from camera view 0 as

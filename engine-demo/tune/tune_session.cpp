@@ -90,7 +90,7 @@ std::optional<int> openOutput(const TuneOptions& options, engine::ToolRun& run, 
 
 std::optional<int> startSession(const TuneOptions& options, engine::ToolRun& run, TuneSession& session,
                                 std::ostream& err) {
-  if (const auto status = run.loadScene(options.scenePath)) return status;
+  if (const auto status = run.loadScene(options.scenePath, options.resolution)) return status;
   if (const auto status = findInstance(options, run, session)) return status;
   if (const auto status = run.openDevice({options.device, options.validation, {}, {}})) return status;
   run.startRenderer(options.bakeSize);

@@ -63,6 +63,11 @@ TEST(DemoCommandLine, FollowsTheToolConventions) {
        std::vector<std::vector<std::string>>{{"examples/scenes/terrain.json", "-o", ""},
                                              {"examples/scenes/terrain.json", "--no-such-flag"},
                                              {"examples/scenes/terrain.json", "--frames", "0"},
+                                             {"examples/scenes/terrain.json", "--resolution", "0x64"},
+                                             {"examples/scenes/terrain.json", "--resolution", "64x8193"},
+                                             {"examples/scenes/terrain.json", "--resolution", "64x"},
+                                             {"examples/scenes/terrain.json", "--resolution", "64x48x2"},
+                                             {"examples/scenes/terrain.json", "--resolution", "-64x48"},
                                              {}}) {
     std::ostringstream usageOut, usageErr;
     EXPECT_EQ(runDemo(args, usageOut, usageErr), kExitUsageError) << usageErr.str();
@@ -97,20 +102,23 @@ TEST_F(DemoTest, MainJobWritesImagesReportAndTheTrade) {
   const fs::path dir = outputDir();
   std::ostringstream out;
   std::ostringstream err;
-  // The terrain scene at a small size: the same variants, worlds and bakes.
+  // The terrain scene at a smaller size (--resolution replaces the scene's
+  // 640 x 480): the same variants, worlds and bakes.
   // --keep-alpha: the images keep the alpha Terrain writes (below 1 where
   // its albedo maps are translucent); without it they are opaque (see
   // AFailingVariantIsReportedAndTheOthersAreWritten).
   ASSERT_EQ(runDemo({"examples/scenes/terrain.json", "--validation", "--frames", "2", "--warmup", "1", "--bake-size",
-                     "256", "--keep-alpha", "-o", dir.string()},
+                     "256", "--keep-alpha", "--resolution", "320x200", "-o", dir.string()},
                     out, err),
             0)
       << err.str();
-  for (const char* name : {"full_quality", "baked_albedo", "baked_vertex_normal", "comparison"}) {
+  for (const char* name : {"full_quality", "baked_albedo", "baked_vertex_normal"}) {
     auto image = scene::loadImage(dir / (std::string(name) + ".png"));
     ASSERT_TRUE(image) << name;
-    EXPECT_GT(image->width, 0U);
+    EXPECT_EQ(image->width, 320U) << name;
+    EXPECT_EQ(image->height, 200U) << name;
   }
+  ASSERT_TRUE(scene::loadImage(dir / "comparison.png"));
   const auto fullQuality = scene::loadImage(dir / "full_quality.png");
   ASSERT_TRUE(fullQuality);
   size_t translucent = 0;
@@ -118,6 +126,7 @@ TEST_F(DemoTest, MainJobWritesImagesReportAndTheTrade) {
   EXPECT_GT(translucent, 0U);
   const std::string report = readFile(dir / "report.md");
   EXPECT_NE(report.find("| baked_vertex_normal |"), std::string::npos) << report;
+  EXPECT_NE(report.find(", 320x200, "), std::string::npos) << report;
   // The baked variants no longer read the maps they baked, which the full
   // quality variant reads: that is no reason to warn.
   EXPECT_EQ(err.str().find("W7101"), std::string::npos) << err.str();

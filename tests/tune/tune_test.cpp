@@ -26,6 +26,7 @@
 #include "engine/device_fixture.h"
 #include "lod/lod_policy.h"
 #include "scene/scene_file.h"
+#include "scene/texture.h"
 #include "support/diagnostic_renderer.h"
 #include "tune/format_selection.h"
 #include "tune/parameter_range.h"
@@ -370,6 +371,8 @@ TEST_F(TuneRun, WritesEveryOutputAndResumes) {
                                       "1",
                                       "--bake-size",
                                       "64",
+                                      "--resolution",
+                                      "320x200",
                                       "--validation",
                                       "-o",
                                       dir.string()};
@@ -411,6 +414,17 @@ TEST_F(TuneRun, WritesEveryOutputAndResumes) {
   std::ifstream reportFile(dir / "report.md");
   const std::string report{std::istreambuf_iterator<char>(reportFile), std::istreambuf_iterator<char>()};
   EXPECT_NE(report.find("| 95% interval (ms) | pairs |"), std::string::npos) << report;
+  // --resolution replaced the scene's 640 x 480.
+  EXPECT_NE(report.find(") at 320x200, "), std::string::npos) << report;
+  size_t frontImages = 0;
+  for (const auto& entry : fs::directory_iterator(dir / "front")) {
+    const auto image = scene::loadImage(entry.path());
+    ASSERT_TRUE(image) << entry.path();
+    EXPECT_EQ(image->width, 320U) << entry.path();
+    EXPECT_EQ(image->height, 200U) << entry.path();
+    ++frontImages;
+  }
+  EXPECT_GT(frontImages, 0U);
   // spirec takes the chosen variant's decision file without a warning.
   const fs::path spirecErr = dir / "spirec.err";
   const std::string spirec = std::string(SPIRE_SPIREC_EXE) + " examples/terrain.spire --shader Terrain --decisions '" +
