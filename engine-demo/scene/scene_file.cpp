@@ -65,7 +65,6 @@ const std::vector<KindKeys<TextureKind>> kTextureKinds = {
     {TextureKind::Pack, "pack", {"type", "channels", "address", "format"}},
 };
 
-constexpr uint32_t kMaxImageSide = 8192;
 constexpr uint32_t kMaxFrames = 100000;
 constexpr uint32_t kMaxGridResolution = 4096;
 // A tiled terrain draws tiles^2 meshes; beyond 64 x 64 a tile is a few quads.

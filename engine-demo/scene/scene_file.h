@@ -201,6 +201,10 @@ struct LodDesc {
   SourceRange range;
 };
 
+// The largest image or texture side a scene may ask for, and that
+// `--resolution` may.
+inline constexpr uint32_t kMaxImageSide = 8192;
+
 struct SceneFile {
   FileId file = kNoFile;
   std::filesystem::path directory;  // relative paths in the file resolve against it

@@ -2,14 +2,17 @@
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
+
 #include <charconv>
 #include <string_view>
+
+#include "scene/scene_file.h"
 
 namespace spire::engine {
 
 namespace {
 
-constexpr uint32_t kMaxImageSide = 8192;
+using scene::kMaxImageSide;
 
 // A side of "WxH": digits only, in 1..kMaxImageSide.
 std::optional<uint32_t> parseSide(std::string_view text) {

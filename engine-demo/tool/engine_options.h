@@ -19,8 +19,8 @@ struct ImageSize {
   uint32_t height = 0;
 };
 
-// "WxH" with both sides in 1..8192 (the scene file's bounds); nullopt
-// otherwise.
+// "WxH" with both sides in 1..scene::kMaxImageSide, the scene file's bounds;
+// nullopt otherwise.
 std::optional<ImageSize> parseImageSize(const std::string& text);
 
 struct EngineOptions {
