@@ -8,6 +8,7 @@
 #include "driver/exit_codes.h"
 #include "tune/extremes.h"
 #include "tune/parameter_range.h"
+#include "tune/run_settings.h"
 
 namespace spire::tune {
 namespace {
@@ -75,13 +76,18 @@ std::optional<int> startTuner(const TuneOptions& options, engine::ToolRun& run, 
   return std::nullopt;
 }
 
-// The output directory, and the rows an earlier run left in it.
+// The output directory, and the rows an earlier run left in it, which are
+// resumed only under the settings they were measured with.
 std::optional<int> openOutput(const TuneOptions& options, engine::ToolRun& run, TuneSession& session) {
   std::error_code ec;
   fs::create_directories(options.outputDir, ec);
   if (ec) return run.fail(fmt::format("cannot create '{}': {}", options.outputDir, ec.message()));
   auto done = loadDone(options, session.components);
   if (!done) return run.fail(done.error().message);
+  const RunSettings settings = runSettings(options, run, session.reference ? session.reference->string() : "");
+  if (auto checked = recordOrCheckSettings(options.outputDir, settings, !done->empty()); !checked) {
+    return run.fail(checked.error().message);
+  }
   session.done = std::move(*done);
   return std::nullopt;
 }

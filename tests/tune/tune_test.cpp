@@ -32,6 +32,7 @@
 #include "tune/parameter_range.h"
 #include "tune/pareto.h"
 #include "tune/results_csv.h"
+#include "tune/run_settings.h"
 #include "tune/tune_cli.h"
 #include "tune/tune_space.h"
 #include "tune/work_queue.h"
@@ -264,6 +265,53 @@ TEST(ResultsCsv, NamesATableFromAnOlderTuner) {
   EXPECT_NE(components.error().message.find("written by an older spire-tune"), std::string::npos)
       << components.error().message;
   fs::remove(path);
+}
+
+// The settings file reads back what was written, values with colons and
+// empty ones (also when an editor dropped the space after the colon)
+// included; a line that is not `name: value` is named with its line.
+TEST(RunSettingsFile, RoundTripsAndNamesABadLine) {
+  const RunSettings settings{{{"scene", "/a/b.json"}, {"only", ""}, {"param", "roughness=0:1 mask=0.5:1"}}};
+  const auto read = parseSettings(settingsText(settings), "settings.txt");
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(read->entries, settings.entries);
+  const auto trimmed = parseSettings("only:\nseed: 3\n", "settings.txt");
+  ASSERT_TRUE(trimmed) << trimmed.error().message;
+  EXPECT_EQ(trimmed->entries, (std::vector<std::pair<std::string, std::string>>{{"only", ""}, {"seed", "3"}}));
+  const auto bad = parseSettings("seed: 3\nno separator\n", "dir/settings.txt");
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().message, "dir/settings.txt:2: not 'name: value': no separator");
+}
+
+// A directory without rows records the settings; the same settings resume;
+// other ones are refused, naming each that differs; rows with no record are
+// refused too.
+TEST(RunSettingsFile, ResumesOnlyUnderTheRecordedSettings) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_settings_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const RunSettings settings{{{"resolution", "320x240"}, {"frames", "3"}, {"seed", "1"}}};
+  ASSERT_TRUE(recordOrCheckSettings(dir, settings, false));
+  EXPECT_TRUE(fs::exists(dir / "settings.txt"));
+  EXPECT_TRUE(recordOrCheckSettings(dir, settings, true));
+  RunSettings other = settings;
+  other.entries[0].second = "640x480";
+  other.entries[1].second = "5";
+  const auto refused = recordOrCheckSettings(dir, other, true);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("resolution: '320x240' then, '640x480' now; frames: '3' then, '5' now"),
+            std::string::npos)
+      << refused.error().message;
+  EXPECT_EQ(refused.error().message.find("seed"), std::string::npos) << refused.error().message;
+  // Without rows, other settings simply replace the recorded ones.
+  ASSERT_TRUE(recordOrCheckSettings(dir, other, false));
+  EXPECT_TRUE(recordOrCheckSettings(dir, other, true));
+  fs::remove(dir / "settings.txt");
+  const auto unrecorded = recordOrCheckSettings(dir, settings, true);
+  ASSERT_FALSE(unrecorded);
+  EXPECT_NE(unrecorded.error().message.find("no settings.txt"), std::string::npos) << unrecorded.error().message;
+  EXPECT_FALSE(fs::exists(dir / "settings.txt"));
+  fs::remove_all(dir);
 }
 
 // Two workers' queues over one file take every chunk exactly once, in order.
@@ -673,6 +721,15 @@ TEST_F(TuneRun, ResumeCountsEachVariantOnce) {
   EXPECT_EQ(counts.front(), 2U) << readText(log);
   EXPECT_EQ(counts.back(), 6U);
   EXPECT_TRUE(std::is_sorted(counts.begin(), counts.end())) << readText(log);
+
+  // Rows measured at one image size are not resumed at another: the run
+  // stops before it measures, and the journal is left as it was.
+  const std::string journal = readText(dir / "variants.csv");
+  args.insert(args.end(), {"--resolution", "64x48"});
+  std::ostringstream otherOut, other;
+  EXPECT_EQ(runTune(args, otherOut, other), kExitInputError);
+  EXPECT_NE(other.str().find("resolution: '640x480' then, '64x48' now"), std::string::npos) << other.str();
+  EXPECT_EQ(readText(dir / "variants.csv"), journal);
   fs::remove_all(dir);
 }
 
