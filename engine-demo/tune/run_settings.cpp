@@ -24,7 +24,9 @@ constexpr const char* kHeader =
 std::string absolutePath(const std::string& path) {
   if (path.empty()) return path;
   std::error_code ec;
-  const fs::path absolute = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  fs::path absolute = fs::absolute(path, ec);
+  if (ec) return path;
+  absolute = fs::weakly_canonical(absolute, ec);
   return ec ? path : absolute.string();
 }
 
