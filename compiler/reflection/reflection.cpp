@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <charconv>
 
+#include "support/content_hash.h"
+
 namespace spire::reflection {
 
 std::string_view stageName(Stage stage) {
@@ -153,13 +155,6 @@ const Kernel* Variant::kernel(std::string_view world) const {
   return it == kernels.end() ? nullptr : &*it;
 }
 
-std::string contentHash(std::string_view bytes) {
-  uint64_t hash = 14695981039346656037ull;
-  for (char c : bytes) {
-    hash ^= static_cast<unsigned char>(c);
-    hash *= 1099511628211ull;
-  }
-  return fmt::format("{:016x}", hash);
-}
+std::string contentHash(std::string_view bytes) { return spire::contentHash(bytes); }
 
 }  // namespace spire::reflection

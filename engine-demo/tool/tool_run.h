@@ -65,6 +65,7 @@ class ToolRun {
   // The sources diagnostics are rendered with: a tool adds the other files it
   // reads (a script, a decision file) here so their errors print the same way.
   SourceManager& sources() { return sources_; }
+  const SourceManager& sources() const { return sources_; }
   ErrorReporter& reporter() { return reporter_; }
   // Adds `diagnostics`, which a worker thread collected in a list of its own
   // (it cannot report into this one while this thread may), and returns

@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <map>
 #include <sstream>
 #include <system_error>
 
+#include "support/content_hash.h"
 #include "support/file_io.h"
 
 namespace spire::tune {
@@ -37,9 +39,21 @@ std::string oneLine(const std::string& value) {
   return line;
 }
 
+// "source PATH" = the content hash of each file once, in the order given.
+void addSourceHashes(RunSettings& settings, const SourceManager& sources) {
+  for (size_t id = 0; id < sources.fileCount(); ++id) {
+    const SourceFile& file = sources.file(static_cast<FileId>(id));
+    std::string name = "source " + oneLine(absolutePath(file.path));
+    const bool seen = std::any_of(settings.entries.begin(), settings.entries.end(),
+                                  [&](const auto& entry) { return entry.first == name; });
+    if (!seen) settings.entries.emplace_back(std::move(name), contentHash(file.text));
+  }
+}
+
 }  // namespace
 
-RunSettings runSettings(const TuneOptions& options, const engine::ToolRun& run, const std::string& reference) {
+RunSettings runSettings(const TuneOptions& options, const engine::ToolRun& run, const std::string& reference,
+                        const SourceManager& shaderSources) {
   const scene::SceneFile& scene = run.scene();
   RunSettings settings;
   auto add = [&](const char* name, const std::string& value) { settings.entries.emplace_back(name, oneLine(value)); };
@@ -59,6 +73,13 @@ RunSettings runSettings(const TuneOptions& options, const engine::ToolRun& run, 
   add("param-samples", std::to_string(options.paramSamples));
   add("extremes", options.extremes ? "yes" : "no");
   add("device", run.context().selectedDevice().name);
+  addSourceHashes(settings, run.sources());
+  addSourceHashes(settings, shaderSources);
+  if (!reference.empty()) {
+    const std::optional<std::string> text = readWholeFile(reference);
+    settings.entries.emplace_back("source " + oneLine(absolutePath(reference)),
+                                  text ? contentHash(*text) : std::string("(unreadable)"));
+  }
   return settings;
 }
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "support/expected.h"
+#include "support/source_manager.h"
 #include "tool/tool_run.h"
 #include "tune/tune_options.h"
 
@@ -24,8 +25,12 @@ struct RunSettings {
 };
 
 // This run's settings: `reference` is the decision file the tuner measures
-// against (empty: the instances' own decisions).
-RunSettings runSettings(const TuneOptions& options, const engine::ToolRun& run, const std::string& reference);
+// against (empty: the instances' own decisions); `shaderSources` the files
+// the tuned shader was compiled from. Besides the options, a hash of each
+// file the rows depend on (the scene's, the shader's, the reference's), so
+// that an edit between two runs is a difference too.
+RunSettings runSettings(const TuneOptions& options, const engine::ToolRun& run, const std::string& reference,
+                        const SourceManager& shaderSources);
 
 // The file's text, and back; reading fails on a line that is not
 // `name: value`.

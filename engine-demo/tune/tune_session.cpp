@@ -84,7 +84,10 @@ std::optional<int> openOutput(const TuneOptions& options, engine::ToolRun& run, 
   if (ec) return run.fail(fmt::format("cannot create '{}': {}", options.outputDir, ec.message()));
   auto done = loadDone(options, session.components);
   if (!done) return run.fail(done.error().message);
-  const RunSettings settings = runSettings(options, run, session.reference ? session.reference->string() : "");
+  auto library = run.renderer().library(session.instanceIndex);
+  if (!library) return run.fail(library.error());
+  const RunSettings settings =
+      runSettings(options, run, session.reference ? session.reference->string() : "", (*library)->sources());
   if (auto checked = recordOrCheckSettings(options.outputDir, settings, !done->empty()); !checked) {
     return run.fail(checked.error().message);
   }

@@ -733,6 +733,44 @@ TEST_F(TuneRun, ResumeCountsEachVariantOnce) {
   fs::remove_all(dir);
 }
 
+// The rows depend on the files as they were: a scene edited between two
+// runs is a difference like an option, named by its path.
+TEST_F(TuneRun, AnEditedSceneIsNotResumed) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_edited_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string text = readText("examples/scenes/terrain.json");
+  const std::string examples = fs::absolute("examples").string() + "/";
+  for (size_t at = text.find("\"../"); at != std::string::npos; at = text.find("\"../", at)) {
+    text.replace(at + 1, 3, examples);
+  }
+  const fs::path scene = dir / "terrain.json";
+  std::ofstream(scene, std::ios::binary) << text;
+  const std::vector<std::string> args{scene.string(),
+                                      "--shader",
+                                      "Terrain",
+                                      "--components",
+                                      "albedo",
+                                      "--bake-size",
+                                      "64",
+                                      "--max-frames",
+                                      "3",
+                                      "--jobs",
+                                      "1",
+                                      "--resolution",
+                                      "64x48",
+                                      "-o",
+                                      (dir / "run").string()};
+  std::ostringstream out, err;
+  ASSERT_EQ(runTune(args, out, err), 0) << err.str();
+  std::ofstream(scene, std::ios::binary | std::ios::app) << "\n";  // the same scene, other bytes
+  std::ostringstream editedOut, edited;
+  EXPECT_EQ(runTune(args, editedOut, edited), kExitInputError);
+  EXPECT_NE(edited.str().find("(source " + fs::weakly_canonical(scene).string() + ": '"), std::string::npos)
+      << edited.str();
+  fs::remove_all(dir);
+}
+
 // SIGINT to the tuner alone, mid-run: its workers stop with it (nothing
 // writes into the directory afterwards), it says what it kept and exits
 // 130; the same command then resumes, and the rows are those of a run that
