@@ -13,6 +13,7 @@
 #include "codegen/hazard_instrumentation.h"
 #include "codegen/interface_allocation.h"
 #include "reflection/reflection_json.h"
+#include "support/content_hash.h"
 
 namespace spire::codegen {
 namespace {
@@ -478,7 +479,7 @@ Kernel KernelGenerator::packageKernel(const sem::World& world, ShaderStage stage
   r.stage = stage;
   r.glslFile = world.name + ".glsl";
   r.spirvFile = world.name + ".spv";
-  r.hash = reflection::contentHash(result.glsl);
+  r.hash = spire::contentHash(result.glsl);
   r.inputs = kernel.inputs();
   r.outputs = kernel.outputs();
   r.blocks = kernel.blocks();

@@ -10,6 +10,7 @@
 #include "codegen/kernel_generator.h"
 #include "codegen/spirv_compiler.h"
 #include "sema/attribute_catalog.h"
+#include "support/content_hash.h"
 #include "support/file_io.h"
 #include "support/spelling.h"
 #include "support/utf8.h"
@@ -153,7 +154,7 @@ CompiledVariantPtr compileVariant(ShaderLibrary& library, const graph::Variant& 
       ok = false;
       continue;
     }
-    compiled->reflection.kernels[i].spirvHash = reflection::contentHash(spirvBytes(kernel.spirv));
+    compiled->reflection.kernels[i].spirvHash = spire::contentHash(spirvBytes(kernel.spirv));
   }
   if (!ok) return nullptr;
   return cache.emplace(key, std::move(compiled)).first->second;

@@ -13,6 +13,7 @@
 #include <cstring>
 
 #include "reflection/reflection.h"
+#include "support/content_hash.h"
 
 namespace spire::server {
 namespace {
@@ -258,7 +259,7 @@ std::optional<std::filesystem::path> serverSocketPath(const std::filesystem::pat
   if (!folder) return std::nullopt;
   const std::string identity = fmt::format("{}\n{}\n{}\n{}.{}", executable.string(), info.st_size, info.st_ino,
                                            info.st_mtim.tv_sec, info.st_mtim.tv_nsec);
-  const std::filesystem::path path = *folder / fmt::format("spirec-{}.sock", reflection::contentHash(identity));
+  const std::filesystem::path path = *folder / fmt::format("spirec-{}.sock", spire::contentHash(identity));
   if (path.native().size() >= sizeof(sockaddr_un::sun_path)) return std::nullopt;
   return path;
 }

@@ -1,11 +1,7 @@
 #include "reflection/reflection.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <charconv>
-
-#include "support/content_hash.h"
 
 namespace spire::reflection {
 
@@ -154,7 +150,5 @@ const Kernel* Variant::kernel(std::string_view world) const {
   const auto it = std::find_if(kernels.begin(), kernels.end(), [&](const Kernel& k) { return k.world == world; });
   return it == kernels.end() ? nullptr : &*it;
 }
-
-std::string contentHash(std::string_view bytes) { return spire::contentHash(bytes); }
 
 }  // namespace spire::reflection

@@ -204,7 +204,7 @@ struct Kernel {
   std::string entry = "main";
   std::string glslFile;   // "<World>.glsl"
   std::string spirvFile;  // "<World>.spv"
-  std::string hash;       // contentHash of the GLSL text
+  std::string hash;       // contentHash (support/content_hash.h) of the GLSL text
   std::string spirvHash;  // contentHash of the SPIR-V bytes; empty when none was made
   std::string key;        // kernelKey: equal keys, interchangeable kernels
   std::vector<KernelInput> inputs;
@@ -236,8 +236,5 @@ struct Variant {
   const Kernel* kernel(std::string_view world) const;
   bool operator==(const Variant&) const = default;
 };
-
-// Stable 64-bit FNV-1a of `bytes`, as 16 hex digits.
-std::string contentHash(std::string_view bytes);
 
 }  // namespace spire::reflection

@@ -2,6 +2,8 @@
 // kernel keys hash these objects' text, and goldens compare it exactly.
 #include "reflection/reflection_json.h"
 
+#include "support/content_hash.h"
+
 namespace spire::reflection {
 
 using Json = nlohmann::ordered_json;

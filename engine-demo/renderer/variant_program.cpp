@@ -8,6 +8,7 @@
 
 #include "reflection/reflection_json.h"
 #include "renderer/spirv_interface.h"
+#include "support/content_hash.h"
 #include "support/file_io.h"
 
 namespace spire::engine {
@@ -108,7 +109,7 @@ Expected<std::vector<uint32_t>> readKernelSpirv(const std::filesystem::path& dir
   if (!bytes || bytes->empty() || bytes->size() % 4 != 0) {
     return Error{fmt::format("cannot read SPIR-V '{}' (missing, or not a whole number of words)", file.string()), {}};
   }
-  if (const std::string hash = reflection::contentHash(*bytes); hash != kernel.spirvHash) {
+  if (const std::string hash = spire::contentHash(*bytes); hash != kernel.spirvHash) {
     return Error{fmt::format("'{}' is not the kernel this reflection describes (its hash is {}, the reflection's {}): "
                              "the directory mixes the output of two compiles",
                              file.string(), hash, kernel.spirvHash),

@@ -25,6 +25,7 @@
 #include "renderer/pipeline_descriptors.h"
 #include "renderer/render_target.h"
 #include "renderer/texture_bake.h"
+#include "support/content_hash.h"
 
 namespace spire::engine {
 namespace {
@@ -59,8 +60,8 @@ Json reflectionOf(const std::vector<TestKernel>& kernels) {
                   {"entry", "main"},
                   {"glsl", k.world + ".glsl"},
                   {"spirv", k.world + ".spv"},
-                  {"hash", reflection::contentHash(k.glsl)},
-                  {"key", reflection::contentHash(k.world + k.glsl)}};
+                  {"hash", spire::contentHash(k.glsl)},
+                  {"key", spire::contentHash(k.world + k.glsl)}};
     entry.update(Json::parse("{" + k.reflection + "}"));
     for (const char* list : {"inputs", "outputs", "blocks"}) fillNames(entry[list]);
     kernelList.push_back(std::move(entry));

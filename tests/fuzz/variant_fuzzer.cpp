@@ -38,6 +38,7 @@
 #include "fuzz/fuzz_support.h"
 #include "gen/program_generator.h"
 #include "reflection/reflection_json.h"
+#include "support/content_hash.h"
 #include "support/diagnostic_renderer.h"
 
 namespace {
@@ -112,7 +113,7 @@ Decisions readDecisions(const std::vector<graph::Choice>& choices, ByteReader& i
 
 // About one input in 64, deterministically from all of its bytes.
 bool sampledForSpirv(const uint8_t* data, size_t size) {
-  const std::string hash = reflection::contentHash({reinterpret_cast<const char*>(data), size});
+  const std::string hash = spire::contentHash({reinterpret_cast<const char*>(data), size});
   return std::stoul(hash.substr(hash.size() - 2), nullptr, 16) % 64 == 0;
 }
 
