@@ -28,4 +28,8 @@ void Progress::update(size_t done) {
   }
 }
 
+void Progress::finish() {
+  if (tty_ && last_ != static_cast<size_t>(-1) && last_ != total_) err_ << "\n";
+}
+
 }  // namespace spire::tune

@@ -17,6 +17,10 @@ class Progress {
   // `done` of the total are measured; prints only when that changed.
   void update(size_t done);
 
+  // Ends the bar's line early (a run that stops before the total), so that
+  // what is printed next starts on a line of its own.
+  void finish();
+
  private:
   std::ostream& err_;
   size_t total_;

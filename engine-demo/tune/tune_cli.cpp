@@ -83,14 +83,27 @@ std::optional<int> measurePoints(const TuneOptions& options, engine::ToolRun& ru
   }
 }
 
+// A worker's time split as measureShard writes it; zero when there is none.
+TimeSplit readTimeSplit(const fs::path& path) {
+  TimeSplit split;
+  std::ifstream in(path);
+  if (!(in >> split.compileMs >> split.firstUseMs >> split.renderMs >> split.errorMs)) split = TimeSplit{};
+  return split;
+}
+
 // Measures a shard (see measurePoints) and records where its time went.
 int measureShard(const TuneOptions& options, engine::ToolRun& run, TuneSession& session, int worker,
                  Progress* progress) {
   if (const auto status = measurePoints(options, run, session, worker, progress)) return *status;
   if (StopRequest::requested()) return kExitInterrupted;
-  const TimeSplit& s = session.tuner->timeSplit();
+  // Added to what a worker before it in this directory spent (one that
+  // fresh workers replaced after a crash, or one of an earlier run that
+  // failed), so the split covers every row of the run.
+  const fs::path splitFile = splitPath(options, std::max(worker, 0));
+  TimeSplit s = readTimeSplit(splitFile);
+  s += session.tuner->timeSplit();
   const std::string text = fmt::format("{} {} {} {}\n", s.compileMs, s.firstUseMs, s.renderMs, s.errorMs);
-  if (auto written = writeFileAtomically(splitPath(options, std::max(worker, 0)).string(), text); !written) {
+  if (auto written = writeFileAtomically(splitFile.string(), text); !written) {
     return run.fail(written.error().message);
   }
   // Exploring variants leaves some material values unused by design, so
@@ -99,12 +112,19 @@ int measureShard(const TuneOptions& options, engine::ToolRun& run, TuneSession& 
   return run.finish(kExitSuccess);
 }
 
+// How many of this run's points the journal holds now (workers add to it).
+Expected<size_t, Failure> measuredInSpace(const TuneOptions& options, const TuneSession& session) {
+  const auto done = loadDone(options, session.components);
+  if (!done) return done.error();
+  size_t measured = 0;
+  for (const TunePoint& point : session.space.points) measured += done->contains(point.index) ? 1 : 0;
+  return measured;
+}
+
 // After a stop request: what the journal keeps, and how to go on.
 int reportInterrupted(const TuneOptions& options, const TuneSession& session, std::ostream& err) {
-  size_t kept = 0;
-  if (const auto done = loadDone(options, session.components)) {
-    for (const TunePoint& point : session.space.points) kept += done->contains(point.index) ? 1 : 0;
-  }
+  const auto measured = measuredInSpace(options, session);
+  const size_t kept = measured ? *measured : 0;
   err << fmt::format(
       "spire-tune: interrupted: {} of {} variants are measured and kept in '{}'; run the same command again to "
       "resume\n",
@@ -115,6 +135,31 @@ int reportInterrupted(const TuneOptions& options, const TuneSession& session, st
 // Whether worker processes measure the variants (else this process does).
 bool workersMeasure(const TuneOptions& options, const std::string& workerProgram) {
   return options.jobs > 1 && !workerProgram.empty();
+}
+
+// The points left, measured by worker processes. A worker that a signal
+// ended (lavapipe has crashed in one, rarely and not again on the same
+// variant) costs one retry with fresh workers, which take up the points
+// left from the journal; a second crash, or a worker that failed with a
+// message, ends the run.
+std::optional<int> measureWithWorkers(const TuneOptions& options, engine::ToolRun& run, TuneSession& session,
+                                      const std::vector<std::string>& args, const std::string& workerProgram,
+                                      std::ostream& err) {
+  WorkerPlan plan{workerProgram, args, {}};
+  for (uint32_t k = 0; k < options.jobs; ++k) plan.shards.push_back(shardPath(options, static_cast<int>(k)));
+  const size_t total = session.space.points.size();
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (const auto created = WorkQueue::create(queuePath(options)); !created) return run.fail(created.error().message);
+    const auto already = measuredInSpace(options, session);
+    if (!already) return run.fail(already.error().message);
+    const WorkersEnd end = runWorkers(plan, *already, total, err);
+    if (end == WorkersEnd::Finished) return std::nullopt;
+    if (end == WorkersEnd::Interrupted) return reportInterrupted(options, session, err);
+    if (end == WorkersEnd::Failed) break;
+    if (attempt == 0) err << "spire-tune: measuring the variants left with fresh workers\n";
+  }
+  err << "spire-tune: error: a worker failed (above: its own messages, then how it ended); rerun to resume\n";
+  return kExitInputError;
 }
 
 // The coordinator: measures what is not done yet, in this process or in
@@ -141,16 +186,7 @@ std::optional<int> measureAll(const TuneOptions& options, engine::ToolRun& run, 
     if (status == kExitInterrupted) return reportInterrupted(options, session, err);
     return status == kExitSuccess ? std::nullopt : std::optional<int>(status);
   }
-  if (const auto created = WorkQueue::create(queuePath(options)); !created) return run.fail(created.error().message);
-  WorkerPlan plan{workerProgram, args, {}};
-  for (uint32_t k = 0; k < options.jobs; ++k) plan.shards.push_back(shardPath(options, static_cast<int>(k)));
-  switch (runWorkers(plan, already, total, err)) {
-    case WorkersEnd::Finished: return std::nullopt;
-    case WorkersEnd::Interrupted: return reportInterrupted(options, session, err);
-    case WorkersEnd::Failed: break;
-  }
-  err << "spire-tune: error: a worker failed (its messages are above); rerun to resume\n";
-  return kExitInputError;
+  return measureWithWorkers(options, run, session, args, workerProgram, err);
 }
 
 // One row per point of this run, in index order, each time ratio turned
@@ -231,22 +267,21 @@ std::optional<int> prepareCoordinator(const TuneOptions& options, const std::str
 }
 
 // The workers' time splits summed; their shards, splits and the queue are
-// removed, now that variants.csv holds every row.
+// removed, now that variants.csv holds every row. Every shard in the
+// directory, not only this run's --jobs: a run resumed with fewer workers
+// than the one before it read theirs too.
 TimeSplit collectTimeSplits(const TuneOptions& options) {
   TimeSplit split;
   std::error_code ec;
-  for (uint32_t k = 0; k < std::max(options.jobs, 1U); ++k) {
-    std::ifstream in(splitPath(options, static_cast<int>(k)));
-    double c = 0, f = 0, r = 0, e = 0;
-    if (in >> c >> f >> r >> e) {
-      split.compileMs += c;
-      split.firstUseMs += f;
-      split.renderMs += r;
-      split.errorMs += e;
-    }
-    fs::remove(shardPath(options, static_cast<int>(k)), ec);
-    fs::remove(splitPath(options, static_cast<int>(k)), ec);
+  std::vector<fs::path> leftovers;
+  for (const auto& entry : fs::directory_iterator(options.outputDir, ec)) {
+    const std::string name = entry.path().filename().string();
+    const std::string extension = entry.path().extension().string();
+    if (!name.starts_with("shard-") || (extension != ".csv" && extension != ".time")) continue;
+    if (extension == ".time") split += readTimeSplit(entry.path());
+    leftovers.push_back(entry.path());
   }
+  for (const fs::path& path : leftovers) fs::remove(path, ec);
   fs::remove(queuePath(options), ec);
   return split;
 }

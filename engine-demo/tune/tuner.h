@@ -27,6 +27,14 @@ struct TimeSplit {
   double firstUseMs = 0.0;  // first frames: lavapipe compiles the kernels at the first draw
   double renderMs = 0.0;    // bakes, measured frames and captures
   double errorMs = 0.0;     // image comparison
+
+  TimeSplit& operator+=(const TimeSplit& other) {
+    compileMs += other.compileMs;
+    firstUseMs += other.firstUseMs;
+    renderMs += other.renderMs;
+    errorMs += other.errorMs;
+    return *this;
+  }
 };
 
 // Material values for one parameter sample: component -> numbers.

@@ -9,10 +9,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <optional>
 #include <string_view>
 #include <thread>
+
+#include <fmt/format.h>
 
 #include "tune/progress.h"
 #include "tune/stop_request.h"
@@ -78,13 +81,25 @@ std::optional<std::vector<pid_t>> spawnWorkers(const WorkerPlan& plan) {
   return pids;
 }
 
+// How a worker that did not exit with 0 ended: a crash prints nothing of its
+// own, so the signal is the only trace of it.
+std::string describeEnd(int status) {
+  if (WIFSIGNALED(status)) {
+    const int signal = WTERMSIG(status);
+    return fmt::format("was killed by signal {} ({})", signal, ::strsignal(signal));
+  }
+  if (WIFEXITED(status)) return fmt::format("exited with status {}", WEXITSTATUS(status));
+  return fmt::format("ended with wait status {}", status);
+}
+
 // Waits for every worker, updating the progress from their shards; a stop
 // request is passed on to them once.
 WorkersEnd waitForWorkers(std::vector<pid_t> pids, const WorkerPlan& plan, size_t already, size_t total,
                           std::ostream& err) {
   Progress progress(err, total, already);
   const std::vector<size_t> before = shardRows(plan);
-  bool ok = true;
+  std::vector<std::string> failures;
+  bool crashesOnly = true;
   bool stopping = false;
   size_t running = pids.size();
   while (running > 0) {
@@ -100,11 +115,15 @@ WorkersEnd waitForWorkers(std::vector<pid_t> pids, const WorkerPlan& plan, size_
         if (pid != 0) ::kill(pid, SIGTERM);
       }
     }
-    for (pid_t& pid : pids) {
+    for (size_t k = 0; k < pids.size(); ++k) {
+      pid_t& pid = pids[k];
       if (pid == 0) continue;
       int status = 0;
       if (waitpid(pid, &status, WNOHANG) == pid) {
-        ok = ok && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+        if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+          crashesOnly = crashesOnly && WIFSIGNALED(status);
+          failures.push_back(fmt::format("spire-tune: worker {} {}\n", k, describeEnd(status)));
+        }
         pid = 0;
         --running;
       }
@@ -112,8 +131,13 @@ WorkersEnd waitForWorkers(std::vector<pid_t> pids, const WorkerPlan& plan, size_
     if (running > 0) std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
   if (stopping) return WorkersEnd::Interrupted;
+  if (!failures.empty()) {
+    progress.finish();
+    for (const std::string& failure : failures) err << failure;
+    return crashesOnly ? WorkersEnd::Crashed : WorkersEnd::Failed;
+  }
   progress.update(total);
-  return ok ? WorkersEnd::Finished : WorkersEnd::Failed;
+  return WorkersEnd::Finished;
 }
 
 }  // namespace

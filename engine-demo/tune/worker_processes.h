@@ -21,12 +21,14 @@ struct WorkerPlan {
 
 enum class WorkersEnd {
   Finished,     // every worker exited with 0
-  Failed,       // one could not start or did not exit with 0
+  Crashed,      // every one that did not exit with 0 was ended by a signal it did not get from us
+  Failed,       // one could not start or exited with another status (it said why)
   Interrupted,  // a stop was requested (StopRequest) and passed on; they stopped between variants
 };
 
 // Runs the workers to the end, showing progress from the rows they add to
-// their shards (rows an interrupted run left there are in `already`).
+// their shards (rows an interrupted run left there are in `already`); a
+// worker that does not exit with 0 is named on `err` with how it ended.
 WorkersEnd runWorkers(const WorkerPlan& plan, size_t already, size_t total, std::ostream& err);
 
 // In a worker: stop (as on SIGTERM) when the coordinator that started it

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -771,22 +772,15 @@ TEST_F(TuneRun, AnEditedSceneIsNotResumed) {
   fs::remove_all(dir);
 }
 
-// SIGINT to the tuner alone, mid-run: its workers stop with it (nothing
-// writes into the directory afterwards), it says what it kept and exits
-// 130; the same command then resumes, and the rows are those of a run that
-// was never interrupted. While a run holds the directory, a second is
-// refused.
-TEST_F(TuneRun, ASignalStopsTheWorkersAndTheRunResumes) {
-  const fs::path dir = fs::temp_directory_path() / ("spire_tune_signal_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+// SPIRE_TUNE_EXE with `args`, two workers and `-o out` in a process of its
+// own, its stderr into `log`; -1 when it cannot start.
+pid_t spawnTuner(const std::vector<std::string>& tuneArgs, const fs::path& out, const fs::path& log) {
   std::vector<std::string> args{SPIRE_TUNE_EXE};
-  args.insert(args.end(), kSixVariants.begin(), kSixVariants.end());
-  args.insert(args.end(), {"--jobs", "2", "-o", (dir / "run").string()});
+  args.insert(args.end(), tuneArgs.begin(), tuneArgs.end());
+  args.insert(args.end(), {"--jobs", "2", "-o", out.string()});
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
-  const fs::path log = dir / "run.log";
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 2, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -801,16 +795,53 @@ TEST_F(TuneRun, ASignalStopsTheWorkersAndTheRunResumes) {
   for (std::string& e : environment) envp.push_back(e.data());
   envp.push_back(nullptr);
   pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data()), 0);
+  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
-  const auto rows = [&] {
-    size_t n = 0;
-    for (int k = 0; k < 2; ++k) {
-      std::istringstream in(readText(dir / "run" / fmt::format("shard-{}.csv", k)));
-      for (std::string line; std::getline(in, line);) n += line.rfind("index", 0) == 0 ? 0 : 1;
-    }
-    return n;
-  };
+  return spawned == 0 ? pid : -1;
+}
+
+// Rows the workers of a run into `out` have written to their shards so far.
+size_t shardRows(const fs::path& out) {
+  size_t n = 0;
+  for (int k = 0; k < 2; ++k) {
+    std::istringstream in(readText(out / fmt::format("shard-{}.csv", k)));
+    for (std::string line; std::getline(in, line);) n += line.rfind("index", 0) == 0 ? 0 : 1;
+  }
+  return n;
+}
+
+// The processes whose parent is `parent` (from /proc/PID/stat, whose fourth
+// field is the parent's id; the command name before it is in parentheses
+// and may hold spaces).
+std::vector<pid_t> childrenOf(pid_t parent) {
+  std::vector<pid_t> children;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || !std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
+    const std::string stat = readText(entry.path() / "stat");
+    const size_t close = stat.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream fields(stat.substr(close + 1));
+    std::string state;
+    pid_t ppid = 0;
+    if (fields >> state >> ppid && ppid == parent) children.push_back(static_cast<pid_t>(std::stol(name)));
+  }
+  return children;
+}
+
+// SIGINT to the tuner alone, mid-run: its workers stop with it (nothing
+// writes into the directory afterwards), it says what it kept and exits
+// 130; the same command then resumes, and the rows are those of a run that
+// was never interrupted. While a run holds the directory, a second is
+// refused.
+TEST_F(TuneRun, ASignalStopsTheWorkersAndTheRunResumes) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_signal_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path log = dir / "run.log";
+  const pid_t pid = spawnTuner(kSixVariants, dir / "run", log);
+  ASSERT_GT(pid, 0);
+  const auto rows = [&] { return shardRows(dir / "run"); };
   for (int wait = 0; wait < 1200 && rows() == 0; ++wait) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ASSERT_GT(rows(), 0U) << readText(log);
   {
@@ -846,6 +877,43 @@ TEST_F(TuneRun, ASignalStopsTheWorkersAndTheRunResumes) {
     EXPECT_EQ((*resumed)[i].index, (*whole)[i].index);
     EXPECT_EQ((*resumed)[i].status, (*whole)[i].status);
     EXPECT_EQ((*resumed)[i].rmse, (*whole)[i].rmse) << "variant " << (*whole)[i].index;
+  }
+  fs::remove_all(dir);
+}
+
+// A worker that dies without a word (lavapipe has crashed in one, rarely and
+// not again on the same variant; here SIGKILL) is named with the signal that
+// ended it, and fresh workers measure what is left: the run ends with every
+// variant measured, as an uninterrupted one.
+TEST_F(TuneRun, AWorkerThatDiesIsNamedAndReplaced) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_crash_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path log = dir / "run.log";
+  const pid_t pid = spawnTuner(kSixVariants, dir / "run", log);
+  ASSERT_GT(pid, 0);
+  std::vector<pid_t> workers;
+  // Killed as soon as both run: it cannot have finished yet.
+  for (int wait = 0; wait < 1200 && workers.size() < 2; ++wait) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    workers = childrenOf(pid);
+  }
+  ASSERT_EQ(workers.size(), 2U) << readText(log);
+  ASSERT_EQ(::kill(workers.front(), SIGKILL), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  const std::string text = readText(log);
+  ASSERT_TRUE(WIFEXITED(status)) << text;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << text;
+  EXPECT_NE(text.find(fmt::format("was killed by signal {} ({})", SIGKILL, ::strsignal(SIGKILL))), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("measuring the variants left with fresh workers"), std::string::npos) << text;
+  const auto rows = readResults(dir / "run" / "variants.csv", {"albedo", "normal"});
+  ASSERT_TRUE(rows) << text;
+  ASSERT_EQ(rows->size(), 6U);
+  for (size_t i = 0; i < rows->size(); ++i) EXPECT_EQ((*rows)[i].index, i);
+  for (const auto& entry : fs::directory_iterator(dir / "run")) {
+    EXPECT_FALSE(entry.path().filename().string().starts_with("shard-")) << entry.path() << " left behind";
   }
   fs::remove_all(dir);
 }
