@@ -8,6 +8,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "scene/scene_inputs.h"
 #include "support/content_hash.h"
 #include "support/file_io.h"
 
@@ -39,15 +40,26 @@ std::string oneLine(const std::string& value) {
   return line;
 }
 
+bool hasEntry(const RunSettings& settings, const std::string& name) {
+  return std::any_of(settings.entries.begin(), settings.entries.end(),
+                     [&](const auto& entry) { return entry.first == name; });
+}
+
 // "source PATH" = the content hash of each file once, in the order given.
 void addSourceHashes(RunSettings& settings, const SourceManager& sources) {
   for (size_t id = 0; id < sources.fileCount(); ++id) {
     const SourceFile& file = sources.file(static_cast<FileId>(id));
     std::string name = "source " + oneLine(absolutePath(file.path));
-    const bool seen = std::any_of(settings.entries.begin(), settings.entries.end(),
-                                  [&](const auto& entry) { return entry.first == name; });
-    if (!seen) settings.entries.emplace_back(std::move(name), contentHash(file.text));
+    if (!hasEntry(settings, name)) settings.entries.emplace_back(std::move(name), contentHash(file.text));
   }
+}
+
+// "source PATH" = the content hash of a file read from disk, once.
+void addFileHash(RunSettings& settings, const std::string& path) {
+  std::string name = "source " + oneLine(absolutePath(path));
+  if (hasEntry(settings, name)) return;
+  const std::optional<std::string> text = readWholeFile(path);
+  settings.entries.emplace_back(std::move(name), text ? contentHash(*text) : std::string("(unreadable)"));
 }
 
 }  // namespace
@@ -75,11 +87,12 @@ RunSettings runSettings(const TuneOptions& options, const engine::ToolRun& run, 
   add("device", run.context().selectedDevice().name);
   addSourceHashes(settings, run.sources());
   addSourceHashes(settings, shaderSources);
-  if (!reference.empty()) {
-    const std::optional<std::string> text = readWholeFile(reference);
-    settings.entries.emplace_back("source " + oneLine(absolutePath(reference)),
-                                  text ? contentHash(*text) : std::string("(unreadable)"));
-  }
+  // The meshes, images and policy the scene reads: an edited glTF renders
+  // another image as surely as an edited shader.
+  std::vector<std::string> files;
+  for (const fs::path& file : scene::sceneInputFiles(scene)) files.push_back(file.string());
+  if (!reference.empty()) files.push_back(reference);
+  for (const std::string& file : files) addFileHash(settings, file);
   return settings;
 }
 

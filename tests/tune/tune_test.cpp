@@ -772,6 +772,64 @@ TEST_F(TuneRun, AnEditedSceneIsNotResumed) {
   fs::remove_all(dir);
 }
 
+// A scene in `dir` drawing collapse.spire's shader on a 2x2 quad read from a
+// .gltf whose vertices are in a separate quad.bin; returns the scene's path.
+fs::path writeGltfQuadScene(const fs::path& dir) {
+  const std::vector<float> positions{-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};
+  const std::vector<float> normals{0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0};
+  const std::vector<float> uvs{0, 0, 1, 0, 1, 1, 0, 1};
+  const std::vector<uint16_t> indices{0, 2, 1, 0, 3, 2};
+  std::ofstream bin(dir / "quad.bin", std::ios::binary);
+  const auto put = [&](const auto& values) {
+    bin.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * sizeof(values[0])));
+  };
+  put(positions);
+  put(normals);
+  put(uvs);
+  put(indices);
+  bin.close();
+  std::ofstream(dir / "quad.gltf") << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3}]}],
+  "buffers": [{"uri": "quad.bin", "byteLength": 140}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+                  {"buffer": 0, "byteOffset": 96, "byteLength": 32}, {"buffer": 0, "byteOffset": 128, "byteLength": 12}],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]},
+    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+    {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"},
+    {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}]})";
+  const fs::path shader = fs::absolute("tests/data/engine/stability/collapse.spire");
+  std::ofstream(dir / "quad.json") << fmt::format(R"({{
+  "resolution": [17, 17], "frames": 1, "warmupFrames": 1,
+  "camera": {{"fovY": 45, "up": [0, 0, -1], "views": [{{"position": [0, 2, 0], "target": [0, 0, 0]}}]}},
+  "meshes": {{"quad": {{"type": "gltf", "file": "quad.gltf"}}}},
+  "instances": [{{"mesh": "quad", "source": "{}", "shader": "Collapse", "material": {{"color": [0.5, 0.5, 0.5, 1.0]}}}}]
+}})",
+                                                  shader.string());
+  return dir / "quad.json";
+}
+
+// The same for a file the scene reads rather than is: a glTF mesh's buffer
+// edited between two runs (the scene file and the shader unchanged).
+TEST_F(TuneRun, AnEditedMeshBufferIsNotResumed) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_buffer_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path scene = writeGltfQuadScene(dir);
+  const std::vector<std::string> args{scene.string(),        "--shader", "Collapse", "--jobs", "1", "-o",
+                                      (dir / "run").string()};
+  std::ostringstream out, err;
+  ASSERT_EQ(runTune(args, out, err), 0) << err.str();
+  EXPECT_NE(readText(dir / "run" / "settings.txt").find("quad.bin: "), std::string::npos);
+  std::ofstream(dir / "quad.bin", std::ios::binary | std::ios::app) << "more";
+  std::ostringstream editedOut, edited;
+  EXPECT_EQ(runTune(args, editedOut, edited), kExitInputError);
+  EXPECT_NE(edited.str().find("(source " + fs::weakly_canonical(dir / "quad.bin").string() + ": '"), std::string::npos)
+      << edited.str();
+  fs::remove_all(dir);
+}
+
 // SPIRE_TUNE_EXE with `args`, two workers and `-o out` in a process of its
 // own, its stderr into `log`; -1 when it cannot start.
 pid_t spawnTuner(const std::vector<std::string>& tuneArgs, const fs::path& out, const fs::path& log) {
