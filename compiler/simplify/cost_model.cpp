@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string_view>
+#include <utility>
 
 #include "simplify/syntax_walk.h"
 
@@ -58,6 +59,41 @@ int64_t CostModel::definition(const ast::ComponentDecl& decl, const Substitution
   return cost;
 }
 
+int64_t CostModel::sharedDefinition(const ast::ComponentDecl& decl, std::set<std::string>& values) {
+  values_ = &values;
+  unshared_ = 0;
+  keys_.beginDefinition();
+  const int64_t cost = definition(decl);
+  values_ = nullptr;
+  return cost;
+}
+
+bool CostModel::alreadyComputed(const ast::Expr& e) {
+  if (!sharing()) return false;
+  switch (e.kind) {
+    case ast::ExprKind::Unary:
+    case ast::ExprKind::Binary:
+    case ast::ExprKind::Ternary:
+    case ast::ExprKind::Call:
+    case ast::ExprKind::Member:
+    case ast::ExprKind::Index: break;
+    default: return false;  // literals and names cost nothing; assignments are effects
+  }
+  const std::optional<std::string> key = keys_.key(e);
+  return key && !values_->insert(*key).second;
+}
+
+void CostModel::wrote(const ast::Expr& target, std::optional<std::string> value) {
+  if (values_) keys_.wrote(target, unshared_ == 0 ? std::move(value) : std::nullopt);
+}
+
+int64_t CostModel::unsharedStmt(const ast::Stmt& s) {
+  ++unshared_;
+  const int64_t cost = stmt(s);
+  --unshared_;
+  return cost;
+}
+
 int64_t CostModel::scalarsOf(const ast::Expr& e) const { return scalarCount(model_.typeOf(e)); }
 
 std::optional<int64_t> CostModel::constantOf(const ast::Expr& e) const {
@@ -71,6 +107,7 @@ int64_t CostModel::expr(const ast::Expr& e) {
     for (const ast::Expr* part : substitution_.parts) sum += expr(*part);
     return sum;
   }
+  if (alreadyComputed(e)) return 0;
   switch (e.kind) {
     case ast::ExprKind::Unary: return unary(ast::cast<ast::UnaryExpr>(e));
     case ast::ExprKind::Binary: return binary(ast::cast<ast::BinaryExpr>(e));
@@ -95,8 +132,15 @@ int64_t CostModel::binary(const ast::BinaryExpr& top) {
   const std::vector<const ast::BinaryExpr*> spine = ast::leftSpine(top);
   int64_t cost = expr(*spine.front()->lhs);
   for (const ast::BinaryExpr* b : spine) {
-    // A substituted link replaces the whole chain below it.
-    cost = b == substitution_.target ? expr(*b) : cost + expr(*b->rhs) + binaryOp(b->op, *b->lhs, *b->rhs, *b);
+    // A substituted link replaces the whole chain below it, and so does a
+    // link whose value was computed before (the top one was asked by expr).
+    if (b == substitution_.target) {
+      cost = expr(*b);
+    } else if (b != &top && alreadyComputed(*b)) {
+      cost = 0;
+    } else {
+      cost += expr(*b->rhs) + binaryOp(b->op, *b->lhs, *b->rhs, *b);
+    }
   }
   return cost;
 }
@@ -117,6 +161,10 @@ int64_t CostModel::binaryOp(ast::BinaryOp op, const ast::Expr& lhs, const ast::E
 // A negated literal (`-1.0`) is a literal: no compiler negates it at run time.
 int64_t CostModel::unary(const ast::UnaryExpr& u) {
   const int64_t operand = expr(*u.operand);
+  if (u.op == ast::UnaryOp::PreIncrement || u.op == ast::UnaryOp::PreDecrement || u.op == ast::UnaryOp::PostIncrement ||
+      u.op == ast::UnaryOp::PostDecrement) {
+    wrote(*u.operand, std::nullopt);
+  }
   const bool literal = u.operand->kind == ast::ExprKind::IntLiteral || u.operand->kind == ast::ExprKind::FloatLiteral;
   if (u.op == ast::UnaryOp::Plus || (u.op == ast::UnaryOp::Negate && literal)) return operand;
   return operand + std::max(scalarsOf(u), scalarsOf(*u.operand));
@@ -125,6 +173,8 @@ int64_t CostModel::unary(const ast::UnaryExpr& u) {
 // `a = b` only moves a value; `a op= b` is the operation `a op b`.
 int64_t CostModel::assign(const ast::AssignExpr& a) {
   const int64_t operands = expr(*a.target) + expr(*a.value);
+  // `x op= v` is keyed as a value unlike any other: rare in straight-line code.
+  wrote(*a.target, a.op == ast::AssignOp::Assign && sharing() ? keys_.key(*a.value) : std::nullopt);
   static constexpr std::pair<ast::AssignOp, ast::BinaryOp> kOps[] = {
       {ast::AssignOp::Mul, ast::BinaryOp::Mul},       {ast::AssignOp::Div, ast::BinaryOp::Div},
       {ast::AssignOp::Mod, ast::BinaryOp::Mod},       {ast::AssignOp::Add, ast::BinaryOp::Add},
@@ -147,7 +197,19 @@ int64_t CostModel::call(const ast::CallExpr& c) {
   }
   const sem::ExprInfo& info = model_.info(c);
   switch (info.ref) {
-    case sem::RefKind::Function: return args + (info.function ? function(*info.function) : 0);
+    case sem::RefKind::Function: {
+      if (!info.function) return args;
+      const ast::FunctionDecl* decl = info.function->decl;
+      const bool pure = std::all_of(info.function->params.begin(), info.function->params.end(),
+                                    [](const sem::Param& p) { return p.direction == ast::ParamDirection::In; });
+      if (!pure) {
+        for (const ast::ExprPtr& arg : c.args) wrote(*arg, std::nullopt);
+      }
+      if (sharing() && pure && decl && decl->body && !inProgress_.contains(info.function)) {
+        return args + sharedCall(*info.function, c);
+      }
+      return args + function(*info.function);
+    }
     case sem::RefKind::Builtin: {
       const bool sampled = info.builtin && !info.builtin->params.empty() && info.builtin->params.front().type &&
                            info.builtin->params.front().type->isSampler();
@@ -162,10 +224,27 @@ int64_t CostModel::function(const sem::Function& f) {
   const ast::FunctionDecl* decl = f.decl;
   if (!decl || !decl->body || !inProgress_.insert(&f).second) return 0;
   // A function body never holds the substituted expression (rewrites are of
-  // component definitions), so its cost is the same for every definition.
+  // component definitions), so its cost is the same for every definition;
+  // costed alone, it shares no values with its caller.
+  std::set<std::string>* values = std::exchange(values_, nullptr);
   const int64_t cost = stmt(*decl->body);
+  values_ = values;
   inProgress_.erase(&f);
   functions_[&f] = cost;
+  return cost;
+}
+
+// The body of `f` costed for this call: its parameters are the arguments'
+// values, so the same work in two functions, or in one called twice with
+// the same arguments, is counted once.
+int64_t CostModel::sharedCall(const sem::Function& f, const ast::CallExpr& c) {
+  std::vector<std::optional<std::string>> arguments;
+  for (const ast::ExprPtr& arg : c.args) arguments.push_back(keys_.key(*arg));
+  inProgress_.insert(&f);
+  keys_.enterFunction(*f.decl, arguments);
+  const int64_t cost = stmt(*f.decl->body);
+  keys_.leaveFunction();
+  inProgress_.erase(&f);
   return cost;
 }
 
@@ -180,29 +259,35 @@ int64_t CostModel::stmt(const ast::Stmt& s) {
       int64_t sum = 0;
       for (const ast::VarDeclarator& d : ast::cast<ast::VarDeclStmt>(s).declarators) {
         sum += d.init && deadLocals_.count(&d) == 0 ? expr(*d.init) : 0;
+        if (values_) keys_.setLocal(&d, d.init && sharing() ? keys_.key(*d.init) : std::nullopt);
       }
       return sum;
     }
     case ast::StmtKind::Expr: return expr(*ast::cast<ast::ExprStmt>(s).expr);
     case ast::StmtKind::If: {
       const auto& i = ast::cast<ast::IfStmt>(s);
-      return expr(*i.condition) + std::max(stmt(*i.thenBranch), i.elseBranch ? stmt(*i.elseBranch) : 0);
+      return expr(*i.condition) + std::max(unsharedStmt(*i.thenBranch), i.elseBranch ? unsharedStmt(*i.elseBranch) : 0);
     }
-    case ast::StmtKind::For: return forLoop(ast::cast<ast::ForStmt>(s));
-    case ast::StmtKind::While: {
-      const auto& w = ast::cast<ast::WhileStmt>(s);
-      return expr(*w.condition) + stmt(*w.body);
-    }
-    case ast::StmtKind::DoWhile: {
-      const auto& d = ast::cast<ast::DoWhileStmt>(s);
-      return stmt(*d.body) + expr(*d.condition);
-    }
+    case ast::StmtKind::For:
+    case ast::StmtKind::While:
+    case ast::StmtKind::DoWhile: return loop(s);
     case ast::StmtKind::Return: {
       const ast::Expr* value = ast::cast<ast::ReturnStmt>(s).value.get();
       return value ? expr(*value) : 0;
     }
     default: return 0;  // break, continue, discard, empty
   }
+}
+
+// A loop's values change from one iteration to the next: none is shared.
+int64_t CostModel::loop(const ast::Stmt& s) {
+  ++unshared_;
+  int64_t cost = 0;
+  if (const auto* f = ast::dyn_cast<ast::ForStmt>(&s)) cost = forLoop(*f);
+  if (const auto* w = ast::dyn_cast<ast::WhileStmt>(&s)) cost = expr(*w->condition) + stmt(*w->body);
+  if (const auto* d = ast::dyn_cast<ast::DoWhileStmt>(&s)) cost = stmt(*d->body) + expr(*d->condition);
+  --unshared_;
+  return cost;
 }
 
 int64_t CostModel::forLoop(const ast::ForStmt& f) {

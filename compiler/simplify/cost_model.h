@@ -21,9 +21,15 @@
 // He et al. cost the DAG after constant propagation, dead code elimination
 // and common subexpression elimination. This model removes dead locals of
 // the definition (a local that nothing reads, however indirectly, costs
-// nothing, so `mix(c1, c2, t)` -> `c1` also saves what computes c2), and
-// otherwise costs the tree as written: two equal subexpressions count
-// twice.
+// nothing, so `mix(c1, c2, t)` -> `c1` also saves what computes c2). A
+// definition alone is costed as written (two equal subexpressions count
+// twice: what a rewrite saves is what it removes from the text); the
+// definitions of one world of a variant share their values
+// (sharedDefinition, value_keys.h): an expression equal to one costed
+// before in that world, in the same definition or another, in a function
+// called with the same arguments or another function, costs nothing, as
+// the kernel's compiler merges them. Branches and loops are costed as
+// written: what they compute is not available after them.
 #pragma once
 
 #include <cstdint>
@@ -32,7 +38,10 @@
 #include <set>
 #include <vector>
 
+#include <string>
+
 #include "sema/semantic_model.h"
+#include "simplify/value_keys.h"
 #include "syntax/ast.h"
 
 namespace spire::simplify {
@@ -52,10 +61,13 @@ struct Substitution {
 
 class CostModel {
  public:
-  explicit CostModel(const sem::Model& model) : model_(model) {}
+  explicit CostModel(const sem::Model& model) : model_(model), keys_(model) {}
 
   // A component definition: its `= expr` or its body; 0 for an input.
   int64_t definition(const ast::ComponentDecl& decl, const Substitution& substitution = {});
+  // The same, counting only the values that no definition costed before
+  // with the same `values` computed (one set per world of a variant).
+  int64_t sharedDefinition(const ast::ComponentDecl& decl, std::set<std::string>& values);
   int64_t expr(const ast::Expr& e);
   int64_t stmt(const ast::Stmt& s);
   // A user function's body (memoized; 0 for a prototype, and for a function
@@ -68,17 +80,29 @@ class CostModel {
   int64_t unary(const ast::UnaryExpr& u);
   int64_t assign(const ast::AssignExpr& a);
   int64_t call(const ast::CallExpr& c);
+  int64_t loop(const ast::Stmt& s);
   int64_t forLoop(const ast::ForStmt& f);
   std::optional<int64_t> tripCount(const ast::ForStmt& f) const;
   std::optional<int64_t> constantOf(const ast::Expr& e) const;
   std::set<const ast::VarDeclarator*> deadLocals(const ast::ComponentDecl& decl) const;
   int64_t scalarsOf(const ast::Expr& e) const;
+  // Whether `e`'s value was computed before in this world (and if not,
+  // that it is now); false when values are not shared here.
+  bool alreadyComputed(const ast::Expr& e);
+  bool sharing() const { return values_ && unshared_ == 0; }
+  // After a write of `target` (by `=`, an operator or an `out` argument).
+  void wrote(const ast::Expr& target, std::optional<std::string> value);
+  int64_t sharedCall(const sem::Function& f, const ast::CallExpr& c);
+  int64_t unsharedStmt(const ast::Stmt& s);
 
   const sem::Model& model_;
   Substitution substitution_;
   std::set<const ast::VarDeclarator*> deadLocals_;  // of the definition being costed
   std::map<const sem::Function*, int64_t> functions_;
   std::set<const sem::Function*> inProgress_;
+  ValueKeys keys_;
+  std::set<std::string>* values_ = nullptr;  // while costing a shared definition
+  int unshared_ = 0;                         // depth of branches and loops being costed
 };
 
 // Scalars in a value of `type`: 1 for a float, 16 for a mat4, the sum of the

@@ -96,13 +96,15 @@ VariantCost variantCost(const sem::Model& model, const graph::Variant& variant,
     }
   }
   CostModel costs(model);
+  std::map<sem::WorldId, std::set<std::string>> valuesOf;  // each world's kernel merges its equal values
   for (sem::ComponentId c : variant.live()) {
     const graph::ComponentNode& node = graph.node(c);
     const sem::WorldId world = variant.worldOf(c);
     const auto fetched = fetchedIn.find(c);
     if (node.isInput && fetched == fetchedIn.end()) continue;
     ComponentCost row{node.component->name, pipeline.worlds[world].name, rates[world], 0, {}};
-    if (!node.isInput) row.ops = costs.definition(*node.alternatives[*variant.choice(c)].definition->decl);
+    if (!node.isInput)
+      row.ops = costs.sharedDefinition(*node.alternatives[*variant.choice(c)].definition->decl, valuesOf[world]);
     if (fetched != fetchedIn.end()) row.fetchedIn = fetched->second;
     if (row.rate == WorldRate::Vertex) result.vertexOps += row.ops;
     if (row.rate == WorldRate::Fragment) result.fragmentOps += row.ops;

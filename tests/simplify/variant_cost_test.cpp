@@ -18,7 +18,7 @@ namespace {
 
 // Bake is a fragment-stage world too (standardExport), but holds none of
 // the pipeline's requirements: it is baked into textures that PS samples.
-constexpr const char* kShader = R"(pipeline P {
+constexpr const char* kPipeline = R"(pipeline P {
     abstract world Uni;
     abstract world Mesh;
     world Bake : "GLSL" export standardExport;
@@ -36,7 +36,9 @@ constexpr const char* kShader = R"(pipeline P {
     abstract @VS vec4 clip;
     abstract export @PS vec4 color;
 }
-shader S using P {
+)";
+
+const std::string kShader = std::string(kPipeline) + R"(shader S using P {
     @Uni mat4 mvp;
     @Uni sampler2D map;
     @Uni vec3 tint;
@@ -148,6 +150,80 @@ TEST_F(VariantCostTest, TheToolCostsTheVariantOfADecisionFile) {
   ASSERT_EQ(runSimplifyTool({source_.string(), "--shader", "S", "--costs", "--decisions", decisions}, out2, err2), 0);
   EXPECT_NE(err2.str().find("warning"), std::string::npos) << err2.str();
   EXPECT_NE(out2.str().find("= 135.3\n"), std::string::npos) << out2.str();
+}
+
+// Two components that compute the same values, as Couch's surface
+// components do: equal masks through functions of their own (wear and dirt
+// read the same texel, each takes one channel), one called twice with the
+// same arguments, and a local that holds a value another component computes
+// in one expression. `edge` writes its parameter first, so its texel is
+// another one.
+const std::string kSharing =
+    std::string(kPipeline) + R"(float wear(sampler2D maps, vec2 at) { return texture(maps, at).b * 2.0; }
+float dirt(sampler2D maps, vec2 at) { return texture(maps, at).a; }
+float edge(sampler2D maps, vec2 at) { at = at * 4.0; return texture(maps, at).a; }
+shader S using P {
+    @Uni mat4 mvp;
+    @Uni sampler2D map;
+    vec4 clip = mvp * vec4(pos, 1.0);
+    float a {
+        float w = wear(map, uv);
+        w = w + dirt(map, uv);
+        return w;
+    }
+    float b = wear(map, uv) + dirt(map, uv) + edge(map, uv);
+    vec4 color = vec4(a, b, 0.0, 1.0);
+}
+)";
+
+// Per fragment:
+//   a = wear: fetch 100 + `* 2.0` 1; dirt: its fetch is wear's, 0; `+` 1 = 102
+//   b = wear + dirt: a's value, 0; edge: `at * 4.0` 2 + fetch 100; `+` 1 = 103
+//   color: 0 (a constructor)
+// Costed alone, as written, b alone would be 100 + 1 + 100 + 1 + 2 + 100 + 2.
+TEST_F(VariantCostTest, AWorldCountsEachValueOnce) {
+  load(kSharing);
+  const VariantCost cost = costOf({});
+  ASSERT_NE(row(cost, "a"), nullptr);
+  ASSERT_NE(row(cost, "b"), nullptr);
+  EXPECT_EQ(row(cost, "a")->ops + row(cost, "b")->ops, 102 + 103);
+  EXPECT_EQ(cost.fragmentOps, 205);
+}
+
+// b baked: the Bake kernel computes its own wear and dirt (the model counts
+// no Bake world), and PS reads b with a fetch: 100 instead of 103, where
+// costing b as written would have made baking it save 303.
+TEST_F(VariantCostTest, BakingAComponentThatSharesItsWorkCostsAFetch) {
+  load(kSharing);
+  const VariantCost shared = costOf({});
+  const VariantCost baked = costOf({{"b", "Bake"}});
+  EXPECT_EQ(shared.fragmentOps, 102 + 103);
+  EXPECT_EQ(baked.fragmentOps, 102 + 100);
+}
+
+// Each world counts its own values: a in VS pays for its wear and dirt, and
+// b in PS for them again, but only once within b (dirt's texel is wear's):
+// 101 + 0 + 1 + (2 + 100) + 1.
+TEST_F(VariantCostTest, EachWorldCountsItsOwnValues) {
+  load(kSharing);
+  const VariantCost cost = costOf({{"a", "VS"}});
+  EXPECT_EQ(cost.vertexOps, 16 + 102);
+  EXPECT_EQ(row(cost, "b")->ops, 205);
+}
+
+// A chain of 20,000 terms, as generated shaders write: its keys stop at
+// kMaxValueKey, so no link is shared (they all differ anyway) and keying
+// every link stays linear; each `+` counts 1.
+TEST_F(VariantCostTest, ALongChainIsCountedWholeWithoutSharing) {
+  std::string source = kShader;
+  std::string sum = "shade";
+  for (int i = 1; i < 20000; ++i) sum += " + shade";
+  const std::string line = "    vec4 color = albedo * shade;\n";
+  source.replace(source.find(line), line.size(), "    float total = " + sum + ";\n    vec4 color = albedo * total;\n");
+  load(source);
+  const VariantCost cost = costOf({});
+  ASSERT_NE(row(cost, "total"), nullptr);
+  EXPECT_EQ(row(cost, "total")->ops, 19999);
 }
 
 }  // namespace
