@@ -93,6 +93,22 @@ TEST_F(ExplorerWindowTest, AScriptedChangeShowsWhatSpireDemoRendersOfTheSavedDec
       << "the loaded file's attributes are kept";
 }
 
+// --resolution replaces the scene's 640 x 480: the explorer renders (and
+// its screenshots are) 96 x 72; a malformed size is a usage error.
+TEST_F(ExplorerWindowTest, RendersAtTheGivenResolution) {
+  const fs::path path = script("screenshot small.png\nquit\n");
+  ASSERT_EQ(explore({"examples/scenes/terrain.json", "--validation", "--bake-size", "64", "--resolution", "96x72",
+                     "--script", path.string()}),
+            0)
+      << err_.str() << out_.str();
+  const auto image = scene::loadImage(dir_ / "small.png");
+  ASSERT_TRUE(image);
+  EXPECT_EQ(image->width, 96U);
+  EXPECT_EQ(image->height, 72U);
+  EXPECT_EQ(explore({"examples/scenes/terrain.json", "--resolution", "96x0", "--script", path.string()}), 2)
+      << err_.str();
+}
+
 TEST_F(ExplorerWindowTest, ABrokenEditKeepsTheWindowAndTheLastGoodVariant) {
   for (const char* folder : {"examples", "pipelines", "stdlib"}) {
     fs::copy(folder, dir_ / folder, fs::copy_options::recursive);

@@ -207,5 +207,20 @@ TEST_F(LodExplorerWindowTest, AnEditThatMakesASwitchThatCannotFadeIsWarnedAbout)
   EXPECT_NE(out.find(warning, first + 1), std::string::npos) << "said again when an edit brings it back:\n" << out;
 }
 
+// The scene's own policy cross-fades into a level that cannot: the
+// explorer says so once when it opens, not again with each render.
+TEST_F(LodExplorerWindowTest, TheScenesOwnSwitchThatCannotFadeIsWarnedAboutOnce) {
+  std::ofstream(dir_ / "opaque_policy.json") << R"({"levels": [{"member": "Fades", "until": 5},
+            {"member": "Opaque"}], "transitionFrames": 4})";
+  std::ofstream(dir_ / "opaque.json") << spire::testing::lodFadesSceneJson("opaque_policy.json", 64);
+  ASSERT_EQ(explore({(dir_ / "opaque.json").string(), "--validation", "--script", script("quit\n").string()}), 0)
+      << err_.str() << out_.str();
+  const std::string all = err_.str() + out_.str();
+  const std::string warning = "warning[W7102]: 'Thing<Opaque>' at level 1 (Opaque) does not read lodFade";
+  const size_t first = all.find(warning);
+  ASSERT_NE(first, std::string::npos) << all;
+  EXPECT_EQ(all.find(warning, first + 1), std::string::npos) << "said twice:\n" << all;
+}
+
 }  // namespace
 }  // namespace spire::explore

@@ -307,6 +307,26 @@ TEST_F(SearchRun, StopsAtTheErrorBudget) {
       << readText(dir_ / "out/report.md");
 }
 
+// --resolution replaces the scene's 160 x 120 for the whole search: every
+// level is rendered, measured and written at 48 x 36.
+TEST_F(SearchRun, RendersAtTheGivenResolution) {
+  std::ostringstream out, err;
+  const std::vector<std::string> args =
+      searchArgs({"--max-levels", "1", "--no-average", "--no-acse", "--resolution", "48x36"});
+  ASSERT_EQ(runSearchTool(args, out, err), kExitSuccess) << err.str() << out.str();
+  const size_t levels = csvRows(dir_ / "out/chain.csv").size();
+  ASSERT_EQ(levels, 2U) << out.str();
+  for (size_t k = 0; k < levels; ++k) {
+    const auto image = scene::loadImage(dir_ / "out" / fmt::format("level{}.png", k));
+    ASSERT_TRUE(image) << k;
+    EXPECT_EQ(image->width, 48U) << k;
+    EXPECT_EQ(image->height, 36U) << k;
+  }
+  std::ostringstream badOut, badErr;
+  std::vector<std::string> bad = searchArgs({"--resolution", "48x"});
+  EXPECT_EQ(runSearchTool(bad, badOut, badErr), kExitUsageError) << badErr.str();
+}
+
 // User rules propose beside the built-in ones, and one whose replacement
 // compiles to another type (`sum += <float>` is legal where a vec4 was
 // added) is dropped with the reason, as spire-simplify drops it.
