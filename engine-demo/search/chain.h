@@ -82,6 +82,9 @@ struct Chain {
   std::vector<Rewriting> steps;  // steps[k - 1] made levels[k]
   std::string stopReason;        // why there is no further level
   std::vector<std::string> log;  // what each step measured and chose, for the report
+  // What errors and times are measured against: "level 0", or the
+  // reference decision file's variant (`--reference`), for the outputs.
+  std::string measuredAgainst = "level 0";
 };
 
 struct ModuleHeader {

@@ -75,6 +75,11 @@ void defineSearchOptions(CLI::App& app, SearchOptions& options) {
   app.add_option("--error-budget", options.errorBudget, "Stop before a level whose RMSE exceeds E")
       ->check(CLI::NonNegativeNumber)
       ->type_name("E");
+  app.add_option("--reference", options.reference,
+                 "Measure every level's error and time against the variant of this decision file (full quality, "
+                 "when the scene's instance starts from a tuned variant) instead of level 0; --error-budget then "
+                 "bounds the error against it")
+      ->type_name("DECISIONS");
   app.add_option("--cost", options.cost,
                  "What candidates are ranked and the chain ordered by: 'model', He et al.'s C = 0.3 C_v + 0.7 C_f + "
                  "10 N_var of the program (default), or 'time', the measured frame time")

@@ -33,7 +33,11 @@ struct SearchOptions {
   double k3 = 0.15;                     // a cached error off the fresh one by more than K3 x itself is stale
   size_t maxLevels = 6;                 // levels after the original
   double errorBudget = std::numeric_limits<double>::infinity();  // RMSE no level may exceed
-  CostKind cost = CostKind::Model;                               // what candidates are ranked and the chain ordered by
+  // Errors and times against this decision file's variant instead of level
+  // 0's (full quality, when the search starts from a tuned variant), so
+  // that the budget bounds the error against it.
+  std::optional<std::string> reference;
+  CostKind cost = CostKind::Model;  // what candidates are ranked and the chain ordered by
   // He et al.'s transition shaders at the chain policy's switches
   // (search/transitions.h): the part of each band they blend over, 0 for
   // none, and the distance expression; without one, the default's, and a

@@ -20,8 +20,8 @@ std::string levelDecisionText(const Chain& chain, size_t k, const ModuleHeader& 
   return graph::writeDecisionFile(
       placementDecisions(header.derived, level.placement),
       fmt::format("spire-simplify --search: level {} of {}'s chain, {}.\nMeasured: RMSE {:.6f}, time "
-                  "ratio {:.3f} against level 0; cost C = {:.1f}.",
-                  k, header.base, what, level.error, level.timeRatio, level.modelCost));
+                  "ratio {:.3f} against {}; cost C = {:.1f}.",
+                  k, header.base, what, level.error, level.timeRatio, chain.measuredAgainst, level.modelCost));
 }
 
 namespace {
@@ -62,8 +62,8 @@ std::string transitionSection(const Chain& chain, const OutputRequest& request) 
   const ChainTransitions& made = request.transitions;
   if (made.transitions.list.empty()) return text + fmt::format("None: {}.\n", made.note);
   text +=
-      "Time is the frame time over level 0's, as for the levels: a transition computes both levels it blends, "
-      "so its band costs more than either.\n\n"
+      "Time is the frame time over the reference's, as for the levels: a transition computes both levels it "
+      "blends, so its band costs more than either.\n\n"
       "| from level | to level | blends from | to | time | level A's, B's | decision file | from the first camera "
       "view |\n"
       "|---|---|---|---|---|---|---|---|\n";
@@ -83,13 +83,13 @@ std::string report(const Chain& chain, const OutputRequest& request) {
   std::string text = fmt::format(
       "# Greedy simplification of {}\n\n"
       "He et al. 2015's search on `{}`: K1 = {}, K2 = {}, K3 = {}, at most {} level(s), error budget {}. "
-      "Error is the RMSE against level 0 over every camera view and parameter sample; time is the frame time "
-      "over level 0's, frame for frame (level 0: {:.3f} ms). C is He et al.'s cost model of the level's program, "
+      "Error is the RMSE against {} over every camera view and parameter sample; time is the frame time "
+      "over its, frame for frame ({:.3f} ms). C is He et al.'s cost model of the level's program, "
       "0.3·C_v + 0.7·C_f + 10·N_var; candidates were ranked and the chain ordered by {}.\n\n"
       "Stopped: {}.\n\n![error against time](error_time.png)\n\n"
       "| level | RMSE | time ratio | frame ms | C | rewrite |\n|---|---|---|---|---|---|\n",
-      request.header.base, o.scenePath, o.k1, o.k2, o.k3, o.maxLevels, o.errorBudget, request.referenceMs,
-      o.cost == CostKind::Model ? "C" : "the measured time", chain.stopReason);
+      request.header.base, o.scenePath, o.k1, o.k2, o.k3, o.maxLevels, o.errorBudget, chain.measuredAgainst,
+      request.referenceMs, o.cost == CostKind::Model ? "C" : "the measured time", chain.stopReason);
   for (size_t k = 0; k < chain.levels.size(); ++k) {
     const Level& level = chain.levels[k];
     std::string rewrite = "the original";

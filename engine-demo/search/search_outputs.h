@@ -35,7 +35,7 @@ struct ChainTransitions {
 struct OutputRequest {
   ModuleHeader header;  // with the `using` path relative to the output folder
   const SearchOptions* options = nullptr;
-  double referenceMs = 0.0;  // level 0's median frame time in this run
+  double referenceMs = 0.0;  // the reference's median frame time in this run (level 0's, or --reference's)
   // The chain as a level-of-detail policy (lod_policy.json and a section
   // of report.md); none when the chain has no level after the original.
   const ChainPolicy* policy = nullptr;

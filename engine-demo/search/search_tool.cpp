@@ -245,7 +245,9 @@ int search(const SearchOptions& options, const simplify::UserRules& rules, engin
   auto measurement = tunerOptions(options, scene, instance);
   if (!measurement) return fail(measurement.error().message);
   tune::Tuner tuner(renderer, instance, {}, std::move(measurement).value());
-  if (auto reference = tuner.renderReference(std::nullopt); !reference) return run.fail(reference.error());
+  const auto referencePath =
+      options.reference ? std::optional<std::filesystem::path>(*options.reference) : std::nullopt;
+  if (auto reference = tuner.renderReference(referencePath); !reference) return run.fail(reference.error());
   auto setup = makeSetup(renderer, scene, instance, options);
   if (!setup) return fail(setup.error().message);
   const WorkDir work;
@@ -256,6 +258,7 @@ int search(const SearchOptions& options, const simplify::UserRules& rules, engin
   const ModuleHeader outputHeader = headerIn(options.outputDir, scene.instances.at(instance), options);
   auto chain = greedySearch(*setup, options, out);
   if (!chain) return fail(chain.error().message);
+  if (options.reference) chain->measuredAgainst = fmt::format("the variant of `{}`", *options.reference);
   std::optional<ChainPolicy> policy;
   ChainTransitions transitions;
   if (!chain->steps.empty()) {

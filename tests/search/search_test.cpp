@@ -327,6 +327,43 @@ TEST_F(SearchRun, RendersAtTheGivenResolution) {
   EXPECT_EQ(runSearchTool(bad, badOut, badErr), kExitUsageError) << badErr.str();
 }
 
+// With --reference, errors and times are against that decision file's
+// variant, here one whose `wide` is black: level 0 is already off it, every
+// level at least as far, and a budget below level 0's error leaves no level.
+TEST_F(SearchRun, MeasuresAgainstTheGivenReference) {
+  std::string shader = kShader;
+  const std::string color = "    @Fragment vec4 color =";
+  shader.insert(shader.find(color), "    @Fragment vec4 wide:dark = vec4(0.0);\n");
+  std::ofstream(dir_ / "blurred.spire") << shader;
+  std::ofstream(dir_ / "dark.decisions") << "Blurred.wide = Fragment:dark\n";
+  const std::string reference = (dir_ / "dark.decisions").string();
+  std::ostringstream out, err;
+  ASSERT_EQ(
+      runSearchTool(searchArgs({"--max-levels", "1", "--no-average", "--no-acse", "--reference", reference}), out, err),
+      kExitSuccess)
+      << err.str() << out.str();
+  const auto rows = csvRows(dir_ / "out/chain.csv");
+  ASSERT_EQ(rows.size(), 2U) << out.str();
+  const double original = std::stod(rows[0][1]);
+  EXPECT_GT(original, 0.01) << "level 0 draws the wide blur the reference leaves black";
+  EXPECT_GE(std::stod(rows[1][1]), original);
+  EXPECT_NE(readText(dir_ / "out/report.md").find("Error is the RMSE against the variant of `" + reference + "`"),
+            std::string::npos)
+      << readText(dir_ / "out/report.md");
+  EXPECT_NE(readText(dir_ / "out/level1.decisions").find("against the variant of `" + reference + "`"),
+            std::string::npos);
+
+  fs::remove_all(dir_ / "out");
+  std::ostringstream tightOut, tightErr;
+  const std::string budget = fmt::format("{}", original / 2);
+  ASSERT_EQ(runSearchTool(searchArgs({"--max-levels", "1", "--no-average", "--no-acse", "--reference", reference,
+                                      "--error-budget", budget}),
+                          tightOut, tightErr),
+            kExitSuccess)
+      << tightErr.str();
+  EXPECT_EQ(csvRows(dir_ / "out/chain.csv").size(), 1U) << tightOut.str();
+}
+
 // User rules propose beside the built-in ones, and one whose replacement
 // compiles to another type (`sum += <float>` is legal where a vec4 was
 // added) is dropped with the reason, as spire-simplify drops it.
