@@ -62,6 +62,7 @@ int64_t CostModel::definition(const ast::ComponentDecl& decl, const Substitution
 int64_t CostModel::sharedDefinition(const ast::ComponentDecl& decl, std::set<std::string>& values) {
   values_ = &values;
   unshared_ = 0;
+  sharedCalls_ = 0;
   keys_.beginDefinition();
   const int64_t cost = definition(decl);
   values_ = nullptr;
@@ -205,7 +206,9 @@ int64_t CostModel::call(const ast::CallExpr& c) {
       if (!pure) {
         for (const ast::ExprPtr& arg : c.args) wrote(*arg, std::nullopt);
       }
-      if (sharing() && pure && decl && decl->body && !inProgress_.contains(info.function)) {
+      if (sharing() && pure && decl && decl->body && !inProgress_.contains(info.function) &&
+          sharedCalls_ < kMaxSharedCalls) {
+        ++sharedCalls_;
         return args + sharedCall(*info.function, c);
       }
       return args + function(*info.function);

@@ -48,6 +48,12 @@ namespace spire::simplify {
 
 inline constexpr int64_t kTextureFetchCost = 100;
 
+// Function bodies a shared definition costs call by call (each call binds
+// other arguments); past this many, calls are costed as the body alone,
+// once per function, so that functions calling others twice, nested, stay
+// linear instead of doubling at every level.
+inline constexpr int kMaxSharedCalls = 4096;
+
 // One rewrite seen by the model, to cost a definition as it would be after
 // the rewrite without writing and compiling it: `target` costs what `parts`
 // cost together (a collapse keeps one subexpression; a user rule keeps the
@@ -103,6 +109,7 @@ class CostModel {
   ValueKeys keys_;
   std::set<std::string>* values_ = nullptr;  // while costing a shared definition
   int unshared_ = 0;                         // depth of branches and loops being costed
+  int sharedCalls_ = 0;                      // function bodies costed call by call in this definition
 };
 
 // Scalars in a value of `type`: 1 for a float, 16 for a mat4, the sum of the

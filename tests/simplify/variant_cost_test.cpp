@@ -2,6 +2,7 @@
 // own, whose world names say nothing: the rates come from the worlds'
 // stages, the pipeline's requirements and its imports. C_v, C_f and N_var
 // are worked out by hand in the comments.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -9,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "simplify/cost_model.h"
 #include "simplify/simplify_tool.h"
 #include "simplify/variant_cost.h"
 #include "simplify_fixture.h"
@@ -224,6 +226,37 @@ TEST_F(VariantCostTest, ALongChainIsCountedWholeWithoutSharing) {
   const VariantCost cost = costOf({});
   ASSERT_NE(row(cost, "total"), nullptr);
   EXPECT_EQ(row(cost, "total")->ops, 19999);
+}
+
+// Functions that call the one before twice, 40 deep, with arguments that
+// never meet (x * 2 * 3 is not x * 3 * 2 to the keys): costed call by
+// call, the last would take 2^40 bodies. Past kMaxSharedCalls the calls are
+// costed as their bodies alone, once per function, and the cost is finite
+// and no more than costed alone.
+TEST_F(VariantCostTest, NestedCallsStayLinear) {
+  std::string functions = "float f0(float x) { return x * 2.0; }\n";
+  for (int i = 1; i <= 40; ++i) {
+    functions += fmt::format("float f{}(float x) {{ return f{}(x * 2.0) + f{}(x * 3.0); }}\n", i, i - 1, i - 1);
+  }
+  std::string source = std::string(kPipeline) + functions + R"(shader S using P {
+    @Uni mat4 mvp;
+    vec4 clip = mvp * vec4(pos, 1.0);
+    float deep = f40(pos.x);
+    vec4 color = vec4(deep);
+}
+)";
+  load(source);
+  const VariantCost cost = costOf({});
+  ASSERT_NE(row(cost, "deep"), nullptr);
+  CostModel alone(library_->model());
+  const auto variant = library_->buildVariant("S", {});
+  ASSERT_TRUE(variant);
+  EXPECT_GT(row(cost, "deep")->ops, 0);
+  for (sem::ComponentId c : variant->live()) {
+    const graph::ComponentNode& node = variant->graph().node(c);
+    if (node.component->name != "deep") continue;
+    EXPECT_LE(row(cost, "deep")->ops, alone.definition(*node.alternatives[*variant->choice(c)].definition->decl));
+  }
 }
 
 }  // namespace
