@@ -70,6 +70,15 @@ const std::vector<AttributeSpec>& catalog() {
        {},
        "",
        true},
+      {"Transition",
+       {AttributeSite::Component},
+       "a definition of a level-of-detail transition (spire-simplify --search writes them); spire-tune leaves it "
+       "out of the space it explores",
+       {},
+       {},
+       {},
+       "",
+       true},
   };
   return specs;
 }

@@ -106,7 +106,7 @@ class TransitionWriter {
     const std::string fade = fmt::format("spireTransitionFade{}_{}", t.from, t.to);
     t.definitions = fmt::format(
         "\n    // The transition from level {0} to level {1}: level {0} up to {2:.9g} from the eye, level {1} "
-        "from {3:.9g}.\n    float {4} = clamp(({5} - {2:.9g}) / {6:.9g}, 0.0, 1.0);\n",
+        "from {3:.9g}.\n    [Transition] float {4} = clamp(({5} - {2:.9g}) / {6:.9g}, 0.0, 1.0);\n",
         t.from, t.to, t.nearDistance, t.farDistance, fade, kDistance, t.farDistance - t.nearDistance);
     t.placement = near.placement;
     // What both levels compute, each its own way.
@@ -148,15 +148,15 @@ class TransitionWriter {
       const uint32_t after = decl->variation.empty() ? decl->nameRange.end : decl->variationRange.end;
       auto body = copiedBody(module_.sources(), *decl, after, t, side, blended);
       if (!body) return body.error();
-      t.definitions +=
-          fmt::format("    {}{} {}{}\n", decl->world ? "@" + *decl->world + " " : "", type, copy[side], *body);
+      t.definitions += fmt::format("    [Transition] {}{} {}{}\n", decl->world ? "@" + *decl->world + " " : "", type,
+                                   copy[side], *body);
       helpers.emplace_back(copy[side], worldOf(where[side]));
     }
     const std::string variation = fmt::format("transition{}_{}", t.from, t.to);
     const std::string value = simplify::floatScalarCount(type)
                                   ? fmt::format("mix({}, {}, {})", copy[0], copy[1], fade)
                                   : fmt::format("{} < 0.5 ? {} : {}", fade, copy[0], copy[1]);
-    t.definitions += fmt::format("    {} {}:{} = {};\n", type, component, variation, value);
+    t.definitions += fmt::format("    [Transition] {} {}:{} = {};\n", type, component, variation, value);
     return variation;
   }
 
@@ -215,7 +215,7 @@ Expected<Transitions, Failure> chainTransitions(const Chain& chain, const lod::L
   TransitionWriter writer(chainModule, *shader);
   Transitions transitions;
   transitions.shared =
-      fmt::format("\n    // The eye's distance, which the transitions blend by.\n{}    float {} = {};\n",
+      fmt::format("\n    // The eye's distance, which the transitions blend by.\n{}    [Transition] float {} = {};\n",
                   shape.distance.declarations, kDistance, shape.distance.expression);
   for (size_t band = 0; band + 1 < policy.levels.size(); ++band) {
     const std::optional<size_t> from = chainLevel(policy.levels[band], derived);

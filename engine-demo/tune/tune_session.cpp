@@ -36,6 +36,9 @@ std::optional<int> buildSpace(const TuneOptions& options, engine::ToolRun& run, 
   request.only = options.only;
   request.maxVariants = options.maxVariants;
   request.seed = options.seed;
+  if (const graph::ChoiceSpace* choices = (*library)->choiceSpace(options.shader)) {
+    request.transitions = transitionPlacements(*choices);
+  }
   auto space = buildTuneSpace((*library)->choices(options.shader), request);
   if (!space) return run.fail({space.error().message, session.instance->shaderRange, {}});
   session.space = std::move(*space);

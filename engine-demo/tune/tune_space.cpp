@@ -6,6 +6,8 @@
 #include <random>
 #include <set>
 
+#include "graph/shader_graph.h"
+
 namespace spire::tune {
 
 namespace {
@@ -27,6 +29,24 @@ bool kept(const std::string& placement, const std::vector<std::string>& only) {
 }
 
 }  // namespace
+
+std::map<std::string, std::set<std::string>> transitionPlacements(const graph::ChoiceSpace& space) {
+  std::map<std::string, std::set<std::string>> placements;
+  const graph::ShaderGraph& graph = space.graph();
+  for (const graph::Choice& choice : graph::enumerateChoices(space)) {
+    const graph::ComponentNode& node = graph.node(choice.component);
+    for (size_t i = 0; i < choice.alternatives.size() && i < choice.names.size(); ++i) {
+      const sem::Definition* definition = node.alternatives.at(choice.alternatives[i]).definition;
+      if (!definition || !definition->decl) continue;
+      const auto& attributes = definition->decl->attributes;
+      if (std::any_of(attributes.begin(), attributes.end(),
+                      [](const ast::Attribute& a) { return a.name == "Transition"; })) {
+        placements[componentOf(choice.key)].insert(choice.names[i]);
+      }
+    }
+  }
+  return placements;
+}
 
 TunePoint pointAt(const std::vector<Axis>& axes, uint64_t index) {
   TunePoint point;
@@ -61,9 +81,24 @@ Expected<TuneSpace, Failure> buildTuneSpace(const std::vector<graph::Choice>& ch
     const std::set<std::string> none;
     const std::set<std::string>& onlyWorlds = selected.empty() ? none : selected.at(component);
     Axis axis{component, {}};
+    const auto transitions = request.transitions.find(component);
+    size_t transitionsLeftOut = 0;
     for (const std::string& name : choice.names) {
       const bool inWorld = onlyWorlds.empty() || onlyWorlds.contains(name.substr(0, name.find(':')));
-      if (inWorld && kept(name, request.only)) axis.placements.push_back(name);
+      if (!inWorld || !kept(name, request.only)) continue;
+      if (transitions != request.transitions.end() && transitions->second.contains(name)) {
+        ++transitionsLeftOut;
+        continue;
+      }
+      axis.placements.push_back(name);
+    }
+    if (axis.placements.empty() && transitionsLeftOut > 0) {
+      if (selected.empty()) continue;
+      return Failure{
+          fmt::format("component '{}' has only level-of-detail transitions (definitions marked "
+                      "[Transition]) among the requested worlds and variations, which spire-tune does "
+                      "not explore",
+                      component)};
     }
     if (axis.placements.empty()) {
       return Failure{

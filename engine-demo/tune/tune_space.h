@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -47,7 +48,16 @@ struct SpaceRequest {
   std::vector<std::string> only;
   uint64_t maxVariants = 4096;  // above this the product is sampled
   uint64_t seed = 1;
+  // Placements never explored, by component: definitions marked
+  // [Transition], which blend two levels of detail by distance and cost
+  // both (transitionPlacements). A component left with none is no axis
+  // unless it was asked for, which is an error.
+  std::map<std::string, std::set<std::string>> transitions;
 };
+
+// The placements of the shader's choices whose definition is marked
+// [Transition], by component.
+std::map<std::string, std::set<std::string>> transitionPlacements(const graph::ChoiceSpace& space);
 
 // Builds the space from the shader's choices (graph::enumerateChoices).
 // Errors name the component that has no choice or no placement left.

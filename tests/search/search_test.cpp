@@ -280,8 +280,10 @@ TEST_F(SearchRun, WritesAMonotoneChainOfAccumulatingRewrites) {
     EXPECT_NE(readText(dir_ / "out/report.md").find(fmt::format("](level{}.png)", k)), std::string::npos);
   }
   // The test's shader reads matMVP, so the transition shaders read the eye
-  // and the model matrix from its world: they are written.
+  // and the model matrix from its world: they are written, marked
+  // [Transition] so that spire-tune does not explore them.
   EXPECT_EQ(readText(dir_ / "out/report.md").find("do not compile"), std::string::npos);
+  EXPECT_NE(module.find("[Transition] vec4 color:transition"), std::string::npos) << module;
   EXPECT_TRUE(std::any_of(fs::directory_iterator(dir_ / "out"), fs::directory_iterator(), [](const auto& entry) {
     return entry.path().filename().string().starts_with("transition");
   }));

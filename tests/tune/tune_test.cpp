@@ -24,6 +24,7 @@
 
 #include "common/lod_test_scene.h"
 #include "driver/exit_codes.h"
+#include "driver/shader_library.h"
 #include "engine/device_fixture.h"
 #include "lod/lod_policy.h"
 #include "scene/scene_file.h"
@@ -104,6 +105,49 @@ TEST(TuneSpace, SelectsComponentsWorldsAndVariations) {
   const auto misspelt = buildTuneSpace(terrainChoices(), request);
   ASSERT_FALSE(misspelt);
   EXPECT_NE(misspelt.error().message.find("'albdo' is not a choice"), std::string::npos) << misspelt.error().message;
+}
+
+// Definitions marked [Transition] (spire-simplify --search's blends of two
+// levels) are found from the compiled shader and never explored: a
+// component left without placements is no axis, unless it was asked for.
+TEST(TuneSpace, LeavesOutLevelOfDetailTransitions) {
+  const fs::path dir = fs::temp_directory_path() / ("spire_tune_transitions_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "t.spire") << "using \"" << fs::absolute("pipelines/engine.spire").string() << R"(";
+shader T using EnginePipeline {
+    @FrameUniform mat4 matMVP;
+    vec4 projPos = matMVP * vec4(vert_pos, 1.0);
+    vec3 tint = vec3(1.0);
+    [Transition] vec3 tint:blend = vec3(0.5);
+    [Transition] float fade = 0.5;
+    vec4 output = vec4(tint * fade, 1.0);
+}
+)";
+  ShaderLibrary library;
+  ASSERT_TRUE(library.addFile((dir / "t.spire").string()));
+  ASSERT_TRUE(library.compile());
+  const graph::ChoiceSpace* choiceSpace = library.choiceSpace("T");
+  ASSERT_NE(choiceSpace, nullptr);
+  SpaceRequest request;
+  request.transitions = transitionPlacements(*choiceSpace);
+  ASSERT_EQ(request.transitions.count("tint"), 1U);
+  EXPECT_EQ(request.transitions.at("tint").size(), 3U) << "tint:blend in each of its three worlds";
+  for (const std::string& placement : request.transitions.at("tint")) {
+    EXPECT_TRUE(placement.ends_with(":blend")) << placement;
+  }
+  ASSERT_EQ(request.transitions.count("fade"), 1U);
+  const auto space = buildTuneSpace(library.choices("T"), request);
+  ASSERT_TRUE(space) << space.error().message;
+  for (const Axis& axis : space->axes) {
+    EXPECT_NE(axis.component, "fade") << "every fade placement is a transition";
+    for (const std::string& placement : axis.placements) EXPECT_FALSE(placement.ends_with(":blend")) << placement;
+  }
+  request.components = {"fade"};
+  const auto asked = buildTuneSpace(library.choices("T"), request);
+  ASSERT_FALSE(asked);
+  EXPECT_NE(asked.error().message.find("component 'fade' has only level-of-detail transitions"), std::string::npos)
+      << asked.error().message;
+  fs::remove_all(dir);
 }
 
 TEST(TuneSpace, SamplesLargeProductsDeterministically) {
