@@ -17,6 +17,8 @@ bool writesOutParameter(std::string_view builtin) {
   return false;
 }
 
+}  // namespace
+
 bool callWrites(const sem::Model& model, const ast::CallExpr& call) {
   const sem::ExprInfo& info = model.info(call);
   if (info.ref == sem::RefKind::Builtin) return writesOutParameter(call.callee.name);
@@ -26,8 +28,6 @@ bool callWrites(const sem::Model& model, const ast::CallExpr& call) {
   }
   return false;
 }
-
-}  // namespace
 
 bool hasSideEffects(const sem::Model& model, const ast::Expr& root) {
   std::vector<const ast::Expr*> pending{&root};

@@ -14,4 +14,8 @@ namespace spire::codegen {
 // an explicit stack: generated chains are deeper than the call stack allows.
 bool hasSideEffects(const sem::Model& model, const ast::Expr& e);
 
+// True when `call` passes any argument to an `out` or `inout` parameter (a
+// user function's, or a built-in's such as modf's second).
+bool callWrites(const sem::Model& model, const ast::CallExpr& call);
+
 }  // namespace spire::codegen

@@ -4,6 +4,7 @@
 #include <string_view>
 #include <utility>
 
+#include "codegen/expression_effects.h"
 #include "simplify/syntax_walk.h"
 
 namespace spire::simplify {
@@ -196,17 +197,17 @@ int64_t CostModel::call(const ast::CallExpr& c) {
     args += expr(*arg);
     widest = std::max(widest, scalarsOf(*arg));
   }
+  // What an `out` argument held before the call is not what it holds after.
+  const bool writes = codegen::callWrites(model_, c);
+  if (writes) {
+    for (const ast::ExprPtr& arg : c.args) wrote(*arg, std::nullopt);
+  }
   const sem::ExprInfo& info = model_.info(c);
   switch (info.ref) {
     case sem::RefKind::Function: {
       if (!info.function) return args;
       const ast::FunctionDecl* decl = info.function->decl;
-      const bool pure = std::all_of(info.function->params.begin(), info.function->params.end(),
-                                    [](const sem::Param& p) { return p.direction == ast::ParamDirection::In; });
-      if (!pure) {
-        for (const ast::ExprPtr& arg : c.args) wrote(*arg, std::nullopt);
-      }
-      if (sharing() && pure && decl && decl->body && !inProgress_.contains(info.function) &&
+      if (sharing() && !writes && decl && decl->body && !inProgress_.contains(info.function) &&
           sharedCalls_ < kMaxSharedCalls) {
         ++sharedCalls_;
         return args + sharedCall(*info.function, c);
@@ -376,26 +377,6 @@ bool within(const SourceRange& inner, const SourceRange& outer) {
   return inner.file == outer.file && inner.begin >= outer.begin && inner.end <= outer.end;
 }
 
-// Whether evaluating `init` may change something besides the local it
-// initializes: then it is kept even if the local is never read.
-bool hasSideEffects(const sem::Model& model, const ast::Expr& init) {
-  bool effects = false;
-  SyntaxWalker walker(
-      [&](const ast::Expr& e) {
-        const auto* u = ast::dyn_cast<ast::UnaryExpr>(&e);
-        effects = effects || e.kind == ast::ExprKind::Assign ||
-                  (u && u->op != ast::UnaryOp::Plus && u->op != ast::UnaryOp::Negate &&
-                   u->op != ast::UnaryOp::LogicalNot && u->op != ast::UnaryOp::BitNot);
-        const sem::Function* f = model.info(e).ref == sem::RefKind::Function ? model.info(e).function : nullptr;
-        effects = effects || (f && std::any_of(f->params.begin(), f->params.end(), [](const sem::Param& p) {
-                                return p.direction != ast::ParamDirection::In;
-                              }));
-      },
-      [](const ast::Stmt&) {});
-  walker.expr(&init);
-  return effects;
-}
-
 }  // namespace
 
 // The locals of `decl` whose value nothing reads: a read outside every
@@ -430,7 +411,9 @@ std::set<const ast::VarDeclarator*> CostModel::deadLocals(const ast::ComponentDe
     if (live.insert(local).second) pending.push_back(local);
   };
   for (const ast::VarDeclarator* local : locals) {
-    if (hasSideEffects(model_, *local->init)) keep(local);
+    // An initializer that writes something besides its local is kept even
+    // if the local is never read.
+    if (codegen::hasSideEffects(model_, *local->init)) keep(local);
   }
   // Not a structured binding: clang 14 (the fuzz preset) cannot capture one.
   for (const auto& read : reads) {

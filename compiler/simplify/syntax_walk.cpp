@@ -1,14 +1,9 @@
 #include "simplify/syntax_walk.h"
 
-#include <algorithm>
-
 namespace spire::simplify {
 namespace {
 
-bool immutable(const ast::Stmt& s) {
-  return std::any_of(s.attributes.begin(), s.attributes.end(),
-                     [](const ast::Attribute& a) { return a.name == "Immutable"; });
-}
+bool immutable(const ast::Stmt& s) { return ast::hasAttribute(s.attributes, "Immutable"); }
 
 }  // namespace
 

@@ -2,17 +2,9 @@
 
 #include <fmt/format.h>
 
+#include "codegen/expression_effects.h"
+
 namespace spire::simplify {
-namespace {
-
-bool hasOutParameter(const sem::Function& f) {
-  for (const sem::Param& p : f.params) {
-    if (p.direction != ast::ParamDirection::In) return true;
-  }
-  return false;
-}
-
-}  // namespace
 
 void ValueKeys::beginDefinition() { frames_.assign(1, Frame{}); }
 
@@ -146,12 +138,13 @@ std::optional<std::string> ValueKeys::binary(const ast::BinaryExpr& top) {
 }
 
 std::optional<std::string> ValueKeys::call(const ast::CallExpr& c) {
+  if (codegen::callWrites(model_, c)) return std::nullopt;
   const sem::ExprInfo& info = model_.info(c);
   std::vector<const ast::Expr*> args;
   for (const ast::ExprPtr& arg : c.args) args.push_back(arg.get());
   if (info.ref == sem::RefKind::Function) {
     // Overloads share a name: the function itself tells them apart.
-    if (!info.function || hasOutParameter(*info.function)) return std::nullopt;
+    if (!info.function) return std::nullopt;
     return joined(fmt::format("f{}", static_cast<const void*>(info.function)), args);
   }
   return joined(c.callee.name, args);

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "support/source_manager.h"
@@ -226,6 +227,14 @@ struct Attribute {
   std::optional<std::string> value;  // unescaped string contents
   SourceRange valueRange;
 };
+
+// Whether `attributes` holds one named `name` (`[Immutable]`, `[Transition]`).
+inline bool hasAttribute(const std::vector<Attribute>& attributes, std::string_view name) {
+  for (const Attribute& a : attributes) {
+    if (a.name == name) return true;
+  }
+  return false;
+}
 
 // ---------------------------------------------------------------------------
 // Statements

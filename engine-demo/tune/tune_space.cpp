@@ -37,10 +37,7 @@ std::map<std::string, std::set<std::string>> transitionPlacements(const graph::C
     const graph::ComponentNode& node = graph.node(choice.component);
     for (size_t i = 0; i < choice.alternatives.size() && i < choice.names.size(); ++i) {
       const sem::Definition* definition = node.alternatives.at(choice.alternatives[i]).definition;
-      if (!definition || !definition->decl) continue;
-      const auto& attributes = definition->decl->attributes;
-      if (std::any_of(attributes.begin(), attributes.end(),
-                      [](const ast::Attribute& a) { return a.name == "Transition"; })) {
+      if (definition && definition->decl && ast::hasAttribute(definition->decl->attributes, "Transition")) {
         placements[componentOf(choice.key)].insert(choice.names[i]);
       }
     }
