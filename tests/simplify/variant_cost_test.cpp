@@ -259,5 +259,27 @@ TEST_F(VariantCostTest, NestedCallsStayLinear) {
   }
 }
 
+// A built-in that writes an argument (modf's second) gives the local a new
+// value: `ip * 2.0` after it is not the `1.0 * 2.0` that b computes.
+//   a = modf 1 + `ip * 2.0` 1 + `+ f` 1 = 3; b = 1.
+TEST_F(VariantCostTest, ALocalABuiltinWritesIsANewValue) {
+  load(std::string(kPipeline) + R"(shader S using P {
+    @Uni mat4 mvp;
+    vec4 clip = mvp * vec4(pos, 1.0);
+    float a {
+        float ip = 1.0;
+        float f = modf(pos.x, ip);
+        return ip * 2.0 + f;
+    }
+    float b = 1.0 * 2.0;
+    vec4 color = vec4(a, b, 0.0, 1.0);
+}
+)");
+  const VariantCost cost = costOf({});
+  ASSERT_NE(row(cost, "a"), nullptr);
+  ASSERT_NE(row(cost, "b"), nullptr);
+  EXPECT_EQ(row(cost, "a")->ops + row(cost, "b")->ops, 3 + 1);
+}
+
 }  // namespace
 }  // namespace spire::simplify
