@@ -1,7 +1,5 @@
-// Locked worlds (paper section 6.2): a shader derived from a base that
-// finalizes a world may neither add definitions there nor redefine what the
-// base may compute there. Either would change the locked world's kernel,
-// which every shader derived from the base must share.
+#include "sema/locked_worlds.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -10,10 +8,6 @@
 
 namespace spire::sem {
 namespace {
-
-bool isLocked(const Shader& base, WorldId world) {
-  return std::find(base.finalizedWorlds.begin(), base.finalizedWorlds.end(), world) != base.finalizedWorlds.end();
-}
 
 // The `finalizes` clause that locks `world` for shaders derived from `base`.
 const ast::NameRef* finalizingClause(const Shader& base, std::string_view world) {
@@ -25,8 +19,12 @@ const ast::NameRef* finalizingClause(const Shader& base, std::string_view world)
   return nullptr;
 }
 
-// A locked world where the base's own definitions of `component` may run:
-// an explicit one's world, or for an implicit one the first locked world.
+}  // namespace
+
+bool isLocked(const Shader& base, WorldId world) {
+  return std::find(base.finalizedWorlds.begin(), base.finalizedWorlds.end(), world) != base.finalizedWorlds.end();
+}
+
 std::optional<WorldId> lockedWorldOf(const Shader& base, const Component& component) {
   for (const Definition& d : component.definitions) {
     if (d.isInput()) continue;
@@ -36,7 +34,10 @@ std::optional<WorldId> lockedWorldOf(const Shader& base, const Component& compon
   return std::nullopt;
 }
 
-}  // namespace
+std::optional<WorldId> lockedAgainstRedefinition(const Shader& base, const Component& component) {
+  if (component.requiredWorld && isLocked(base, *component.requiredWorld)) return component.requiredWorld;
+  return lockedWorldOf(base, component);
+}
 
 bool Analyzer::checkLockedDefinition(const Shader& base, const Pipeline& pipeline, const ast::ComponentDecl& decl) {
   if (base.finalizedWorlds.empty() || !decl.hasDefinition()) return true;

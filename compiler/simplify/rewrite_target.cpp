@@ -1,10 +1,12 @@
 #include "simplify/rewrite_target.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <set>
 
+#include "sema/locked_worlds.h"
 #include "simplify/syntax_walk.h"
 
 namespace spire::simplify {
@@ -28,10 +30,62 @@ bool immutable(const sem::Component& component) {
                      [](const ast::Attribute* a) { return a->name == "Immutable"; });
 }
 
-Expected<std::vector<const sem::Component*>, Failure> selectComponents(const sem::Shader& shader,
-                                                                       const std::vector<std::string>& components) {
+namespace {
+
+// The shaders a group makes for `name` (`name<Member>`), as a list.
+std::string shadersMadeFor(const sem::Model& model, const std::string& name) {
+  std::vector<std::string> made;
+  for (const auto& shader : model.shaders) {
+    if (shader->derivedFrom && shader->derivedFrom->name == name) made.push_back("'" + shader->name + "'");
+  }
+  return fmt::format("{}", fmt::join(made, ", "));
+}
+
+}  // namespace
+
+Expected<const sem::Shader*, Failure> shaderToDerive(const sem::Model& model, const std::string& name) {
+  const sem::Shader* shader = model.findShader(name);
+  if (!shader) {
+    const std::string made = shadersMadeFor(model, name);
+    if (made.empty()) return Failure{fmt::format("no shader named '{}'", name)};
+    return Failure{
+        fmt::format("'{}' derives from a group: it makes the shaders {}, and no shader can derive from "
+                    "those to hold their variations",
+                    name, made)};
+  }
+  if (shader->derivedFrom || !shader->decl) {
+    const std::string maker =
+        shader->derivedFrom ? fmt::format("'{}' makes", shader->derivedFrom->name) : "a group makes";
+    return Failure{
+        fmt::format("'{}' is one of the shaders {} from the members of a group, and no shader can derive "
+                    "from those to hold its variations",
+                    shader->name, maker)};
+  }
+  std::vector<std::string> abstract;
+  for (const sem::Component& c : shader->components) {
+    if (c.isAbstract && c.definitions.empty()) abstract.push_back("'" + c.name + "'");
+  }
+  if (abstract.empty()) return shader;
+  return Failure{
+      fmt::format("'{}' is abstract: it leaves {} to the shaders derived from it, and a shader derived from "
+                  "it to hold its variations would have to define them",
+                  shader->name, fmt::join(abstract, ", "))};
+}
+
+// Why a shader derived from `shader` may not redefine `c`, if it may not.
+std::optional<std::string> lockedReason(const sem::Shader& shader, const sem::Component& c) {
+  const std::optional<sem::WorldId> world = sem::lockedAgainstRedefinition(shader, c);
+  if (!world || !shader.pipeline) return std::nullopt;
+  return fmt::format(
+      "'{}' may be computed in world '{}', which is finalized for shaders derived from '{}': they "
+      "cannot redefine it",
+      c.name, shader.pipeline->worlds[*world].name, shader.name);
+}
+
+Expected<ComponentSelection, Failure> selectComponents(const sem::Shader& shader,
+                                                       const std::vector<std::string>& components) {
   std::set<std::string> wanted(components.begin(), components.end());
-  std::vector<const sem::Component*> selected;
+  ComponentSelection selected;
   for (const sem::Component& c : shader.components) {
     const bool fromPipeline = shader.pipeline && c.origin == shader.pipeline->name;
     const bool named = wanted.erase(c.name) > 0;
@@ -41,7 +95,12 @@ Expected<std::vector<const sem::Component*>, Failure> selectComponents(const sem
                                  fromPipeline ? "the pipeline's" : "marked [Immutable]")};
     }
     if (fromPipeline || immutable(c)) continue;
-    selected.push_back(&c);
+    if (std::optional<std::string> locked = lockedReason(shader, c)) {
+      if (named) return Failure{fmt::format("'{}' cannot be simplified: {}", c.name, *locked)};
+      selected.lockedOut.push_back(std::move(*locked));
+      continue;
+    }
+    selected.components.push_back(&c);
   }
   if (!wanted.empty()) {
     return Failure{fmt::format("'{}' has no component '{}'", shader.name, *wanted.begin())};

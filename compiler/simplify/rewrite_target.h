@@ -20,11 +20,28 @@ namespace spire::simplify {
 // Whether the component is marked [Immutable] (no rule may touch it).
 bool immutable(const sem::Component& component);
 
+// The shader named `name`, from which a shader holding its variations can
+// be derived; or why there is none: no such shader (naming the shaders a
+// group makes for it, when `name` derives from a group), one of the shaders
+// a group makes (`Barrel<LodHQ>`, which the language gives no way to derive
+// from), or an abstract shader (one derived from it would have to define
+// what it leaves abstract).
+Expected<const sem::Shader*, Failure> shaderToDerive(const sem::Model& model, const std::string& name);
+
+struct ComponentSelection {
+  std::vector<const sem::Component*> components;
+  // Why each component a run would otherwise take was left out: a base
+  // finalizes a world it may be computed in (sema/locked_worlds.h), and a
+  // shader derived from `shader`, where rewrites go, could not redefine it.
+  std::vector<std::string> lockedOut;
+};
+
 // The components of `shader` to rewrite, in the shader's order: `wanted`, or
-// every one when it is empty, never the pipeline's or [Immutable] ones.
-// Naming one of those, or a component the shader lacks, is an error.
-Expected<std::vector<const sem::Component*>, Failure> selectComponents(const sem::Shader& shader,
-                                                                       const std::vector<std::string>& wanted);
+// every one when it is empty, never the pipeline's, [Immutable] ones or
+// those a derived shader may not redefine. Naming one of those, or a
+// component the shader lacks, is an error.
+Expected<ComponentSelection, Failure> selectComponents(const sem::Shader& shader,
+                                                       const std::vector<std::string>& wanted);
 
 // `decl`'s source with `rewrite` applied, named `variation` (which replaces
 // the variation it had, if any).

@@ -164,11 +164,7 @@ std::map<std::string, int64_t> compiledSavings(const ShaderLibrary& compiled, co
   return savings;
 }
 
-Expected<ModuleHeader, Failure> headerFor(const ShaderLibrary& library, const sem::Shader& shader,
-                                          const SimplifyOptions& options) {
-  if (shader.derivedFrom || !shader.decl) {
-    return Failure{fmt::format("'{}' is a member of a group; simplify the shader it is declared as", shader.name)};
-  }
+ModuleHeader headerFor(const ShaderLibrary& library, const sem::Shader& shader, const SimplifyOptions& options) {
   const fs::path source = fs::absolute(library.sources().file(shader.decl->range.file).path);
   const fs::path folder = fs::absolute(options.outputPath).parent_path();
   return ModuleHeader{fs::relative(source, folder).generic_string(), shader.name,
@@ -178,26 +174,26 @@ Expected<ModuleHeader, Failure> headerFor(const ShaderLibrary& library, const se
 }  // namespace
 
 Expected<Simplified, Failure> simplifyShader(const ShaderLibrary& library, const SimplifyOptions& options) {
-  const sem::Shader* shader = library.model().findShader(options.shader);
-  if (!shader) return Failure{fmt::format("no shader named '{}'", options.shader)};
-  auto header = headerFor(library, *shader, options);
-  if (!header) return header.error();
-  auto components = selectComponents(*shader, options.components);
+  auto shader = shaderToDerive(library.model(), options.shader);
+  if (!shader) return shader.error();
+  const ModuleHeader header = headerFor(library, **shader, options);
+  auto components = selectComponents(**shader, options.components);
   if (!components) return components.error();
   std::vector<Candidate> candidates;
-  for (const sem::Component* component : *components) {
+  for (const sem::Component* component : components->components) {
     for (Candidate& c : candidatesOf(library, *component, options)) candidates.push_back(std::move(c));
   }
   Simplified result;
+  result.lockedOut = std::move(components->lockedOut);
   std::vector<const Candidate*> kept;
   for (const Candidate& c : candidates) kept.push_back(&c);
   // One compile for the common case; only when it fails is each candidate
   // tried alone, to keep those that compile.
-  if (compileError(options.outputPath, moduleText(*header, kept), header->derived, options.frontEnd, kept)) {
+  if (compileError(options.outputPath, moduleText(header, kept), header.derived, options.frontEnd, kept)) {
     kept.clear();
     for (const Candidate& c : candidates) {
       if (auto error =
-              compileError(options.outputPath, moduleText(*header, {&c}), header->derived, options.frontEnd, {&c})) {
+              compileError(options.outputPath, moduleText(header, {&c}), header.derived, options.frontEnd, {&c})) {
         result.dropped.push_back(
             fmt::format("{} ({} at {}): {}", c.variation.name, c.variation.rule, c.variation.site, *error));
       } else {
@@ -206,17 +202,17 @@ Expected<Simplified, Failure> simplifyShader(const ShaderLibrary& library, const
     }
   }
   std::unique_ptr<ShaderLibrary> compiled;
-  if (auto error = compileError(options.outputPath, moduleText(*header, kept), header->derived, options.frontEnd, kept,
+  if (auto error = compileError(options.outputPath, moduleText(header, kept), header.derived, options.frontEnd, kept,
                                 &compiled)) {
     return Failure{fmt::format("the simplified module does not compile (a spire-simplify bug): {}", *error)};
   }
   // Only the comments change with the exact savings, so the module
   // written compiles as the one just compiled.
-  const std::map<std::string, int64_t> savings = compiledSavings(*compiled, header->derived, kept);
+  const std::map<std::string, int64_t> savings = compiledSavings(*compiled, header.derived, kept);
   for (Candidate& c : candidates) {
     if (const auto found = savings.find(c.variation.name); found != savings.end()) c.variation.saving = found->second;
   }
-  result.module = moduleText(*header, kept);
+  result.module = moduleText(header, kept);
   for (const Candidate* c : kept) result.variations.push_back(c->variation);
   return result;
 }

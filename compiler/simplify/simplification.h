@@ -57,6 +57,9 @@ struct Simplified {
   std::string module;  // the Spire source to write
   std::vector<Variation> variations;
   std::vector<std::string> dropped;  // candidates that did not compile, with why
+  // Components left out because a derived shader may not redefine them
+  // (rewrite_target.h's ComponentSelection), with why.
+  std::vector<std::string> lockedOut;
 };
 
 // `library` must have compiled without errors.

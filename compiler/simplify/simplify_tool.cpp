@@ -109,6 +109,8 @@ void printSummary(const Simplified& result, const std::string& path, std::ostrea
                      path);
   out << (result.dropped.empty() ? "\n" : fmt::format("; {} candidate(s) dropped:\n", result.dropped.size()));
   for (const std::string& dropped : result.dropped) out << "  " << dropped << "\n";
+  if (!result.lockedOut.empty()) out << fmt::format("{}: left out {} component(s):\n", kTool, result.lockedOut.size());
+  for (const std::string& locked : result.lockedOut) out << "  " << locked << "\n";
 }
 
 }  // namespace

@@ -94,12 +94,9 @@ Expected<SearchSetup, Failure> makeSetup(engine::SceneRenderer& renderer, scene:
                                          const SearchOptions& options) {
   auto library = renderer.library(instance);
   if (!library) return Failure{library.error().message + library.error().details};
-  const sem::Shader* shader = (*library)->model().findShader(options.shader);
-  if (!shader) return Failure{fmt::format("no shader named '{}'", options.shader)};
-  if (shader->derivedFrom || !shader->decl) {
-    return Failure{fmt::format("'{}' is a member of a group; simplify the shader it is declared as", shader->name)};
-  }
-  auto components = simplify::selectComponents(*shader, options.components);
+  auto shader = simplify::shaderToDerive((*library)->model(), options.shader);
+  if (!shader) return shader.error();
+  auto components = simplify::selectComponents(**shader, options.components);
   if (!components) return components.error();
   auto programs = renderer.compile(std::nullopt);
   if (!programs) return Failure{programs.error().message + programs.error().details};
@@ -107,7 +104,7 @@ Expected<SearchSetup, Failure> makeSetup(engine::SceneRenderer& renderer, scene:
   SearchSetup setup;
   setup.scene = &scene;
   setup.instance = instance;
-  for (const sem::Component* c : *components) setup.components.push_back(c->name);
+  for (const sem::Component* c : components->components) setup.components.push_back(c->name);
   setup.original = programs->at(instance).placement;
   for (const fs::path& dir : scene.includePaths) setup.compile.frontEnd.includeDirs.push_back(dir.string());
   setup.compile.frontEnd.pipeline = desc.pipeline;

@@ -6,6 +6,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -174,6 +176,95 @@ TEST_F(SimplifyTest, TheToolWritesTheModuleAndRefusesWhatItCannotDo) {
   std::ostringstream err4;
   EXPECT_EQ(runSimplifyTool({broken.string(), "--shader", "X", "-o", output}, out, err4), 1);
   EXPECT_NE(err4.str().find("broken.spire:1:"), std::string::npos) << err4.str();
+}
+
+constexpr const char* kLockedShader = R"(using "pipelines/engine.spire";
+shader Base using EnginePipeline {
+    @FrameUniform mat4 mvp;
+    @MaterialUniform vec3 tint;
+    vec4 projPos = mvp * vec4(vert_pos, 1.0);
+    @Vertex vec3 shade = tint * 0.5 + vec3(0.1);
+    @Fragment vec3 lit = tint * 0.25 + vec3(0.2);
+    vec4 output = vec4(shade + lit, 1.0);
+}
+shader S : Base finalizes Vertex {
+    @Fragment vec3 glow = tint * 0.75 + vec3(0.3);
+}
+)";
+
+// A shader derived from one that finalizes a world may not redefine what
+// that world may compute (paper section 6.2): such components are left out
+// with why, never proposed and then dropped by the compile.
+TEST_F(SimplifyTest, ComponentsALockedWorldKeepsAreLeftOutWithWhy) {
+  load(kLockedShader);
+  auto result = simplifyS();
+  ASSERT_TRUE(result) << result.error().message;
+  EXPECT_TRUE(result->dropped.empty()) << result->dropped.front();
+  std::set<std::string> rewritten;
+  for (const Variation& v : result->variations) rewritten.insert(v.component);
+  EXPECT_EQ(rewritten, (std::set<std::string>{"glow", "lit"})) << result->module;
+  ASSERT_EQ(result->lockedOut.size(), 1U);
+  EXPECT_EQ(result->lockedOut.front(),
+            "'shade' may be computed in world 'Vertex', which is finalized for shaders derived from 'S': they cannot "
+            "redefine it");
+
+  std::ostringstream out;
+  std::ostringstream err;
+  const std::string output = (dir_ / "m.spire").string();
+  ASSERT_EQ(runSimplifyTool({source_.string(), "-I", SPIRE_SOURCE_DIR, "--shader", "S", "-o", output}, out, err), 0)
+      << err.str();
+  EXPECT_NE(out.str().find("spire-simplify: left out 1 component(s):\n  'shade' may be computed in world 'Vertex'"),
+            std::string::npos)
+      << out.str();
+  std::ostringstream named;
+  EXPECT_EQ(
+      runSimplifyTool({source_.string(), "-I", SPIRE_SOURCE_DIR, "--shader", "S", "--component", "shade", "-o", output},
+                      out, named),
+      1);
+  EXPECT_EQ(named.str(),
+            "spire-simplify: error: 'shade' cannot be simplified: 'shade' may be computed in world 'Vertex', which is "
+            "finalized for shaders derived from 'S': they cannot redefine it\n");
+}
+
+// Variations go into a shader derived from the one simplified, so one that
+// nothing can derive from is refused, saying why.
+TEST_F(SimplifyTest, ShadersNothingCanDeriveFromAreRefusedWithWhy) {
+  load(R"(using "pipelines/engine.spire";
+shader A using EnginePipeline {
+    @FrameUniform mat4 mvp;
+    abstract vec3 tint;
+    abstract float gain;
+    vec4 projPos = mvp * vec4(vert_pos, 1.0);
+    vec4 output = vec4(tint * 0.5, gain);
+}
+group G {
+    shader A;
+}
+shader M : G {
+    vec3 tint = vec3(1.0, 0.5, 0.25) * 0.5;
+    float gain = 2.0;
+}
+)");
+  const std::map<std::string, std::string> refusals{
+      {"A",
+       "'A' is abstract: it leaves 'tint', 'gain' to the shaders derived from it, and a shader derived from it to "
+       "hold its variations would have to define them"},
+      {"M<A>",
+       "'M<A>' is one of the shaders 'M' makes from the members of a group, and no shader can derive from those to "
+       "hold its variations"},
+      {"M",
+       "'M' derives from a group: it makes the shaders 'M<A>', and no shader can derive from those to hold their "
+       "variations"},
+      {"N", "no shader named 'N'"}};
+  for (const auto& [shader, message] : refusals) {
+    SimplifyOptions options;
+    options.shader = shader;
+    options.outputPath = (dir_ / "out.spire").string();
+    options.frontEnd = frontEnd();
+    auto result = simplifyShader(*library_, options);
+    ASSERT_FALSE(result) << shader;
+    EXPECT_EQ(result.error().message, message);
+  }
 }
 
 }  // namespace
