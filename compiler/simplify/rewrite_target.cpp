@@ -41,6 +41,16 @@ std::string shadersMadeFor(const sem::Model& model, const std::string& name) {
   return fmt::format("{}", fmt::join(made, ", "));
 }
 
+// Why a shader derived from `shader` may not redefine `c`, if it may not.
+std::optional<std::string> lockedReason(const sem::Shader& shader, const sem::Component& c) {
+  const std::optional<sem::WorldId> world = sem::lockedAgainstRedefinition(shader, c);
+  if (!world || !shader.pipeline) return std::nullopt;
+  return fmt::format(
+      "'{}' may be computed in world '{}', which is finalized for shaders derived from '{}': they "
+      "cannot redefine it",
+      c.name, shader.pipeline->worlds[*world].name, shader.name);
+}
+
 }  // namespace
 
 Expected<const sem::Shader*, Failure> shaderToDerive(const sem::Model& model, const std::string& name) {
@@ -70,16 +80,6 @@ Expected<const sem::Shader*, Failure> shaderToDerive(const sem::Model& model, co
       fmt::format("'{}' is abstract: it leaves {} to the shaders derived from it, and a shader derived from "
                   "it to hold its variations would have to define them",
                   shader->name, fmt::join(abstract, ", "))};
-}
-
-// Why a shader derived from `shader` may not redefine `c`, if it may not.
-std::optional<std::string> lockedReason(const sem::Shader& shader, const sem::Component& c) {
-  const std::optional<sem::WorldId> world = sem::lockedAgainstRedefinition(shader, c);
-  if (!world || !shader.pipeline) return std::nullopt;
-  return fmt::format(
-      "'{}' may be computed in world '{}', which is finalized for shaders derived from '{}': they "
-      "cannot redefine it",
-      c.name, shader.pipeline->worlds[*world].name, shader.name);
 }
 
 Expected<ComponentSelection, Failure> selectComponents(const sem::Shader& shader,
