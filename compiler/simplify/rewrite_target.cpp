@@ -59,16 +59,16 @@ Expected<const sem::Shader*, Failure> shaderToDerive(const sem::Model& model, co
     const std::string made = shadersMadeFor(model, name);
     if (made.empty()) return Failure{fmt::format("no shader named '{}'", name)};
     return Failure{
-        fmt::format("'{}' derives from a group: it makes the shaders {}, and no shader can derive from "
-                    "those to hold their variations",
+        fmt::format("'{}' derives from a group (it makes the shaders {}); spire-simplify does not yet "
+                    "write variations for a shader derived from a group",
                     name, made)};
   }
   if (shader->derivedFrom || !shader->decl) {
     const std::string maker =
         shader->derivedFrom ? fmt::format("'{}' makes", shader->derivedFrom->name) : "a group makes";
     return Failure{
-        fmt::format("'{}' is one of the shaders {} from the members of a group, and no shader can derive "
-                    "from those to hold its variations",
+        fmt::format("'{}' is one of the shaders {} from the members of a group; spire-simplify does not "
+                    "yet write variations for a shader derived from a group",
                     shader->name, maker)};
   }
   std::vector<std::string> abstract;

@@ -21,11 +21,13 @@ namespace spire::simplify {
 bool immutable(const sem::Component& component);
 
 // The shader named `name`, from which a shader holding its variations can
-// be derived; or why there is none: no such shader (naming the shaders a
-// group makes for it, when `name` derives from a group), one of the shaders
-// a group makes (`Barrel<LodHQ>`, which the language gives no way to derive
-// from), or an abstract shader (one derived from it would have to define
-// what it leaves abstract).
+// be derived; or why there is none: no such shader, an abstract shader (one
+// derived from it would have to define what it leaves abstract), or a
+// shader derived from a group or one of the shaders it makes
+// (`Barrel<LodHQ>`), which spire-simplify does not write variations for
+// yet: the derived shader would be a group's too (`BarrelSimplified :
+// Barrel` makes `BarrelSimplified<Barrel<LodHQ>>`, ...), and its
+// variations would have to suit every member.
 Expected<const sem::Shader*, Failure> shaderToDerive(const sem::Model& model, const std::string& name);
 
 struct ComponentSelection {

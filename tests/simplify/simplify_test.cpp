@@ -226,9 +226,9 @@ TEST_F(SimplifyTest, ComponentsALockedWorldKeepsAreLeftOutWithWhy) {
             "finalized for shaders derived from 'S': they cannot redefine it\n");
 }
 
-// Variations go into a shader derived from the one simplified, so one that
-// nothing can derive from is refused, saying why.
-TEST_F(SimplifyTest, ShadersNothingCanDeriveFromAreRefusedWithWhy) {
+// Variations go into a shader derived from the one simplified: an abstract
+// one, and one derived from a group, are refused, saying why.
+TEST_F(SimplifyTest, AbstractShadersAndShadersOfGroupsAreRefusedWithWhy) {
   load(R"(using "pipelines/engine.spire";
 shader A using EnginePipeline {
     @FrameUniform mat4 mvp;
@@ -250,11 +250,11 @@ shader M : G {
        "'A' is abstract: it leaves 'tint', 'gain' to the shaders derived from it, and a shader derived from it to "
        "hold its variations would have to define them"},
       {"M<A>",
-       "'M<A>' is one of the shaders 'M' makes from the members of a group, and no shader can derive from those to "
-       "hold its variations"},
+       "'M<A>' is one of the shaders 'M' makes from the members of a group; spire-simplify does not yet write "
+       "variations for a shader derived from a group"},
       {"M",
-       "'M' derives from a group: it makes the shaders 'M<A>', and no shader can derive from those to hold their "
-       "variations"},
+       "'M' derives from a group (it makes the shaders 'M<A>'); spire-simplify does not yet write variations for a "
+       "shader derived from a group"},
       {"N", "no shader named 'N'"}};
   for (const auto& [shader, message] : refusals) {
     SimplifyOptions options;
