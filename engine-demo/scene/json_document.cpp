@@ -6,6 +6,7 @@
 #include <charconv>
 #include <unordered_map>
 
+#include "support/hex_digit.h"
 #include "support/utf8.h"
 
 namespace spire::scene {
@@ -13,13 +14,6 @@ namespace {
 
 bool isDigit(char c) { return c >= '0' && c <= '9'; }
 bool isWordChar(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || isDigit(c) || c == '_'; }
-
-std::optional<uint32_t> hexValue(char c) {
-  if (isDigit(c)) return static_cast<uint32_t>(c - '0');
-  if (c >= 'a' && c <= 'f') return static_cast<uint32_t>(c - 'a' + 10);
-  if (c >= 'A' && c <= 'F') return static_cast<uint32_t>(c - 'A' + 10);
-  return std::nullopt;
-}
 
 void appendUtf8(std::string& out, uint32_t codePoint) {
   if (codePoint < 0x80) {
@@ -229,7 +223,7 @@ class JsonParser {
   std::optional<uint32_t> parseCodeUnit(size_t escape) {
     uint32_t unit = 0;
     for (size_t i = escape + 2; i < escape + 6; ++i) {
-      const std::optional<uint32_t> digit = i < text_.size() ? hexValue(text_[i]) : std::nullopt;
+      const std::optional<uint32_t> digit = i < text_.size() ? hexDigitValue(text_[i]) : std::nullopt;
       if (!digit) {
         fail(static_cast<uint32_t>(escape), static_cast<uint32_t>(std::min(i + 1, text_.size())),
              "expected four hexadecimal digits after '\\u'");

@@ -7,26 +7,22 @@
 
 #include "scene/json_document.h"
 #include "support/file_io.h"
+#include "support/hex_digit.h"
 
 namespace spire::scene {
 namespace {
 
 namespace fs = std::filesystem;
 
-int hexValue(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
-
 // glTF URIs are percent-encoded (RFC 3986): "my%20mesh.bin" names
 // "my mesh.bin".
 std::string percentDecoded(std::string_view uri) {
   std::string path;
   for (size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && hexValue(uri[i + 1]) >= 0 && hexValue(uri[i + 2]) >= 0) {
-      path += static_cast<char>(hexValue(uri[i + 1]) * 16 + hexValue(uri[i + 2]));
+    const std::optional<uint32_t> high = i + 2 < uri.size() ? hexDigitValue(uri[i + 1]) : std::nullopt;
+    const std::optional<uint32_t> low = i + 2 < uri.size() ? hexDigitValue(uri[i + 2]) : std::nullopt;
+    if (uri[i] == '%' && high && low) {
+      path += static_cast<char>(*high * 16 + *low);
       i += 2;
     } else {
       path += uri[i];
