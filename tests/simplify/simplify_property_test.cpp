@@ -35,6 +35,7 @@ struct Tally {
   size_t acceptedVariants = 0;
   size_t droppedForLockedReads = 0;
   size_t lockedOut = 0;
+  size_t byUserRules = 0;  // variations a user rule made
 };
 
 // "Fragment:simplified2" -> "Fragment", "Fragment:ggx_simplified1" -> "Fragment:ggx":
@@ -113,7 +114,7 @@ void checkModule(const fs::path& modulePath, const std::string& module, const st
   }
 }
 
-void checkProgram(const fs::path& dir, uint32_t seed, Tally& tally) {
+void checkProgram(const fs::path& dir, uint32_t seed, const UserRules* rules, Tally& tally) {
   const fs::path source = dir / ("generated" + std::to_string(seed) + ".spire");
   std::ofstream(source) << testgen::generateProgram(seed).text;
   FrontEndOptions frontEnd;
@@ -127,6 +128,7 @@ void checkProgram(const fs::path& dir, uint32_t seed, Tally& tally) {
     options.maxPerComponent = 3;
     options.outputPath = (dir / (name + std::to_string(seed) + "_simplified.spire")).string();
     options.frontEnd = frontEnd;
+    options.userRules = rules;
     auto result = simplifyShader(library, options);
     ASSERT_TRUE(result) << "seed " << seed << ", " << name << ": " << result.error().message;
     ++tally.shaders;
@@ -140,15 +142,21 @@ void checkProgram(const fs::path& dir, uint32_t seed, Tally& tally) {
     }
     if (result->variations.empty()) continue;
     tally.variations += result->variations.size();
+    for (const Variation& v : result->variations) {
+      const bool builtIn = v.rule == "constant-operand" || v.rule == "call-to-argument" || v.rule == "loop-iteration";
+      tally.byUserRules += builtIn ? 0 : 1;
+    }
     checkModule(options.outputPath, result->module, name + "Simplified", singlyDefined(*shader), seed, tally);
   }
 }
 
-TEST(SimplifyProperty, EveryVariationOfAGeneratedShaderCompilesAndValidates) {
-  const fs::path dir = fs::temp_directory_path() / ("spire-simplify-property-" + std::to_string(getpid()));
+// The property over kSeeds programs, with `rules` besides the built-in ones.
+// Returns how many variations user rules made.
+size_t checkPrograms(const std::string& name, const UserRules* rules) {
+  const fs::path dir = fs::temp_directory_path() / ("spire-simplify-property-" + name + "-" + std::to_string(getpid()));
   fs::create_directories(dir);
   Tally tally;
-  for (uint32_t seed = 0; seed < kSeeds; ++seed) checkProgram(dir, seed, tally);
+  for (uint32_t seed = 0; seed < kSeeds; ++seed) checkProgram(dir, seed, rules, tally);
   std::cout << tally.shaders << " shaders of " << kSeeds << " generated programs, " << tally.variations
             << " variations, " << tally.acceptedVariants << " variants accepted; " << tally.lockedOut
             << " components left out and " << tally.droppedForLockedReads
@@ -157,6 +165,26 @@ TEST(SimplifyProperty, EveryVariationOfAGeneratedShaderCompilesAndValidates) {
   EXPECT_GE(tally.variations, size_t{kSeeds});
   EXPECT_GE(tally.acceptedVariants, size_t{kSeeds});
   if (!::testing::Test::HasFailure()) fs::remove_all(dir);
+  return tally.byUserRules;
+}
+
+TEST(SimplifyProperty, EveryVariationOfAGeneratedShaderCompilesAndValidates) {
+  EXPECT_EQ(checkPrograms("builtin", nullptr), 0U);
+}
+
+// User rules whose replacements keep the type of what they match, on the
+// shapes the generator writes (its helpers call sin, max, mix, normalize and
+// multiply): the same property, so no rewrite of theirs may be dropped.
+TEST(SimplifyProperty, UserRulesOnGeneratedShadersCompileAndValidate) {
+  UserRules rules;
+  ASSERT_TRUE(rules.add("property.rules", R"(rule sin-argument: sin($x) -> $x
+rule max-first: max($a, $b) -> $a
+rule mix-middle: mix($a, $b, $t) -> ($a + $b) * 0.5
+rule square-root: $x * $x -> $x
+rule normalize-identity: normalize($v) -> $v
+)"));
+  ASSERT_EQ(rules.rules().size(), 5U);
+  EXPECT_GE(checkPrograms("user", &rules), size_t{kSeeds}) << "the user rules made too few variations to test";
 }
 
 }  // namespace
