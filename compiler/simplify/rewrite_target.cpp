@@ -32,13 +32,18 @@ bool immutable(const sem::Component& component) {
 
 namespace {
 
-// The shaders a group makes for `name` (`name<Member>`), as a list.
-std::string shadersMadeFor(const sem::Model& model, const std::string& name) {
-  std::vector<std::string> made;
-  for (const auto& shader : model.shaders) {
-    if (shader->derivedFrom && shader->derivedFrom->name == name) made.push_back("'" + shader->name + "'");
+// The group that a shader derived from a group makes its shaders in.
+const sem::Group* groupMadeFor(const sem::Model& model, const std::string& name) {
+  for (const auto& group : model.groups) {
+    if (group->derivedDecl && group->name == name) return group.get();
   }
-  return fmt::format("{}", fmt::join(made, ", "));
+  return nullptr;
+}
+
+// Whether `c` has a definition that `shader` writes itself.
+bool definesItself(const sem::Shader& shader, const sem::Component& c) {
+  return std::any_of(c.definitions.begin(), c.definitions.end(),
+                     [&](const sem::Definition& d) { return !d.isInput() && d.origin == shader.name; });
 }
 
 // Why a shader derived from `shader` may not redefine `c`, if it may not.
@@ -51,39 +56,60 @@ std::optional<std::string> lockedReason(const sem::Shader& shader, const sem::Co
       c.name, shader.pipeline->worlds[*world].name, shader.name);
 }
 
+// The same for the first of the shaders a variation must suit that does not
+// let it redefine the component named as `c` is (each has its own copy).
+std::optional<std::string> lockedReason(const DerivationBase& base, const sem::Component& c) {
+  for (const sem::Shader* shader : base.required) {
+    const auto it = shader->componentByName.find(c.name);
+    if (it == shader->componentByName.end()) continue;
+    if (auto locked = lockedReason(*shader, shader->components[it->second])) return locked;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
-Expected<const sem::Shader*, Failure> shaderToDerive(const sem::Model& model, const std::string& name) {
+std::string DerivationBase::derivedShader(const std::string& derived) const {
+  return fromGroup ? fmt::format("{}<{}>", derived, shader->name) : derived;
+}
+
+Expected<DerivationBase, Failure> shaderToDerive(const sem::Model& model, const std::string& name) {
   const sem::Shader* shader = model.findShader(name);
   if (!shader) {
-    const std::string made = shadersMadeFor(model, name);
-    if (made.empty()) return Failure{fmt::format("no shader named '{}'", name)};
-    return Failure{
-        fmt::format("'{}' derives from a group (it makes the shaders {}); spire-simplify does not yet "
-                    "write variations for a shader derived from a group",
-                    name, made)};
+    const sem::Group* group = groupMadeFor(model, name);
+    if (!group || group->members.empty()) return Failure{fmt::format("no shader named '{}'", name)};
+    DerivationBase base{nullptr, true, {}};
+    for (const sem::GroupMember& member : group->members) {
+      if (!member.isOptional) base.required.push_back(member.shader);
+    }
+    base.shader = base.required.empty() ? group->members.front().shader : base.required.front();
+    if (base.required.empty()) base.required.push_back(base.shader);
+    return base;
   }
   if (shader->derivedFrom || !shader->decl) {
-    const std::string maker =
-        shader->derivedFrom ? fmt::format("'{}' makes", shader->derivedFrom->name) : "a group makes";
-    return Failure{
-        fmt::format("'{}' is one of the shaders {} from the members of a group; spire-simplify does not "
-                    "yet write variations for a shader derived from a group",
-                    shader->name, maker)};
+    const std::string maker = shader->derivedFrom ? shader->derivedFrom->name : "";
+    return Failure{fmt::format("'{}' is one of the shaders that {} makes from the members of a group; simplify {}",
+                               shader->name, maker.empty() ? "a shader" : "'" + maker + "'",
+                               maker.empty() ? "the shader derived from the group" : "'" + maker + "'")};
   }
   std::vector<std::string> abstract;
   for (const sem::Component& c : shader->components) {
     if (c.isAbstract && c.definitions.empty()) abstract.push_back("'" + c.name + "'");
   }
-  if (abstract.empty()) return shader;
+  if (abstract.empty()) return DerivationBase{shader, false, {shader}};
   return Failure{
       fmt::format("'{}' is abstract: it leaves {} to the shaders derived from it, and a shader derived from "
                   "it to hold its variations would have to define them",
                   shader->name, fmt::join(abstract, ", "))};
 }
 
-Expected<ComponentSelection, Failure> selectComponents(const sem::Shader& shader,
+bool rewritable(const DerivationBase& base, const sem::Definition& definition) {
+  return !definition.isInput() && (!base.fromGroup || definition.origin == base.shader->name);
+}
+
+Expected<ComponentSelection, Failure> selectComponents(const DerivationBase& base,
                                                        const std::vector<std::string>& components) {
+  const sem::Shader& shader = *base.shader;
   std::set<std::string> wanted(components.begin(), components.end());
   ComponentSelection selected;
   for (const sem::Component& c : shader.components) {
@@ -95,7 +121,16 @@ Expected<ComponentSelection, Failure> selectComponents(const sem::Shader& shader
                                  fromPipeline ? "the pipeline's" : "marked [Immutable]")};
     }
     if (fromPipeline || immutable(c)) continue;
-    if (std::optional<std::string> locked = lockedReason(shader, c)) {
+    if (base.fromGroup && !definesItself(shader, c)) {
+      if (named) {
+        return Failure{
+            fmt::format("'{}' cannot be simplified: the group's members define it, each its own way, and "
+                        "the shader derived from the group does not",
+                        c.name)};
+      }
+      continue;
+    }
+    if (std::optional<std::string> locked = lockedReason(base, c)) {
       if (named) return Failure{fmt::format("'{}' cannot be simplified: {}", c.name, *locked)};
       selected.lockedOut.push_back(std::move(*locked));
       continue;

@@ -20,15 +20,34 @@ namespace spire::simplify {
 // Whether the component is marked [Immutable] (no rule may touch it).
 bool immutable(const sem::Component& component);
 
-// The shader named `name`, from which a shader holding its variations can
-// be derived; or why there is none: no such shader, an abstract shader (one
-// derived from it would have to define what it leaves abstract), or a
-// shader derived from a group or one of the shaders it makes
-// (`Barrel<LodHQ>`), which spire-simplify does not write variations for
-// yet: the derived shader would be a group's too (`BarrelSimplified :
-// Barrel` makes `BarrelSimplified<Barrel<LodHQ>>`, ...), and its
-// variations would have to suit every member.
-Expected<const sem::Shader*, Failure> shaderToDerive(const sem::Model& model, const std::string& name);
+// What a module of variations derives from.
+struct DerivationBase {
+  // The shader whose components and definitions are rewritten: the shader
+  // named, or for a shader derived from a group (`Barrel : LodMaterial`)
+  // the one it makes from the group's first required member
+  // (`Barrel<LodHQ>`).
+  const sem::Shader* shader = nullptr;
+  // For a shader derived from a group: a shader derived from it is a
+  // group's too (`BarrelSimplified : Barrel` makes
+  // `BarrelSimplified<Barrel<LodHQ>>`, ...), and only the definitions
+  // `Barrel` writes itself are rewritten; the members' own differ from
+  // member to member.
+  bool fromGroup = false;
+  // The shaders a variation must suit, or the module does not compile:
+  // `shader`, and from a group the shader made from each required member
+  // (one made from an optional member that a variation does not suit is
+  // left out of the derived group, with the compiler's warning).
+  std::vector<const sem::Shader*> required;
+
+  // The shader that `derived : <the shader named>` makes for `shader`.
+  std::string derivedShader(const std::string& derived) const;
+};
+
+// The shader named `name` to derive a module of variations from; or why
+// there is none: no such shader, one that a group makes (derive from the
+// shader it is made for), or an abstract shader (one derived from it would
+// have to define what it leaves abstract).
+Expected<DerivationBase, Failure> shaderToDerive(const sem::Model& model, const std::string& name);
 
 struct ComponentSelection {
   std::vector<const sem::Component*> components;
@@ -38,12 +57,17 @@ struct ComponentSelection {
   std::vector<std::string> lockedOut;
 };
 
-// The components of `shader` to rewrite, in the shader's order: `wanted`, or
-// every one when it is empty, never the pipeline's, [Immutable] ones or
-// those a derived shader may not redefine. Naming one of those, or a
-// component the shader lacks, is an error.
-Expected<ComponentSelection, Failure> selectComponents(const sem::Shader& shader,
+// The components of `base` to rewrite, in the shader's order: `wanted`, or
+// every one when it is empty, never the pipeline's, [Immutable] ones, those
+// a derived shader may not redefine, nor, from a group, those the shader
+// does not define itself. Naming one of those, or a component the shader
+// lacks, is an error.
+Expected<ComponentSelection, Failure> selectComponents(const DerivationBase& base,
                                                        const std::vector<std::string>& wanted);
+
+// Whether the module rewrites `definition` of `base`'s shader: from a
+// group, only those the shader writes itself.
+bool rewritable(const DerivationBase& base, const sem::Definition& definition);
 
 // `decl`'s source with `rewrite` applied, named `variation` (which replaces
 // the variation it had, if any).

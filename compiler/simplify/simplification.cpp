@@ -40,13 +40,14 @@ std::set<std::string> variationNames(const sem::Component& component) {
 // The rewrites of all of `component`'s definitions, each with its
 // definition, ranked together (rankRewrites) and cut to the first `maxCount`.
 std::vector<std::pair<Rewrite, const ast::ComponentDecl*>> rankedRewrites(const ShaderLibrary& library,
+                                                                          const DerivationBase& base,
                                                                           const sem::Component& component,
                                                                           const std::vector<UserRule>& userRules,
                                                                           size_t maxCount) {
   std::vector<Rewrite> rewrites;
   std::vector<const ast::ComponentDecl*> decls;
   for (const sem::Definition& definition : component.definitions) {
-    if (definition.isInput()) continue;
+    if (!rewritable(base, definition)) continue;
     for (Rewrite& r : proposeRewrites(library.model(), library.sources(), *definition.decl, userRules)) {
       rewrites.push_back(std::move(r));
       decls.push_back(definition.decl);
@@ -60,15 +61,15 @@ std::vector<std::pair<Rewrite, const ast::ComponentDecl*>> rankedRewrites(const 
   return ranked;
 }
 
-std::vector<Candidate> candidatesOf(const ShaderLibrary& library, const sem::Component& component,
-                                    const SimplifyOptions& options) {
+std::vector<Candidate> candidatesOf(const ShaderLibrary& library, const DerivationBase& base,
+                                    const sem::Component& component, const SimplifyOptions& options) {
   const std::vector<UserRule> none;
   const std::vector<UserRule>& userRules = options.userRules ? options.userRules->rules() : none;
   std::vector<Candidate> candidates;
   std::set<std::string> taken = variationNames(component);
   CostModel costs(library.model());
   int number = 0;
-  for (const auto& [rewrite, decl] : rankedRewrites(library, component, userRules, options.maxPerComponent)) {
+  for (const auto& [rewrite, decl] : rankedRewrites(library, base, component, userRules, options.maxPerComponent)) {
     std::string variation;
     do {
       variation = fmt::format("{}{}simplified{}", decl->variation, decl->variation.empty() ? "" : "_", ++number);
@@ -88,6 +89,9 @@ struct ModuleHeader {
   std::string usingPath;  // the shader's source, relative to the module's folder
   std::string base;
   std::string derived;
+  // The shader the compile checks and costs: `derived`, or from a group the
+  // one it makes for the rewritten shader (DerivationBase::derivedShader).
+  std::string checked;
 };
 
 std::string moduleText(const ModuleHeader& header, const std::vector<const Candidate*>& candidates) {
@@ -164,24 +168,25 @@ std::map<std::string, int64_t> compiledSavings(const ShaderLibrary& compiled, co
   return savings;
 }
 
-ModuleHeader headerFor(const ShaderLibrary& library, const sem::Shader& shader, const SimplifyOptions& options) {
-  const fs::path source = fs::absolute(library.sources().file(shader.decl->range.file).path);
+ModuleHeader headerFor(const ShaderLibrary& library, const DerivationBase& base, const SimplifyOptions& options) {
+  const fs::path source = fs::absolute(library.sources().file(base.shader->decl->range.file).path);
   const fs::path folder = fs::absolute(options.outputPath).parent_path();
-  return ModuleHeader{fs::relative(source, folder).generic_string(), shader.name,
-                      options.derivedName.empty() ? shader.name + "Simplified" : options.derivedName};
+  const std::string derived = options.derivedName.empty() ? options.shader + "Simplified" : options.derivedName;
+  return ModuleHeader{fs::relative(source, folder).generic_string(), options.shader, derived,
+                      base.derivedShader(derived)};
 }
 
 }  // namespace
 
 Expected<Simplified, Failure> simplifyShader(const ShaderLibrary& library, const SimplifyOptions& options) {
-  auto shader = shaderToDerive(library.model(), options.shader);
-  if (!shader) return shader.error();
-  const ModuleHeader header = headerFor(library, **shader, options);
-  auto components = selectComponents(**shader, options.components);
+  auto base = shaderToDerive(library.model(), options.shader);
+  if (!base) return base.error();
+  const ModuleHeader header = headerFor(library, *base, options);
+  auto components = selectComponents(*base, options.components);
   if (!components) return components.error();
   std::vector<Candidate> candidates;
   for (const sem::Component* component : components->components) {
-    for (Candidate& c : candidatesOf(library, *component, options)) candidates.push_back(std::move(c));
+    for (Candidate& c : candidatesOf(library, *base, *component, options)) candidates.push_back(std::move(c));
   }
   Simplified result;
   result.lockedOut = std::move(components->lockedOut);
@@ -189,11 +194,11 @@ Expected<Simplified, Failure> simplifyShader(const ShaderLibrary& library, const
   for (const Candidate& c : candidates) kept.push_back(&c);
   // One compile for the common case; only when it fails is each candidate
   // tried alone, to keep those that compile.
-  if (compileError(options.outputPath, moduleText(header, kept), header.derived, options.frontEnd, kept)) {
+  if (compileError(options.outputPath, moduleText(header, kept), header.checked, options.frontEnd, kept)) {
     kept.clear();
     for (const Candidate& c : candidates) {
       if (auto error =
-              compileError(options.outputPath, moduleText(header, {&c}), header.derived, options.frontEnd, {&c})) {
+              compileError(options.outputPath, moduleText(header, {&c}), header.checked, options.frontEnd, {&c})) {
         result.dropped.push_back(
             fmt::format("{} ({} at {}): {}", c.variation.name, c.variation.rule, c.variation.site, *error));
       } else {
@@ -202,15 +207,18 @@ Expected<Simplified, Failure> simplifyShader(const ShaderLibrary& library, const
     }
   }
   std::unique_ptr<ShaderLibrary> compiled;
-  if (auto error = compileError(options.outputPath, moduleText(header, kept), header.derived, options.frontEnd, kept,
+  if (auto error = compileError(options.outputPath, moduleText(header, kept), header.checked, options.frontEnd, kept,
                                 &compiled)) {
     return Failure{fmt::format("the simplified module does not compile (a spire-simplify bug): {}", *error)};
   }
   // Only the comments change with the exact savings, so the module
   // written compiles as the one just compiled.
-  const std::map<std::string, int64_t> savings = compiledSavings(*compiled, header.derived, kept);
+  const std::map<std::string, int64_t> savings = compiledSavings(*compiled, header.checked, kept);
   for (Candidate& c : candidates) {
     if (const auto found = savings.find(c.variation.name); found != savings.end()) c.variation.saving = found->second;
+  }
+  for (const Diagnostic& d : compiled->diagnostics().all()) {
+    if (d.code == DiagCode::W4101) result.membersLeftOut.push_back(d.message);
   }
   result.module = moduleText(header, kept);
   for (const Candidate* c : kept) result.variations.push_back(c->variation);

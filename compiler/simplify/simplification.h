@@ -60,6 +60,9 @@ struct Simplified {
   // Components left out because a derived shader may not redefine them
   // (rewrite_target.h's ComponentSelection), with why.
   std::vector<std::string> lockedOut;
+  // From a group: the compiler's word on each optional member the derived
+  // shader lost, because a variation redefines what the member locks.
+  std::vector<std::string> membersLeftOut;
 };
 
 // `library` must have compiled without errors.

@@ -111,6 +111,7 @@ void printSummary(const Simplified& result, const std::string& path, std::ostrea
   for (const std::string& dropped : result.dropped) out << "  " << dropped << "\n";
   if (!result.lockedOut.empty()) out << fmt::format("{}: left out {} component(s):\n", kTool, result.lockedOut.size());
   for (const std::string& locked : result.lockedOut) out << "  " << locked << "\n";
+  for (const std::string& member : result.membersLeftOut) out << fmt::format("{}: {}\n", kTool, member);
 }
 
 }  // namespace

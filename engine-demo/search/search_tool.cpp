@@ -94,9 +94,15 @@ Expected<SearchSetup, Failure> makeSetup(engine::SceneRenderer& renderer, scene:
                                          const SearchOptions& options) {
   auto library = renderer.library(instance);
   if (!library) return Failure{library.error().message + library.error().details};
-  auto shader = simplify::shaderToDerive((*library)->model(), options.shader);
-  if (!shader) return shader.error();
-  auto components = simplify::selectComponents(**shader, options.components);
+  auto base = simplify::shaderToDerive((*library)->model(), options.shader);
+  if (!base) return base.error();
+  if (base->fromGroup) {
+    return Failure{
+        fmt::format("'{}' derives from a group; spire-simplify --search does not search one yet (plain "
+                    "spire-simplify writes its variations)",
+                    options.shader)};
+  }
+  auto components = simplify::selectComponents(*base, options.components);
   if (!components) return components.error();
   auto programs = renderer.compile(std::nullopt);
   if (!programs) return Failure{programs.error().message + programs.error().details};

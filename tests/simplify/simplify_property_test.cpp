@@ -20,6 +20,7 @@
 
 #include "gen/program_generator.h"
 #include "gen/variant_checker.h"
+#include "simplify/rewrite_target.h"
 #include "simplify/simplification.h"
 
 namespace spire::simplify {
@@ -36,6 +37,7 @@ struct Tally {
   size_t droppedForLockedReads = 0;
   size_t lockedOut = 0;
   size_t byUserRules = 0;  // variations a user rule made
+  size_t fromGroups = 0;   // shaders derived from a group
 };
 
 // "Fragment:simplified2" -> "Fragment", "Fragment:ggx_simplified1" -> "Fragment:ggx":
@@ -55,11 +57,10 @@ bool isGenerated(const std::string& name) {
 }
 
 // The verdict on the variant of `derived` that differs from the defaults in
-// `key`'s choice only.
+// the choice `key` only.
 testgen::VariantReport verdictOn(testgen::ProgramChecker& checker, const std::string& derived, const std::string& key,
                                  const std::string& choice) {
-  const std::string component = key.substr(key.rfind('.') + 1);
-  for (testgen::VariantReport& report : checker.check(derived + "." + component + " = " + choice + "\n")) {
+  for (testgen::VariantReport& report : checker.check(key + " = " + choice + "\n")) {
     if (report.shader == derived || report.shader.empty()) return report;
   }
   return {derived, testgen::Verdict::InternalError, {}, "no report for the derived shader", {}, {}};
@@ -80,12 +81,8 @@ std::set<std::string> singlyDefined(const sem::Shader& shader) {
   return names;
 }
 
-void checkModule(const fs::path& modulePath, const std::string& module, const std::string& derived,
-                 const std::set<std::string>& comparable, uint32_t seed, Tally& tally) {
-  testgen::ProgramChecker checker(module, modulePath.string());
-  ASSERT_EQ(checker.frontEnd().verdict, testgen::Verdict::Accepted)
-      << "seed " << seed << ": " << checker.frontEnd().detail << "\n"
-      << module;
+void checkDerived(testgen::ProgramChecker& checker, const std::string& derived, const std::string& module,
+                  const std::set<std::string>& comparable, uint32_t seed, Tally& tally) {
   for (const graph::Choice& choice : checker.choices(derived)) {
     for (const std::string& name : choice.names) {
       if (!isGenerated(name)) continue;
@@ -114,15 +111,43 @@ void checkModule(const fs::path& modulePath, const std::string& module, const st
   }
 }
 
+// The shaders of the module named `derived`: itself, or from a group the
+// ones it makes (`DSimplified<D<A>>`).
+std::vector<std::string> derivedShaders(const testgen::ProgramChecker& checker, const std::string& derived) {
+  std::vector<std::string> names;
+  for (const std::string& name : checker.shaders()) {
+    if (name == derived || name.starts_with(derived + "<")) names.push_back(name);
+  }
+  return names;
+}
+
+void checkModule(const fs::path& modulePath, const std::string& module, const std::string& derivedName,
+                 const std::set<std::string>& comparable, uint32_t seed, Tally& tally) {
+  testgen::ProgramChecker checker(module, modulePath.string());
+  ASSERT_EQ(checker.frontEnd().verdict, testgen::Verdict::Accepted)
+      << "seed " << seed << ": " << checker.frontEnd().detail << "\n"
+      << module;
+  const std::vector<std::string> shaders = derivedShaders(checker, derivedName);
+  EXPECT_FALSE(shaders.empty()) << "seed " << seed << ": no shader " << derivedName << "\n" << module;
+  for (const std::string& derived : shaders) checkDerived(checker, derived, module, comparable, seed, tally);
+}
+
 void checkProgram(const fs::path& dir, uint32_t seed, const UserRules* rules, Tally& tally) {
   const fs::path source = dir / ("generated" + std::to_string(seed) + ".spire");
   std::ofstream(source) << testgen::generateProgram(seed).text;
   FrontEndOptions frontEnd;
   ShaderLibrary library(frontEnd);
   if (!library.addFile(source.string()) || !library.compile()) return;
+  // A group's shaders are simplified through the shader derived from it.
+  std::set<std::string> names;
   for (const std::string& name : library.shaderNames()) {
     const sem::Shader* shader = library.model().findShader(name);
-    if (!shader || shader->derivedFrom || !shader->decl) continue;  // a group's members: simplified with it
+    names.insert(shader && shader->derivedFrom ? shader->derivedFrom->name : name);
+  }
+  for (const std::string& name : names) {
+    auto base = shaderToDerive(library.model(), name);
+    ASSERT_TRUE(base) << "seed " << seed << ", " << name << ": " << base.error().message;
+    tally.fromGroups += base->fromGroup ? 1 : 0;
     SimplifyOptions options;
     options.shader = name;
     options.maxPerComponent = 3;
@@ -146,7 +171,7 @@ void checkProgram(const fs::path& dir, uint32_t seed, const UserRules* rules, Ta
       const bool builtIn = v.rule == "constant-operand" || v.rule == "call-to-argument" || v.rule == "loop-iteration";
       tally.byUserRules += builtIn ? 0 : 1;
     }
-    checkModule(options.outputPath, result->module, name + "Simplified", singlyDefined(*shader), seed, tally);
+    checkModule(options.outputPath, result->module, name + "Simplified", singlyDefined(*base->shader), seed, tally);
   }
 }
 
@@ -157,13 +182,14 @@ size_t checkPrograms(const std::string& name, const UserRules* rules) {
   fs::create_directories(dir);
   Tally tally;
   for (uint32_t seed = 0; seed < kSeeds; ++seed) checkProgram(dir, seed, rules, tally);
-  std::cout << tally.shaders << " shaders of " << kSeeds << " generated programs, " << tally.variations
-            << " variations, " << tally.acceptedVariants << " variants accepted; " << tally.lockedOut
-            << " components left out and " << tally.droppedForLockedReads
+  std::cout << tally.shaders << " shaders (" << tally.fromGroups << " derived from groups) of " << kSeeds
+            << " generated programs, " << tally.variations << " variations, " << tally.acceptedVariants
+            << " variants accepted; " << tally.lockedOut << " components left out and " << tally.droppedForLockedReads
             << " rewrites dropped for a base's finalized worlds\n";
   // Enough of the generator's programs give variations for the property to say much.
   EXPECT_GE(tally.variations, size_t{kSeeds});
   EXPECT_GE(tally.acceptedVariants, size_t{kSeeds});
+  EXPECT_GE(tally.fromGroups, size_t{kSeeds / 10});
   if (!::testing::Test::HasFailure()) fs::remove_all(dir);
   return tally.byUserRules;
 }

@@ -4,9 +4,11 @@
 // generates different kernels for them), determinism, and the tool's errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <string>
@@ -29,6 +31,21 @@ class SimplifyTest : public SimplifyFixture {
     const sem::Shader* shader = library_->model().findShader(shaderName);
     const sem::Component& c = shader->components[shader->componentByName.at(component)];
     return proposeRewrites(library_->model(), library_->sources(), *c.definitions.front().decl);
+  }
+  // The module written to `path`, compiled with its sources.
+  static std::unique_ptr<ShaderLibrary> compiledModule(const std::string& path, const std::string& module) {
+    EXPECT_TRUE(writeFileAtomically(path, module));
+    auto library = std::make_unique<ShaderLibrary>(frontEnd());
+    EXPECT_TRUE(library->addFile(path));
+    EXPECT_TRUE(library->compile());
+    return library;
+  }
+  // Whether a choice of `shader` offers `name`.
+  static bool offers(const ShaderLibrary& library, const std::string& shader, const std::string& name) {
+    for (const graph::Choice& choice : library.choices(shader)) {
+      if (std::find(choice.names.begin(), choice.names.end(), name) != choice.names.end()) return true;
+    }
+    return false;
   }
 };
 
@@ -120,15 +137,10 @@ TEST_F(SimplifyTest, TheModuleCompilesAndItsVariationsAreChoicesWithTheirOwnKern
   EXPECT_NE(result->module.find("vec3 lit:simplified1 = (tint * 0.5);"), std::string::npos) << result->module;
 
   fs::create_directories(dir_ / "out");
-  ASSERT_TRUE(writeFileAtomically(options.outputPath, result->module));
-  ShaderLibrary simplified(frontEnd());
-  ASSERT_TRUE(simplified.addFile(options.outputPath));
-  ASSERT_TRUE(simplified.compile());
-  bool offered = false;
-  for (const graph::Choice& choice : simplified.choices("SSimplified")) {
-    for (const std::string& name : choice.names) offered = offered || name == "Fragment:simplified2";
-  }
-  EXPECT_TRUE(offered) << "a simplified variation is a choice like a written one";
+  const std::unique_ptr<ShaderLibrary> compiled = compiledModule(options.outputPath, result->module);
+  ShaderLibrary& simplified = *compiled;
+  EXPECT_TRUE(offers(simplified, "SSimplified", "Fragment:simplified2"))
+      << "a simplified variation is a choice like a written one";
   auto plain = compileVariant(simplified, "SSimplified", Decisions{{{"lit", "Fragment"}}, {}}, {});
   auto simpler = compileVariant(simplified, "SSimplified", Decisions{{{"lit", "Fragment:simplified2"}}, {}}, {});
   ASSERT_TRUE(plain && simpler);
@@ -226,35 +238,69 @@ TEST_F(SimplifyTest, ComponentsALockedWorldKeepsAreLeftOutWithWhy) {
             "finalized for shaders derived from 'S': they cannot redefine it\n");
 }
 
-// Variations go into a shader derived from the one simplified: an abstract
-// one, and one derived from a group, are refused, saying why.
-TEST_F(SimplifyTest, AbstractShadersAndShadersOfGroupsAreRefusedWithWhy) {
-  load(R"(using "pipelines/engine.spire";
+constexpr const char* kGroupShader = R"(using "pipelines/engine.spire";
 shader A using EnginePipeline {
     @FrameUniform mat4 mvp;
     abstract vec3 tint;
     abstract float gain;
     vec4 projPos = mvp * vec4(vert_pos, 1.0);
-    vec4 output = vec4(tint * 0.5, gain);
+    vec3 lit = tint * 0.5 + vec3(0.1);
+    vec4 output = vec4(lit, gain);
+}
+shader B : A finalizes Fragment {
 }
 group G {
     shader A;
+    optional shader B;
 }
 shader M : G {
     vec3 tint = vec3(1.0, 0.5, 0.25) * 0.5;
     float gain = 2.0;
 }
-)");
+)";
+
+// A shader derived from a group (paper section 6.1) gets a module derived
+// from it, which is a group's too: its variations are of what it defines
+// itself, they must suit the shaders made from the required members, and
+// an optional member they do not suit is left out, with the compiler's
+// word on why.
+TEST_F(SimplifyTest, AShaderDerivedFromAGroupGetsAModuleDerivedFromIt) {
+  load(kGroupShader);
+  SimplifyOptions options;
+  options.shader = "M";
+  options.outputPath = (dir_ / "m_simplified.spire").string();
+  options.frontEnd = frontEnd();
+  auto result = simplifyShader(*library_, options);
+  ASSERT_TRUE(result) << result.error().message;
+  EXPECT_TRUE(result->dropped.empty());
+  ASSERT_EQ(result->variations.size(), 1U) << result->module;
+  EXPECT_EQ(result->variations.front().name, "tint:simplified1") << "lit is A's, not M's";
+  EXPECT_NE(result->module.find("shader MSimplified : M {"), std::string::npos) << result->module;
+  ASSERT_EQ(result->membersLeftOut.size(), 1U);
+  EXPECT_NE(result->membersLeftOut.front().find("optional group member 'M<B>' is left out of 'MSimplified'"),
+            std::string::npos)
+      << result->membersLeftOut.front();
+
+  EXPECT_TRUE(offers(*compiledModule(options.outputPath, result->module), "MSimplified<M<A>>", "Fragment:simplified1"));
+
+  options.components = {"lit"};
+  auto named = simplifyShader(*library_, options);
+  ASSERT_FALSE(named);
+  EXPECT_EQ(named.error().message,
+            "'lit' cannot be simplified: the group's members define it, each its own way, and the shader derived "
+            "from the group does not");
+}
+
+// Variations go into a shader derived from the one simplified: an abstract
+// one is refused, and a shader a group makes points to the one it is made
+// for.
+TEST_F(SimplifyTest, AbstractShadersAndTheShadersAGroupMakesAreRefusedWithWhy) {
+  load(kGroupShader);
   const std::map<std::string, std::string> refusals{
       {"A",
        "'A' is abstract: it leaves 'tint', 'gain' to the shaders derived from it, and a shader derived from it to "
        "hold its variations would have to define them"},
-      {"M<A>",
-       "'M<A>' is one of the shaders 'M' makes from the members of a group; spire-simplify does not yet write "
-       "variations for a shader derived from a group"},
-      {"M",
-       "'M' derives from a group (it makes the shaders 'M<A>'); spire-simplify does not yet write variations for a "
-       "shader derived from a group"},
+      {"M<A>", "'M<A>' is one of the shaders that 'M' makes from the members of a group; simplify 'M'"},
       {"N", "no shader named 'N'"}};
   for (const auto& [shader, message] : refusals) {
     SimplifyOptions options;
