@@ -14,6 +14,10 @@ bool isCompilerOrSystemError(DiagCode code) { return code == DiagCode::E6002 || 
 
 }  // namespace
 
+const std::string& memberName(const Shader& member) {
+  return member.derivedFrom && member.base ? memberName(*member.base) : member.name;
+}
+
 bool isOptionalMemberInstance(const Shader& shader) {
   if (!shader.derivedFrom) return false;
   const auto& members = shader.derivedFrom->members;

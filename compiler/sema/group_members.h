@@ -13,6 +13,12 @@
 
 namespace spire::sem {
 
+// The name a group's member gives the shaders made from it (`Derived<Name>`):
+// its own, or for a member that is itself made from a group (`Barrel<LodHQ>`,
+// when `B : Barrel`) the original member's, so that `B<LodHQ>` is LodHQ's
+// shader of B as `Barrel<LodHQ>` is of Barrel, whatever the depth.
+const std::string& memberName(const Shader& member);
+
 // Whether `shader` is the instance of an optional member of a group.
 bool isOptionalMemberInstance(const Shader& shader);
 

@@ -491,7 +491,7 @@ void Analyzer::buildGroupInstances(const ast::ShaderDecl& decl, const Group& bas
   derived->derivedDecl = &decl;
   for (const GroupMember& member : base.members) {
     const size_t mark = diags_.size();
-    Shader* instance = buildShader(decl, fmt::format("{}<{}>", decl.name, member.shader->name),
+    Shader* instance = buildShader(decl, fmt::format("{}<{}>", decl.name, memberName(*member.shader)),
                                    *member.shader->pipeline, member.shader);
     instance->derivedFrom = derived.get();
     if (member.isOptional && !instance->valid) {

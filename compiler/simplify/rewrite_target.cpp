@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <set>
 
+#include "sema/group_members.h"
 #include "sema/locked_worlds.h"
 #include "simplify/syntax_walk.h"
 
@@ -70,7 +71,7 @@ std::optional<std::string> lockedReason(const DerivationBase& base, const sem::C
 }  // namespace
 
 std::string DerivationBase::derivedShader(const std::string& derived) const {
-  return fromGroup ? fmt::format("{}<{}>", derived, shader->name) : derived;
+  return fromGroup ? fmt::format("{}<{}>", derived, sem::memberName(*shader)) : derived;
 }
 
 Expected<DerivationBase, Failure> shaderToDerive(const sem::Model& model, const std::string& name) {

@@ -29,7 +29,7 @@ struct DerivationBase {
   const sem::Shader* shader = nullptr;
   // For a shader derived from a group: a shader derived from it is a
   // group's too (`BarrelSimplified : Barrel` makes
-  // `BarrelSimplified<Barrel<LodHQ>>`, ...), and only the definitions
+  // `BarrelSimplified<LodHQ>`, ...), and only the definitions
   // `Barrel` writes itself are rewritten; the members' own differ from
   // member to member.
   bool fromGroup = false;

@@ -4,6 +4,7 @@
 
 #include "common/test_pipeline.h"
 #include "driver/frontend.h"
+#include "sema/group_members.h"
 #include "support/diagnostic_renderer.h"
 
 namespace spire {
@@ -140,6 +141,41 @@ shader Material : Family {
   // Strict wants a float color: it is left out with one warning.
   ASSERT_EQ(c.codes(), std::vector<std::string>{"W4101"}) << c.rendered();
   EXPECT_EQ(c.model->findShader("Material<Strict>"), nullptr);
+}
+
+// A shader derived from a shader derived from a group is a group's too; its
+// shaders keep the original members' names, so an engine that looks for
+// `Shader<Member>` finds them at any depth.
+TEST(Analyzer, ShadersDerivedFromAGroupsShaderKeepTheMembersNames) {
+  const Compiled c = compile(R"(
+shader Base using P {
+  @Uniform mat4 mvp;
+  vec4 projPos = mvp * vec4(pos, 1.0);
+  abstract @Fragment vec4 color;
+  vec4 output = color;
+}
+shader HQ : Base { }
+shader MQ : Base { }
+group Family { shader HQ; optional shader MQ; }
+shader Material : Family {
+  vec4 color = vec4(uv, 0.0, 1.0);
+}
+shader Tinted : Material {
+  vec4 color = vec4(uv, 1.0, 1.0);
+}
+shader Deeper : Tinted { }
+)");
+  ASSERT_FALSE(c.frontEnd->diagnostics().hasErrors()) << c.rendered();
+  for (const std::string name : {"Tinted", "Deeper"}) {
+    const sem::Group* group = c.model->findGroup(name);
+    ASSERT_NE(group, nullptr) << name;
+    ASSERT_EQ(group->members.size(), 2u);
+    EXPECT_EQ(group->members[0].shader->name, name + "<HQ>");
+    EXPECT_EQ(group->members[1].shader->name, name + "<MQ>");
+    EXPECT_EQ(sem::memberName(*group->members[1].shader), "MQ");
+  }
+  EXPECT_EQ(c.model->findShader("Tinted<MQ>")->base, c.model->findShader("Material<MQ>"));
+  EXPECT_EQ(c.model->findShader("Deeper<HQ>")->base, c.model->findShader("Tinted<HQ>"));
 }
 
 TEST(Analyzer, FinalizesOnDerivedShader) {

@@ -112,7 +112,7 @@ void checkDerived(testgen::ProgramChecker& checker, const std::string& derived, 
 }
 
 // The shaders of the module named `derived`: itself, or from a group the
-// ones it makes (`DSimplified<D<A>>`).
+// ones it makes (`DSimplified<A>`).
 std::vector<std::string> derivedShaders(const testgen::ProgramChecker& checker, const std::string& derived) {
   std::vector<std::string> names;
   for (const std::string& name : checker.shaders()) {

@@ -281,7 +281,7 @@ TEST_F(SimplifyTest, AShaderDerivedFromAGroupGetsAModuleDerivedFromIt) {
             std::string::npos)
       << result->membersLeftOut.front();
 
-  EXPECT_TRUE(offers(*compiledModule(options.outputPath, result->module), "MSimplified<M<A>>", "Fragment:simplified1"));
+  EXPECT_TRUE(offers(*compiledModule(options.outputPath, result->module), "MSimplified<A>", "Fragment:simplified1"));
 
   options.components = {"lit"};
   auto named = simplifyShader(*library_, options);
