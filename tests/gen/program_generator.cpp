@@ -315,6 +315,13 @@ void ProgramGenerator::groupFamily() {
   material("Mat", t, bit(out) | bit(wb), lock);
   // A second material: Mat<LQ> and Mat2<LQ> must share LQ's locked kernels.
   if (rng_.chance(50)) material("Mat2", t, bit(out) | bit(wb), lock);
+  // A shader derived from the material: a group's too, whose shaders take
+  // G's members' names (MatTinted<HQ>, MatTinted<LQ>).
+  if (rng_.chance(40)) {
+    out_ += "\nshader MatTinted : Mat {\n";
+    componentsAndVariations(rng_.pick(1, 3), lock, true);
+    out_ += "}\n";
+  }
 }
 
 // A shader derived from the group G that defines `slot` (readable in the
