@@ -41,12 +41,6 @@ const sem::Group* groupMadeFor(const sem::Model& model, const std::string& name)
   return nullptr;
 }
 
-// Whether `c` has a definition that `shader` writes itself.
-bool definesItself(const sem::Shader& shader, const sem::Component& c) {
-  return std::any_of(c.definitions.begin(), c.definitions.end(),
-                     [&](const sem::Definition& d) { return !d.isInput() && d.origin == shader.name; });
-}
-
 // Why a shader derived from `shader` may not redefine `c`, if it may not.
 std::optional<std::string> lockedReason(const sem::Shader& shader, const sem::Component& c) {
   const std::optional<sem::WorldId> world = sem::lockedAgainstRedefinition(shader, c);
@@ -71,7 +65,7 @@ std::optional<std::string> lockedReason(const DerivationBase& base, const sem::C
 }  // namespace
 
 std::string DerivationBase::derivedShader(const std::string& derived) const {
-  return fromGroup ? fmt::format("{}<{}>", derived, sem::memberName(*shader)) : derived;
+  return fromGroup ? fmt::format("{}<{}>", derived, sem::memberName(shader())) : derived;
 }
 
 Expected<DerivationBase, Failure> shaderToDerive(const sem::Model& model, const std::string& name) {
@@ -79,25 +73,21 @@ Expected<DerivationBase, Failure> shaderToDerive(const sem::Model& model, const 
   if (!shader) {
     const sem::Group* group = groupMadeFor(model, name);
     if (!group || group->members.empty()) return Failure{fmt::format("no shader named '{}'", name)};
-    DerivationBase base{nullptr, true, {}};
+    DerivationBase base{{}, true};
     for (const sem::GroupMember& member : group->members) {
       if (!member.isOptional) base.required.push_back(member.shader);
     }
-    base.shader = base.required.empty() ? group->members.front().shader : base.required.front();
-    if (base.required.empty()) base.required.push_back(base.shader);
     return base;
   }
-  if (shader->derivedFrom || !shader->decl) {
-    const std::string maker = shader->derivedFrom ? shader->derivedFrom->name : "";
-    return Failure{fmt::format("'{}' is one of the shaders that {} makes from the members of a group; simplify {}",
-                               shader->name, maker.empty() ? "a shader" : "'" + maker + "'",
-                               maker.empty() ? "the shader derived from the group" : "'" + maker + "'")};
+  if (shader->derivedFrom) {
+    return Failure{fmt::format("'{}' is one of the shaders that '{}' makes from the members of a group; simplify '{}'",
+                               shader->name, shader->derivedFrom->name, shader->derivedFrom->name)};
   }
   std::vector<std::string> abstract;
   for (const sem::Component& c : shader->components) {
     if (c.isAbstract && c.definitions.empty()) abstract.push_back("'" + c.name + "'");
   }
-  if (abstract.empty()) return DerivationBase{shader, false, {shader}};
+  if (abstract.empty()) return DerivationBase{{shader}, false};
   return Failure{
       fmt::format("'{}' is abstract: it leaves {} to the shaders derived from it, and a shader derived from "
                   "it to hold its variations would have to define them",
@@ -105,12 +95,12 @@ Expected<DerivationBase, Failure> shaderToDerive(const sem::Model& model, const 
 }
 
 bool rewritable(const DerivationBase& base, const sem::Definition& definition) {
-  return !definition.isInput() && (!base.fromGroup || definition.origin == base.shader->name);
+  return !definition.isInput() && (!base.fromGroup || definition.origin == base.shader().name);
 }
 
 Expected<ComponentSelection, Failure> selectComponents(const DerivationBase& base,
                                                        const std::vector<std::string>& components) {
-  const sem::Shader& shader = *base.shader;
+  const sem::Shader& shader = base.shader();
   std::set<std::string> wanted(components.begin(), components.end());
   ComponentSelection selected;
   for (const sem::Component& c : shader.components) {
@@ -122,7 +112,8 @@ Expected<ComponentSelection, Failure> selectComponents(const DerivationBase& bas
                                  fromPipeline ? "the pipeline's" : "marked [Immutable]")};
     }
     if (fromPipeline || immutable(c)) continue;
-    if (base.fromGroup && !definesItself(shader, c)) {
+    const auto rewritableHere = [&](const sem::Definition& d) { return rewritable(base, d); };
+    if (base.fromGroup && std::none_of(c.definitions.begin(), c.definitions.end(), rewritableHere)) {
       if (named) {
         return Failure{
             fmt::format("'{}' cannot be simplified: the group's members define it, each its own way, and "

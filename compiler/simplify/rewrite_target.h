@@ -22,24 +22,24 @@ bool immutable(const sem::Component& component);
 
 // What a module of variations derives from.
 struct DerivationBase {
-  // The shader whose components and definitions are rewritten: the shader
-  // named, or for a shader derived from a group (`Barrel : LodMaterial`)
-  // the one it makes from the group's first required member
-  // (`Barrel<LodHQ>`).
-  const sem::Shader* shader = nullptr;
+  // The shaders a variation must suit, or the module does not compile: the
+  // shader named, or for a shader derived from a group (`Barrel :
+  // LodMaterial`) the one it makes from each required member
+  // (`Barrel<LodHQ>`; one made from an optional member that a variation does
+  // not suit is left out of the derived group, with the compiler's warning).
+  // Never empty: a group has a required member.
+  std::vector<const sem::Shader*> required;
   // For a shader derived from a group: a shader derived from it is a
   // group's too (`BarrelSimplified : Barrel` makes
   // `BarrelSimplified<LodHQ>`, ...), and only the definitions
   // `Barrel` writes itself are rewritten; the members' own differ from
   // member to member.
   bool fromGroup = false;
-  // The shaders a variation must suit, or the module does not compile:
-  // `shader`, and from a group the shader made from each required member
-  // (one made from an optional member that a variation does not suit is
-  // left out of the derived group, with the compiler's warning).
-  std::vector<const sem::Shader*> required;
 
-  // The shader that `derived : <the shader named>` makes for `shader`.
+  // The shader whose components and definitions are rewritten: the first
+  // of `required`.
+  const sem::Shader& shader() const { return *required.front(); }
+  // The shader that `derived : <the shader named>` makes for shader().
   std::string derivedShader(const std::string& derived) const;
 };
 

@@ -169,7 +169,7 @@ std::map<std::string, int64_t> compiledSavings(const ShaderLibrary& compiled, co
 }
 
 ModuleHeader headerFor(const ShaderLibrary& library, const DerivationBase& base, const SimplifyOptions& options) {
-  const fs::path source = fs::absolute(library.sources().file(base.shader->decl->range.file).path);
+  const fs::path source = fs::absolute(library.sources().file(base.shader().decl->range.file).path);
   const fs::path folder = fs::absolute(options.outputPath).parent_path();
   const std::string derived = options.derivedName.empty() ? options.shader + "Simplified" : options.derivedName;
   return ModuleHeader{fs::relative(source, folder).generic_string(), options.shader, derived,

@@ -94,14 +94,11 @@ Expected<SearchSetup, Failure> makeSetup(engine::SceneRenderer& renderer, scene:
                                          const SearchOptions& options) {
   auto library = renderer.library(instance);
   if (!library) return Failure{library.error().message + library.error().details};
+  // A scene draws concrete shaders by name, so a shader derived from a group
+  // (whose base is a group's too) never gets here: the scene's compile
+  // refuses it first.
   auto base = simplify::shaderToDerive((*library)->model(), options.shader);
   if (!base) return base.error();
-  if (base->fromGroup) {
-    return Failure{
-        fmt::format("'{}' derives from a group; spire-simplify --search does not search one yet (plain "
-                    "spire-simplify writes its variations)",
-                    options.shader)};
-  }
   auto components = simplify::selectComponents(*base, options.components);
   if (!components) return components.error();
   auto programs = renderer.compile(std::nullopt);

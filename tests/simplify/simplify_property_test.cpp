@@ -171,7 +171,7 @@ void checkProgram(const fs::path& dir, uint32_t seed, const UserRules* rules, Ta
       const bool builtIn = v.rule == "constant-operand" || v.rule == "call-to-argument" || v.rule == "loop-iteration";
       tally.byUserRules += builtIn ? 0 : 1;
     }
-    checkModule(options.outputPath, result->module, name + "Simplified", singlyDefined(*base->shader), seed, tally);
+    checkModule(options.outputPath, result->module, name + "Simplified", singlyDefined(base->shader()), seed, tally);
   }
 }
 

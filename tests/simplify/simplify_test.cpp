@@ -283,6 +283,16 @@ TEST_F(SimplifyTest, AShaderDerivedFromAGroupGetsAModuleDerivedFromIt) {
 
   EXPECT_TRUE(offers(*compiledModule(options.outputPath, result->module), "MSimplified<A>", "Fragment:simplified1"));
 
+  std::ostringstream out;
+  std::ostringstream err;
+  ASSERT_EQ(
+      runSimplifyTool({source_.string(), "-I", SPIRE_SOURCE_DIR, "--shader", "M", "-o", options.outputPath}, out, err),
+      0)
+      << err.str();
+  EXPECT_NE(out.str().find("spire-simplify: optional group member 'M<B>' is left out of 'MSimplified': "),
+            std::string::npos)
+      << out.str();
+
   options.components = {"lit"};
   auto named = simplifyShader(*library_, options);
   ASSERT_FALSE(named);
