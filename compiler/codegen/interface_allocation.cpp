@@ -59,8 +59,9 @@ InterfaceAllocation::InterfaceAllocation(const graph::Variant& variant) {
   // depend only on what the locked world's base decides.
   const auto& finalized = g.shader().finalizedWorlds;
   for (sem::WorldId w : finalized) {
-    lockedKeys_.insert(keys[w].begin(), keys[w].end());
-    lockedKeys_.insert(keys[n + w].begin(), keys[n + w].end());
+    for (const uint32_t side : {w, n + w}) {
+      for (const Key& key : keys[side]) lockedKeys_.insert({sides.find(side), key});
+    }
   }
   std::map<uint32_t, std::set<Key>> clusters;
   for (uint32_t side = 0; side < 2 * n; ++side) clusters[sides.find(side)].insert(keys[side].begin(), keys[side].end());
@@ -79,7 +80,7 @@ InterfaceAllocation::InterfaceAllocation(const graph::Variant& variant) {
 void InterfaceAllocation::number(const graph::Variant& variant, uint32_t root, std::vector<Key> keys) {
   const graph::ShaderGraph& g = variant.graph();
   std::sort(keys.begin(), keys.end(), [&](const Key& a, const Key& b) {
-    const bool lockedA = lockedKeys_.count(a) != 0, lockedB = lockedKeys_.count(b) != 0;
+    const bool lockedA = lockedKeys_.count({root, a}) != 0, lockedB = lockedKeys_.count({root, b}) != 0;
     if (lockedA != lockedB) return lockedA;
     if (a.first != b.first) return g.worldRank(a.first) < g.worldRank(b.first);
     return g.node(a.second).component->name < g.node(b.second).component->name;

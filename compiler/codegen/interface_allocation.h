@@ -56,7 +56,10 @@ class InterfaceAllocation {
   std::map<std::pair<uint32_t, Key>, uint32_t> locations_;  // (linked sides' root, key) -> location
   std::vector<uint32_t> sideRoot_;                          // side -> its linked set's root
   std::vector<sem::WorldId> importFrom_, importTo_;
-  std::set<Key> lockedKeys_;  // written or read by a world the shader's bases finalize
+  // Per cluster root: the keys a world the shader's bases finalize writes or
+  // reads there. Per cluster, because one key (a mesh attribute) can be read
+  // by a locked world in one cluster and by an unlocked one in another.
+  std::set<std::pair<uint32_t, Key>> lockedKeys_;
 };
 
 }  // namespace spire::codegen

@@ -9,6 +9,7 @@
 
 #include "codegen/kernel_generator.h"
 #include "codegen/spirv_compiler.h"
+#include "graph/locked_placement.h"
 #include "sema/attribute_catalog.h"
 #include "support/content_hash.h"
 #include "support/file_io.h"
@@ -178,6 +179,7 @@ CompileResult compileVariant(ShaderLibrary& library, std::string_view shader, co
   const ShaderLibrary::Attributes attributes = checkedAttributes(decisions.attributes, diags);
   std::vector<std::string> skipped;
   const std::optional<graph::Variant> variant = library.buildVariant(shader, decisions.placement, &skipped, attributes);
+  if (!variant) graph::reportLockedMove(*library.choiceSpace(shader), diags);
   for (const std::string& component : skipped) {
     diags.report(
         DiagCode::W5003, {},

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <map>
 
+#include "graph/locked_placement.h"
 #include "sema/attribute_catalog.h"
 #include "support/spelling.h"
 #include "support/utf8.h"
@@ -244,10 +245,35 @@ Requests collectRequests(const DecisionFile& decisions, const ChoiceSpace& space
     } else {
       decided[id] = &line;
     }
-    result.requests.push_back({id, *alt, line.attributes});
+    result.requests.push_back({id, *alt, line.attributes, lockDepth(shader, named ? named->name : shader.name)});
     result.origins.push_back(&line);
   }
   return result;
+}
+
+// A decision skipped because the shader that makes it is below a finalizer,
+// where the same decision by the finalizer applies: what the finalized
+// worlds see is the base's to decide (locked_placement.h). The finalizer
+// can make it when the alternative is one of its own definitions.
+bool reportBelowFinalizer(const ChoiceSpace& space, const std::vector<DecisionRequest>& requests, size_t i,
+                          const DecisionLine& line, DiagnosticList& diags) {
+  const DecisionRequest& request = requests[i];
+  if (request.lockDepth == 0) return false;
+  std::vector<DecisionRequest> asBase = requests;
+  asBase[i].lockDepth = request.lockDepth - 1;
+  if (buildVariant(space, asBase).outcomes[i].status != DecisionStatus::Applied) return false;
+  const sem::Shader& shader = space.graph().shader();
+  const sem::Shader& finalizer = *lockLevels(shader)[asBase[i].lockDepth].finalizer;
+  const Alternative& alt = space.graph().node(request.component).alternatives[request.alternative];
+  const bool finalizersOwn = lockDepth(shader, alt.definition->origin) <= asBase[i].lockDepth;
+  diags.report(DiagCode::W5002, line.range,
+               fmt::format("decision '{}' is skipped: it would change, for '{}' alone, kernels that every shader "
+                           "derived from '{}' shares{}",
+                           spell(line), line.prefix, finalizer.name,
+                           finalizersOwn ? fmt::format("; decide '{}.{}' to place it for all of them", finalizer.name,
+                                                       line.component)
+                                         : ""));
+  return true;
 }
 
 }  // namespace
@@ -332,6 +358,7 @@ std::optional<Variant> applyDecisions(const DecisionFile& decisions, const Choic
   for (size_t i = 0; i < requests.size(); ++i) {
     const DecisionOutcome& outcome = result.outcomes[i];
     if (outcome.status != DecisionStatus::Conflict) continue;
+    if (reportBelowFinalizer(space, requests, i, *origins[i], diags)) continue;
     const DecisionLine& earlier = *origins[outcome.conflictsWith];
     Diagnostic& d =
         diags.report(DiagCode::W5002, origins[i]->range,
@@ -341,7 +368,7 @@ std::optional<Variant> applyDecisions(const DecisionFile& decisions, const Choic
                                        spell(*origins[i]), spell(earlier)));
     if (outcome.conflictsWith != i) d.note(earlier.range, "the earlier decision is here");
   }
-  if (!result.variant) {
+  if (!result.variant && !reportLockedMove(space, diags)) {
     diags.report(DiagCode::E4017, shader.decl->nameRange, fmt::format("shader '{}' has no valid variant", shader.name));
   }
   return std::move(result.variant);

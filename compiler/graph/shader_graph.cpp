@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <set>
 
+#include "graph/locked_placement.h"
+
 namespace spire::graph {
 namespace {
 
@@ -16,24 +18,6 @@ std::string worldList(const sem::Pipeline& pipeline, WorldMask mask) {
     text += fmt::format("{}{}", text.empty() ? "" : ", ", pipeline.worlds[w].name);
   }
   return text.empty() ? "no world that computes" : text;
-}
-
-// Worlds a definition written by `origin` may not use implicitly: those
-// finalized by a shader above `origin` in the inheritance chain (section 6.2).
-WorldMask lockedWorldsFor(const sem::Shader& shader, const std::string& origin) {
-  std::vector<const sem::Shader*> chain;
-  for (const sem::Shader* s = &shader; s; s = s->base) chain.push_back(s);
-  size_t position = chain.size();  // pipeline components sit above every shader
-  for (size_t i = 0; i < chain.size(); ++i) {
-    if (chain[i]->name == origin) position = i;
-  }
-  WorldMask locked = 0;
-  for (size_t k = position + 1; k < chain.size(); ++k) {
-    for (const ast::NameRef& ref : chain[k]->decl->finalizes) {
-      if (auto w = shader.pipeline->findWorld(ref.name)) locked |= WorldMask{1} << *w;
-    }
-  }
-  return locked;
 }
 
 // The worlds locked for `shader` at or below `origin`: those finalized by
@@ -264,7 +248,7 @@ WorldMask ShaderGraph::readableBy(const sem::Definition& d, sem::ComponentId dep
   // A definition written below a shader that finalizes worlds reads nothing
   // from or through them (section 6.2), or the locked kernels would depend on
   // the derived shader.
-  const WorldMask locked = lockedWorldsFor(*shader_, d.origin);
+  const WorldMask locked = lockedAbove(*shader_, d.origin);
   return locked ? availableAvoiding(dep, locked) : available[dep];
 }
 
@@ -296,7 +280,7 @@ bool ShaderGraph::addImplicitAlternatives(ComponentNode& node, const sem::Defini
   // dependencies are available, except worlds an explicit definition of
   // the same variation already uses and worlds locked above the author.
   const sem::Component& component = *node.component;
-  WorldMask candidates = concrete & ~lockedWorldsFor(*shader_, d.origin);
+  WorldMask candidates = concrete & ~lockedAbove(*shader_, d.origin);
   for (const sem::Definition& other : component.definitions) {
     if (other.world && other.variation == d.variation) candidates &= ~(WorldMask{1} << *other.world);
   }

@@ -6,203 +6,10 @@
 #include <set>
 
 #include "graph/decision_file.h"
+#include "graph/variant_builder.h"
 #include "sema/route_selection.h"
 
 namespace spire::graph {
-
-class VariantBuilder {
- public:
-  explicit VariantBuilder(const ShaderGraph& graph) : graph_(graph) {}
-
-  // Chooses an alternative for every live component, consumers first, with
-  // backtracking when a choice leaves a dependency nowhere to go.
-  std::optional<Variant> place(const ChoiceSpace& domains);
-
- private:
-  // One component's step in the search: its candidates in preference order,
-  // the next to try, and what its choice changed.
-  struct Frame {
-    std::vector<AltId> candidates;
-    size_t next = 0;
-    std::vector<std::pair<sem::ComponentId, WorldMask>> saved;  // mustReach before this choice
-    bool skipped = false;
-  };
-  using Choice = std::vector<std::optional<AltId>>;
-
-  // The backtracking search; nullopt when no placement exists or the search
-  // gives up.
-  std::optional<Choice> search(const ChoiceSpace& domains) const;
-  std::vector<AltId> preferred(const ChoiceSpace& domains, sem::ComponentId c) const;
-  // Whether alternative `a` of `c` reaches every world `c` must reach.
-  bool fits(sem::ComponentId c, AltId a, const std::vector<WorldMask>& mustReach) const;
-  // The frame's next candidate that fits and leaves each of its dependencies
-  // an alternative that fits, with `mustReach` widened for it.
-  std::optional<AltId> chooseNext(Frame& frame, sem::ComponentId c, const ChoiceSpace& domains,
-                                  std::vector<WorldMask>& mustReach) const;
-  // The variant of a complete choice: its live components, kernels and routes.
-  std::optional<Variant> assemble(Choice choice);
-  void route(Variant& v, sem::ComponentId component, sem::WorldId from, sem::WorldId to,
-             std::set<std::pair<sem::ComponentId, uint32_t>>& seen);
-  bool routeStrategyArguments(Variant& v, std::set<std::pair<sem::ComponentId, uint32_t>>& seen);
-
-  const ShaderGraph& graph_;
-};
-
-std::optional<Variant> VariantBuilder::place(const ChoiceSpace& domains) {
-  std::optional<Choice> choice = search(domains);
-  if (!choice) return std::nullopt;
-  return assemble(std::move(*choice));
-}
-
-std::optional<VariantBuilder::Choice> VariantBuilder::search(const ChoiceSpace& domains) const {
-  const size_t n = graph_.nodes().size();
-  const auto& dependencyOrder = graph_.dependencyOrder();
-  const std::vector<sem::ComponentId> order(dependencyOrder.rbegin(), dependencyOrder.rend());
-  // Worlds each component must reach: its live consumers' and sinks'.
-  std::vector<WorldMask> mustReach(n, 0);
-  for (const Sink& sink : graph_.sinks()) mustReach[sink.component] |= WorldMask{1} << sink.world;
-
-  std::vector<Frame> frames(order.size());
-  Choice choice(n);
-  size_t i = 0;
-  size_t steps = 0;
-  constexpr size_t kMaxSteps = 1'000'000;
-  bool entering = true;
-  while (i < order.size()) {
-    if (++steps > kMaxSteps) return std::nullopt;
-    const sem::ComponentId c = order[i];
-    Frame& frame = frames[i];
-    if (entering) {
-      frame = Frame{};
-      if (mustReach[c] == 0) {
-        frame.skipped = true;  // not live
-        ++i;
-        continue;
-      }
-      frame.candidates = preferred(domains, c);
-    } else {
-      // Backtracking into this frame: undo its choice.
-      for (const auto& [dep, mask] : frame.saved) mustReach[dep] = mask;
-      frame.saved.clear();
-      choice[c].reset();
-    }
-    if (const std::optional<AltId> a = chooseNext(frame, c, domains, mustReach)) {
-      choice[c] = *a;
-      ++i;
-      entering = true;
-      continue;
-    }
-    // Exhausted: return to the closest earlier frame that made a choice.
-    do {
-      if (i == 0) return std::nullopt;
-      --i;
-    } while (frames[i].skipped);
-    entering = false;
-  }
-  return choice;
-}
-
-// Default preference per component: latest world, then first variation.
-std::vector<AltId> VariantBuilder::preferred(const ChoiceSpace& domains, sem::ComponentId c) const {
-  std::vector<AltId> alts = domains.aliveAlternatives(c);
-  const auto& all = graph_.node(c).alternatives;
-  std::stable_sort(alts.begin(), alts.end(), [&](AltId a, AltId b) {
-    const uint32_t ra = graph_.worldRank(all[a].world), rb = graph_.worldRank(all[b].world);
-    if (ra != rb) return ra > rb;
-    return all[a].variation < all[b].variation;
-  });
-  return alts;
-}
-
-bool VariantBuilder::fits(sem::ComponentId c, AltId a, const std::vector<WorldMask>& mustReach) const {
-  const WorldMask reach = graph_.readableFrom(c, graph_.node(c).alternatives[a].world);
-  return (reach & mustReach[c]) == mustReach[c];
-}
-
-std::optional<AltId> VariantBuilder::chooseNext(Frame& frame, sem::ComponentId c, const ChoiceSpace& domains,
-                                                std::vector<WorldMask>& mustReach) const {
-  while (frame.next < frame.candidates.size()) {
-    const AltId a = frame.candidates[frame.next++];
-    if (!fits(c, a, mustReach)) continue;
-    const Alternative& alt = graph_.node(c).alternatives[a];
-    bool supported = true;
-    for (sem::ComponentId dep : alt.definition->dependencies) {
-      frame.saved.emplace_back(dep, mustReach[dep]);
-      mustReach[dep] |= WorldMask{1} << alt.world;
-      bool any = false;
-      for (AltId d : domains.aliveAlternatives(dep)) any = any || fits(dep, d, mustReach);
-      supported = supported && any;
-    }
-    if (supported) return a;
-    for (const auto& [dep, mask] : frame.saved) mustReach[dep] = mask;
-    frame.saved.clear();
-  }
-  return std::nullopt;
-}
-
-std::optional<Variant> VariantBuilder::assemble(Choice choice) {
-  Variant v;
-  v.graph_ = &graph_;
-  v.choice_ = std::move(choice);
-  v.worlds_.resize(graph_.pipeline().worlds.size());
-  for (sem::ComponentId c : graph_.dependencyOrder()) {
-    if (!v.choice_[c]) continue;
-    v.live_.push_back(c);
-    if (!graph_.node(c).isInput) v.worlds_[v.worldOf(c)].computed.push_back(c);
-  }
-  std::set<std::pair<sem::ComponentId, uint32_t>> seen;
-  for (sem::ComponentId c : v.live_) {
-    const Alternative& alt = graph_.node(c).alternatives[*v.choice_[c]];
-    for (sem::ComponentId dep : alt.definition->dependencies) route(v, dep, v.worldOf(dep), alt.world, seen);
-  }
-  for (const Sink& sink : graph_.sinks()) route(v, sink.component, v.worldOf(sink.component), sink.world, seen);
-  if (!routeStrategyArguments(v, seen)) return std::nullopt;
-  return v;
-}
-
-// An import whose strategy takes arguments (`textureImport(vert_uv)`)
-// evaluates them in the consuming world, so every import the variant uses
-// brings its arguments there too; routing them may use further imports.
-bool VariantBuilder::routeStrategyArguments(Variant& v, std::set<std::pair<sem::ComponentId, uint32_t>>& seen) {
-  const auto& imports = graph_.pipeline().imports;
-  std::set<uint32_t> handled;
-  bool progress = true;
-  while (progress) {
-    progress = false;
-    for (uint32_t k = 0; k < imports.size(); ++k) {
-      const bool used = std::any_of(seen.begin(), seen.end(), [&](const auto& s) { return s.second == k; });
-      if (!used || !handled.insert(k).second) continue;
-      progress = true;
-      for (const std::string& name : imports[k].strategy.componentArgs) {
-        const sem::ComponentId arg = graph_.shader().componentByName.at(name);
-        if (!v.choice_[arg]) {
-          // Inputs have a single placement; a computed argument would need
-          // its own placement decision, which pipelines do not use.
-          if (!graph_.node(arg).isInput) return false;
-          v.choice_[arg] = 0;
-          v.live_.insert(std::upper_bound(v.live_.begin(), v.live_.end(), arg,
-                                          [&](sem::ComponentId a, sem::ComponentId b) {
-                                            return graph_.dependencyRank(a) < graph_.dependencyRank(b);
-                                          }),
-                         arg);
-        }
-        route(v, arg, v.worldOf(arg), imports[k].to, seen);
-      }
-    }
-  }
-  return true;
-}
-
-void VariantBuilder::route(Variant& v, sem::ComponentId component, sem::WorldId from, sem::WorldId to,
-                           std::set<std::pair<sem::ComponentId, uint32_t>>& seen) {
-  if (from == to) return;
-  for (uint32_t importIndex : graph_.route(component, from, to)) {
-    if (!seen.insert({component, importIndex}).second) continue;
-    const sem::Import& import = graph_.pipeline().imports[importIndex];
-    v.worlds_[import.from].outputs.push_back({component, importIndex});
-    v.worlds_[import.to].inputs.push_back({component, importIndex});
-  }
-}
 
 const std::vector<std::pair<std::string, std::string>>& Variant::attributes(sem::ComponentId c) const {
   static const std::vector<std::pair<std::string, std::string>> kNone;
@@ -313,7 +120,14 @@ VariantResult buildVariant(const ChoiceSpace& space, const std::vector<DecisionR
     }
   }
   VariantBuilder builder(space.graph());
-  result.variant = builder.place(current);
+  const auto decided = [&] {
+    VariantBuilder::Decided d(space.graph().nodes().size());
+    for (size_t index : applied) {
+      d[requests[index].component] = VariantBuilder::Decision{requests[index].alternative, requests[index].lockDepth};
+    }
+    return d;
+  };
+  result.variant = builder.place(current, decided());
   // Propagation is not complete search; if placement still fails, drop the
   // latest decisions until it succeeds.
   while (!result.variant && !applied.empty()) {
@@ -322,7 +136,7 @@ VariantResult buildVariant(const ChoiceSpace& space, const std::vector<DecisionR
     result.outcomes[dropped] = {DecisionStatus::Conflict, applied.empty() ? dropped : applied.back()};
     current = space;
     for (size_t index : applied) current.restrict(requests[index].component, requests[index].alternative);
-    result.variant = builder.place(current);
+    result.variant = builder.place(current, decided());
   }
   if (result.variant) {
     for (size_t index : applied) {

@@ -19,6 +19,11 @@ struct DecisionRequest {
   // Data-layout and other per-component hints carried to code generation
   // (`[Format: "RGB10_A2"]`, `[TextureSize: "512"]`).
   std::vector<std::pair<std::string, std::string>> attributes;
+  // How many finalizers the shader that decides is below (lockDepth): a
+  // decision counts where a base places what its locked worlds see only
+  // when a shader at or above that base's finalizer makes it. In-memory
+  // decisions, which name no shader, are the base's.
+  uint32_t lockDepth = 0;
 };
 
 enum class DecisionStatus : uint8_t {

@@ -73,21 +73,28 @@ class RouteSelector {
         for (WorldId target = 0; target < n; ++target) {
           if (done[target] || !search.cost[target]) continue;
           done[target] = true;
-          pipeline_.routes[source * n + target] = walkBack(search, target);
+          pipeline_.routes[source * n + target] = walkBack(search, target, done);
         }
       }
     }
   }
 
  private:
-  std::vector<uint32_t> walkBack(const Search& search, WorldId target) {
+  // The route to `target`, back to the source or to the first world on the
+  // way whose route is already chosen, which it then extends: the routes
+  // from one source form a tree, so a value carried to several worlds
+  // enters each of them once, by one import.
+  std::vector<uint32_t> walkBack(const Search& search, WorldId target, const std::vector<bool>& done) {
     std::vector<uint32_t> route;
-    for (WorldId w = target; w != search.source;) {
+    WorldId w = target;
+    while (w == target || !done[w]) {
       const std::vector<uint32_t> best = search.bestInto(w);
       if (best.size() > 1) reportTie(search.source, target, best);
       route.push_back(best.front());
       w = pipeline_.imports[best.front()].from;
     }
+    const std::vector<uint32_t>& prefix = pipeline_.routes[search.source * pipeline_.worlds.size() + w];
+    route.insert(route.end(), prefix.rbegin(), prefix.rend());
     std::reverse(route.begin(), route.end());
     return route;
   }

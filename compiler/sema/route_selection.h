@@ -24,6 +24,9 @@ int importPriority(const ast::ImportDecl& decl);
 //  2. the number of imports that change the value;
 //  3. the sum of the imports' priorities, higher first;
 //  4. the number of imports.
+// A route that passes a world chosen at an earlier step (one whose best
+// route has a milder worst change) extends that world's route, so the
+// routes from one world form a tree and a value enters each world once.
 // Declaration order never decides. Routes still tied go through the
 // predecessor world whose name sorts first, with a warning (W4110) at the
 // pipeline that names the tie and how to break it.

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/locked_pipeline.h"
 #include "graph_test_util.h"
 
 namespace spire {
@@ -135,6 +136,45 @@ TEST(DecisionFile, AFileThatDecidesNothingIsAnError) {
   EXPECT_EQ(codesFor("// nothing decided\n"), Codes{});
   EXPECT_EQ(codesFor("Terrain.normal = PrebakeTex\nTerrain.albedoo = Vertex\n"), Codes{"E5002"});
   EXPECT_EQ(codesFor("Couch.albedo = Vertex\n"), Codes{"E5002"});
+}
+
+// LQ finalizes V0; c0, which V0 cannot compute, is Impl's. Computing it in
+// C0 sends it to F0 through V0: as LQ's decision that holds for every
+// shader derived from LQ, as Mat's alone it would change Mat's V0 kernel.
+const std::string kLockedBase = testing_util::lockedTestPipeline("    import U0->F0 using uniformImport;\n") + R"(
+shader Impl using P {
+    @U0 sampler2D tex;
+    int c0 = int(texture(tex, vec2(0.5)).x * 4.0);
+    vec4 clip0 = vec4(m0_pos, 1.0);
+    vec4 output = vec4(float(c0));
+}
+shader LQ : Impl finalizes V0 {
+}
+shader Mat : LQ {
+}
+)";
+
+TEST(DecisionFile, ADecisionBelowAFinalizerThatWouldChangeItsKernelsIsSkippedNamingTheFinalizer) {
+  auto c = testing_util::compileShader({}, kLockedBase, "Mat");
+  ASSERT_TRUE(c.graph) << c.rendered();
+  graph::ChoiceSpace space(*c.graph);
+  const auto c0 = testing_util::idOf(*c.graph, "c0");
+  const auto placeC0 = [&](const std::string& text, std::vector<Diagnostic>& out) {
+    SourceManager sources;
+    DiagnosticList diags;
+    const auto variant = graph::applyDecisions(parse(sources, diags, text), space, diags);
+    out = diags.all();
+    return variant ? c.graph->altName(c.graph->node(c0), *variant->choice(c0)) : std::string("no variant");
+  };
+  std::vector<Diagnostic> diags;
+  EXPECT_EQ(placeC0("LQ.c0 = C0\n", diags), "C0");
+  EXPECT_TRUE(diags.empty());
+  EXPECT_EQ(placeC0("Mat.c0 = C0\n", diags), "F0");
+  ASSERT_EQ(diags.size(), 1u);
+  EXPECT_EQ(diags[0].code, DiagCode::W5002);
+  EXPECT_EQ(diags[0].message,
+            "decision 'Mat.c0 = C0' is skipped: it would change, for 'Mat' alone, kernels that every shader derived "
+            "from 'LQ' shares; decide 'LQ.c0' to place it for all of them");
 }
 
 }  // namespace
