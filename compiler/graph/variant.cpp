@@ -88,6 +88,48 @@ std::string Variant::describeRoutes() const {
   return out.empty() ? out : "// routes\n" + out;
 }
 
+namespace {
+
+// The variant of the space under the applied requests. Propagation is not
+// complete search, so when placement fails the latest applied decisions
+// are dropped until it succeeds; then each dropped one but the last (whose
+// removal let it succeed) is taken back, in order, if it still places.
+std::optional<Variant> placeApplied(const ChoiceSpace& space, const std::vector<DecisionRequest>& requests,
+                                    std::vector<size_t>& applied, std::vector<DecisionOutcome>& outcomes) {
+  VariantBuilder builder(space.graph());
+  const auto placeWith = [&](const std::vector<size_t>& indices) -> std::optional<Variant> {
+    ChoiceSpace current = space;
+    VariantBuilder::Decided decided(space.graph().nodes().size());
+    for (size_t index : indices) {
+      if (!current.restrict(requests[index].component, requests[index].alternative)) return std::nullopt;
+      decided[requests[index].component] =
+          VariantBuilder::Decision{requests[index].alternative, requests[index].lockDepth};
+    }
+    return builder.place(current, decided);
+  };
+  std::optional<Variant> variant = placeWith(applied);
+  std::vector<size_t> dropped;
+  while (!variant && !applied.empty()) {
+    dropped.push_back(applied.back());
+    applied.pop_back();
+    outcomes[dropped.back()] = {DecisionStatus::Conflict, applied.empty() ? dropped.back() : applied.back()};
+    variant = placeWith(applied);
+  }
+  if (!variant || dropped.size() < 2) return variant;
+  for (auto it = dropped.rbegin() + 1; it != dropped.rend(); ++it) {
+    std::vector<size_t> trial = applied;
+    trial.push_back(*it);
+    if (std::optional<Variant> retaken = placeWith(trial)) {
+      applied = std::move(trial);
+      outcomes[*it] = {};
+      variant = std::move(retaken);
+    }
+  }
+  return variant;
+}
+
+}  // namespace
+
 VariantResult buildVariant(const ChoiceSpace& space, const std::vector<DecisionRequest>& requests) {
   VariantResult result;
   result.outcomes.resize(requests.size());
@@ -119,25 +161,7 @@ VariantResult buildVariant(const ChoiceSpace& space, const std::vector<DecisionR
       }
     }
   }
-  VariantBuilder builder(space.graph());
-  const auto decided = [&] {
-    VariantBuilder::Decided d(space.graph().nodes().size());
-    for (size_t index : applied) {
-      d[requests[index].component] = VariantBuilder::Decision{requests[index].alternative, requests[index].lockDepth};
-    }
-    return d;
-  };
-  result.variant = builder.place(current, decided());
-  // Propagation is not complete search; if placement still fails, drop the
-  // latest decisions until it succeeds.
-  while (!result.variant && !applied.empty()) {
-    const size_t dropped = applied.back();
-    applied.pop_back();
-    result.outcomes[dropped] = {DecisionStatus::Conflict, applied.empty() ? dropped : applied.back()};
-    current = space;
-    for (size_t index : applied) current.restrict(requests[index].component, requests[index].alternative);
-    result.variant = builder.place(current, decided());
-  }
+  result.variant = placeApplied(space, requests, applied, result.outcomes);
   if (result.variant) {
     for (size_t index : applied) {
       if (!requests[index].attributes.empty()) {

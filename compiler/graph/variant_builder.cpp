@@ -17,9 +17,24 @@ VariantBuilder::VariantBuilder(const ShaderGraph& graph)
 std::optional<Variant> VariantBuilder::place(const ChoiceSpace& domains, const Decided& decided) {
   const std::optional<std::vector<HeldLevel>> held = holdLevels(domains, decided);
   if (!held) return std::nullopt;
-  std::optional<Placement> placement = search(domains, Rules{UINT32_MAX, &*held});
+  std::optional<Placement> placement = searchHolding(domains, *held);
   if (!placement) return std::nullopt;
   return assemble(std::move(placement->choice));
+}
+
+std::optional<VariantBuilder::Placement> VariantBuilder::searchHolding(const ChoiceSpace& domains,
+                                                                       const std::vector<HeldLevel>& held) const {
+  std::optional<Placement> placement = search(domains, Rules{UINT32_MAX, &held});
+  if (!placement) return std::nullopt;
+  // The search checks what it places; a component the base passes to or
+  // from a locked world must also stay placed (a derived decision can leave
+  // it unread, and the locked kernel would lose it).
+  for (const HeldLevel& level : held) {
+    for (sem::ComponentId c = 0; c < graph_.nodes().size(); ++c) {
+      if (level.footprints[c] && !level.footprints[c]->empty() && !placement->choice[c]) return std::nullopt;
+    }
+  }
+  return placement;
 }
 
 std::optional<std::vector<VariantBuilder::HeldLevel>> VariantBuilder::holdLevels(const ChoiceSpace& domains,
@@ -169,7 +184,7 @@ std::optional<AltId> VariantBuilder::chooseNext(Frame& frame, sem::ComponentId c
 
 std::optional<LockedMove> VariantBuilder::explainLockedMove(const ChoiceSpace& domains) const {
   const std::optional<std::vector<HeldLevel>> held = holdLevels(domains, Decided(graph_.nodes().size()));
-  if (!held || held->empty() || search(domains, Rules{UINT32_MAX, &*held})) return std::nullopt;
+  if (!held || held->empty() || searchHolding(domains, *held)) return std::nullopt;
   const std::optional<Placement> free = search(domains, Rules{});
   if (!free) return std::nullopt;
   for (uint32_t level = 0; level < held->size(); ++level) {

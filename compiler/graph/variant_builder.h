@@ -71,6 +71,8 @@ class VariantBuilder {
   // The backtracking search; nullopt when no placement exists or the search
   // gives up.
   std::optional<Placement> search(const ChoiceSpace& domains, const Rules& rules) const;
+  // The search of the whole shader under the held levels.
+  std::optional<Placement> searchHolding(const ChoiceSpace& domains, const std::vector<HeldLevel>& held) const;
   // The alternatives of `c` a search may try.
   std::vector<AltId> candidates(const ChoiceSpace& domains, sem::ComponentId c, const Rules& rules) const;
   // `alts` in the default preference order.

@@ -146,7 +146,9 @@ shader Impl using P {
     @U0 sampler2D tex;
     int c0 = int(texture(tex, vec2(0.5)).x * 4.0);
     vec4 clip0 = vec4(m0_pos, 1.0);
-    vec4 output = vec4(float(c0));
+    float k:a = 0.5;
+    float k:b = 0.25;
+    vec4 output = vec4(float(c0) * k);
 }
 shader LQ : Impl finalizes V0 {
 }
@@ -158,23 +160,32 @@ TEST(DecisionFile, ADecisionBelowAFinalizerThatWouldChangeItsKernelsIsSkippedNam
   auto c = testing_util::compileShader({}, kLockedBase, "Mat");
   ASSERT_TRUE(c.graph) << c.rendered();
   graph::ChoiceSpace space(*c.graph);
-  const auto c0 = testing_util::idOf(*c.graph, "c0");
+  const auto c0 = testing_util::idOf(*c.graph, "c0"), k = testing_util::idOf(*c.graph, "k");
+  // Where c0 and k go.
   const auto placeC0 = [&](const std::string& text, std::vector<Diagnostic>& out) {
     SourceManager sources;
     DiagnosticList diags;
     const auto variant = graph::applyDecisions(parse(sources, diags, text), space, diags);
     out = diags.all();
-    return variant ? c.graph->altName(c.graph->node(c0), *variant->choice(c0)) : std::string("no variant");
+    if (!variant) return std::string("no variant");
+    return c.graph->altName(c.graph->node(c0), *variant->choice(c0)) + " " +
+           c.graph->altName(c.graph->node(k), *variant->choice(k));
   };
   std::vector<Diagnostic> diags;
-  EXPECT_EQ(placeC0("LQ.c0 = C0\n", diags), "C0");
+  EXPECT_EQ(placeC0("LQ.c0 = C0\n", diags), "C0 V0:a");
   EXPECT_TRUE(diags.empty());
-  EXPECT_EQ(placeC0("Mat.c0 = C0\n", diags), "F0");
+  EXPECT_EQ(placeC0("Mat.c0 = C0\n", diags), "F0 V0:a");
   ASSERT_EQ(diags.size(), 1u);
   EXPECT_EQ(diags[0].code, DiagCode::W5002);
   EXPECT_EQ(diags[0].message,
             "decision 'Mat.c0 = C0' is skipped: it would change, for 'Mat' alone, kernels that every shader derived "
             "from 'LQ' shares; decide 'LQ.c0' to place it for all of them");
+  // The decision after it still applies: the builder drops the latest
+  // decisions until the shader places, then takes back those that fit.
+  EXPECT_EQ(placeC0("Mat.c0 = C0\nLQ.k = V0:b\n", diags), "F0 V0:b");
+  ASSERT_EQ(diags.size(), 1u);
+  EXPECT_EQ(diags[0].code, DiagCode::W5002);
+  EXPECT_NE(diags[0].message.find("decision 'Mat.c0 = C0' is skipped"), std::string::npos);
 }
 
 }  // namespace
