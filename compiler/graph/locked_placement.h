@@ -8,7 +8,11 @@
 // the base's own readers get it, into or through a locked world. The variant
 // builder therefore places each level's components as the base alone would
 // (reads written below the level do not count) and then holds what the
-// locked worlds see of them: their locked footprint.
+// locked worlds see of them: their locked footprint. What only derived
+// shaders define has no base placement to hold: it may enter a locked
+// world, not pass through one, and two derived shaders that deliver it
+// differently (a texture in one, a uniform in the other) still get locked
+// kernels of their own; nothing here compares derived shaders.
 #pragma once
 
 #include <cstdint>
@@ -86,7 +90,8 @@ class ChoiceSpace;
 
 // When `space`, with no decision applied, has no variant because holding
 // the base's placement leaves none: E4015 at the derived read that would
-// move an inherited component, with a note at the `finalizes` clause.
+// move an inherited component (or at the derived definition that would
+// pass through a locked world), with a note at the `finalizes` clause.
 // Returns whether it reported one.
 bool reportLockedMove(const ChoiceSpace& space, DiagnosticList& diags);
 

@@ -32,8 +32,10 @@ class VariantBuilder {
   // locked worlds, each level's components are placed first as the base
   // alone would place them, and what the locked worlds see of them is held.
   std::optional<Variant> place(const ChoiceSpace& domains, const Decided& decided);
-  // Why place() finds no variant, when holding the base's placement is the
-  // reason: the derived read that would move an inherited component.
+  // Why place(), without decisions, finds no variant, when holding the
+  // base's placement is the reason: the derived read that would move an
+  // inherited component, or the derived definition that would pass through
+  // a locked world.
   std::optional<LockedMove> explainLockedMove(const ChoiceSpace& domains) const;
 
  private:
