@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "graph/variant_builder.h"
+#include "sema/locked_worlds.h"
 
 namespace spire::graph {
 namespace {
@@ -16,17 +17,6 @@ WorldMask finalizedBy(const sem::Shader& s) {
     if (auto w = s.pipeline->findWorld(ref.name)) mask |= WorldMask{1} << *w;
   }
   return mask;
-}
-
-// The `finalizes` clause that locks `world` for shaders derived from
-// `finalizer`.
-const ast::NameRef* finalizingClause(const sem::Shader& finalizer, const std::string& world) {
-  for (const sem::Shader* s = &finalizer; s; s = s->base) {
-    for (const ast::NameRef& ref : s->decl->finalizes) {
-      if (ref.name == world) return &ref;
-    }
-  }
-  return nullptr;
 }
 
 // E4015 at the derived read, naming the base's placement.
@@ -69,7 +59,7 @@ void reportMove(const LockedMove& move, const ShaderGraph& graph, DiagnosticList
   Diagnostic& d =
       move.kind == LockedMove::Kind::Moved ? reportMoved(move, graph, diags) : reportPassesThrough(move, graph, diags);
   const std::string& locked = graph.pipeline().worlds[move.lockedWorld].name;
-  if (const ast::NameRef* clause = finalizingClause(*move.finalizer, locked)) {
+  if (const ast::NameRef* clause = sem::finalizingClause(*move.finalizer, locked)) {
     d.note(clause->range, fmt::format("'{}' is finalized here", locked));
   }
 }

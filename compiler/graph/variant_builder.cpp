@@ -202,25 +202,13 @@ std::optional<LockedMove> VariantBuilder::passesThrough(sem::ComponentId c, uint
   if (held.footprints[c] || !alt) return std::nullopt;
   const sem::Pipeline& pipeline = graph_.pipeline();
   const sem::WorldId world = graph_.node(c).alternatives[*alt].world;
-  for (sem::ComponentId r = 0; r < graph_.nodes().size(); ++r) {
-    if (!free.choice[r]) continue;
-    const Alternative& reader = graph_.node(r).alternatives[*free.choice[r]];
-    const auto& deps = reader.definition->dependencies;
-    const auto it = std::find(deps.begin(), deps.end(), c);
-    if (it == deps.end()) continue;
-    for (uint32_t k : graph_.route(c, world, reader.world)) {
+  for (const Read& read : readsOf(c, free)) {
+    for (uint32_t k : graph_.route(c, world, read.world)) {
       const sem::WorldId from = pipeline.imports[k].from;
       if (!((held.locked >> from) & 1)) continue;
-      return LockedMove{LockedMove::Kind::PassesThrough,
-                        c,
-                        std::nullopt,
-                        *alt,
-                        r,
-                        reader.definition,
-                        static_cast<size_t>(it - deps.begin()),
-                        reader.world,
-                        levels_[level].finalizer,
-                        from};
+      return LockedMove{
+          LockedMove::Kind::PassesThrough, c,   std::nullopt, *alt, read.reader, read.definition, read.use, read.world,
+          levels_[level].finalizer,        from};
     }
   }
   return std::nullopt;
@@ -233,25 +221,33 @@ std::optional<LockedMove> VariantBuilder::movedBy(sem::ComponentId c, uint32_t l
   const LockedFootprint footprint = lockedFootprint(graph_, c, *moved, free.reach[c], held.locked);
   if (footprint == *held.footprints[c]) return std::nullopt;
   const std::optional<AltId>& base = held.placement.choice[c];
-  for (sem::ComponentId r = 0; r < graph_.nodes().size(); ++r) {
-    if (!free.choice[r] || depth_[r][*free.choice[r]] <= level) continue;
-    const Alternative& reader = graph_.node(r).alternatives[*free.choice[r]];
-    const auto& deps = reader.definition->dependencies;
-    const auto it = std::find(deps.begin(), deps.end(), c);
-    if (it == deps.end()) continue;
-    if (base && ((graph_.readableFrom(c, graph_.node(c).alternatives[*base].world) >> reader.world) & 1)) continue;
+  for (const Read& read : readsOf(c, free)) {
+    if (depth_[read.reader][*free.choice[read.reader]] <= level) continue;
+    if (base && ((graph_.readableFrom(c, graph_.node(c).alternatives[*base].world) >> read.world) & 1)) continue;
     return LockedMove{LockedMove::Kind::Moved,
                       c,
                       base,
                       *moved,
-                      r,
-                      reader.definition,
-                      static_cast<size_t>(it - deps.begin()),
-                      reader.world,
+                      read.reader,
+                      read.definition,
+                      read.use,
+                      read.world,
                       levels_[level].finalizer,
                       changedLockedWorld(graph_, c, *held.footprints[c], footprint, held.locked)};
   }
   return std::nullopt;
+}
+
+std::vector<VariantBuilder::Read> VariantBuilder::readsOf(sem::ComponentId c, const Placement& placement) const {
+  std::vector<Read> reads;
+  for (sem::ComponentId r = 0; r < graph_.nodes().size(); ++r) {
+    if (!placement.choice[r]) continue;
+    const Alternative& reader = graph_.node(r).alternatives[*placement.choice[r]];
+    const auto& deps = reader.definition->dependencies;
+    const auto it = std::find(deps.begin(), deps.end(), c);
+    if (it != deps.end()) reads.push_back({r, reader.definition, static_cast<size_t>(it - deps.begin()), reader.world});
+  }
+  return reads;
 }
 
 std::optional<Variant> VariantBuilder::assemble(Choice choice) {

@@ -98,6 +98,14 @@ class VariantBuilder {
   // does; what only derived shaders place may reach a locked world but not
   // pass through one.
   bool owns(sem::ComponentId c, uint32_t level) const;
+  // A live definition's read of a component, in a placement.
+  struct Read {
+    sem::ComponentId reader = 0;
+    const sem::Definition* definition = nullptr;
+    size_t use = 0;  // index into definition->dependencies
+    sem::WorldId world = 0;
+  };
+  std::vector<Read> readsOf(sem::ComponentId c, const Placement& placement) const;
   // The first reader, written below `level`, whose read moves `c` from
   // where the level holds it.
   std::optional<LockedMove> movedBy(sem::ComponentId c, uint32_t level, const HeldLevel& held,

@@ -7,9 +7,7 @@
 #include "sema/analyzer_impl.h"
 
 namespace spire::sem {
-namespace {
 
-// The `finalizes` clause that locks `world` for shaders derived from `base`.
 const ast::NameRef* finalizingClause(const Shader& base, std::string_view world) {
   for (const Shader* s = &base; s; s = s->base) {
     for (const ast::NameRef& ref : s->decl->finalizes) {
@@ -18,8 +16,6 @@ const ast::NameRef* finalizingClause(const Shader& base, std::string_view world)
   }
   return nullptr;
 }
-
-}  // namespace
 
 bool isLocked(const Shader& base, WorldId world) {
   return std::find(base.finalizedWorlds.begin(), base.finalizedWorlds.end(), world) != base.finalizedWorlds.end();

@@ -7,10 +7,15 @@
 #pragma once
 
 #include <optional>
+#include <string_view>
 
 #include "sema/semantic_model.h"
 
 namespace spire::sem {
+
+// The `finalizes` clause that locks `world` for shaders derived from
+// `base`: its own or a base's; null when none does.
+const ast::NameRef* finalizingClause(const Shader& base, std::string_view world);
 
 // Whether shaders derived from `base` find `world` locked (finalized by
 // `base` or one of its bases).
